@@ -1,0 +1,32 @@
+#include "batch/batch.hpp"
+
+#include <algorithm>
+
+namespace footpoint {
+
+std::vector<ProjectionResult> project_batch(ThreadPool& pool, const BatchRequest& request) {
+  std::vector<ProjectionResult> results(request.count);
+  const int dim = request.geometry->point_dim();
+  // Chunks small enough to balance the pool and to check the deadline often, large enough that
+  // the per-task overhead (~1 µs) stays negligible next to the solves.
+  const std::size_t chunk = std::clamp<std::size_t>(request.count / (8 * pool.size() + 1), 16, 1024);
+  pool.parallel_for(request.count, chunk, [&](std::size_t begin, std::size_t end) {
+    Options options = request.options;
+    for (std::size_t i = begin; i < end; ++i) {
+      ProjectionResult& r = results[i];
+      if (std::chrono::steady_clock::now() >= request.deadline) {
+        r.dim = dim;
+        r.num_params = request.geometry->num_params();
+        r.summary.method = request.method;
+        r.summary.status = Status::deadline_exceeded;
+        r.summary.starts = 0;
+        continue;
+      }
+      if (!request.initials.empty()) options.initial = request.initials[i];
+      r = request.geometry->project(request.points + i * dim, request.method, options);
+    }
+  });
+  return results;
+}
+
+}  // namespace footpoint

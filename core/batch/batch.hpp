@@ -1,0 +1,26 @@
+// The one entry point for projecting many points: used by the server, the tests and the
+// benchmarks alike. Order is kept; points not started before the deadline get deadline_exceeded.
+#pragma once
+#include <array>
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "batch/thread_pool.hpp"
+#include "geometry/geometry.hpp"
+
+namespace footpoint {
+
+struct BatchRequest {
+  const CompiledGeometry* geometry = nullptr;
+  std::string method = "auto";
+  Options options;                                   // shared by all points
+  const double* points = nullptr;                    // count * geometry->point_dim() coordinates
+  std::size_t count = 0;
+  std::vector<std::array<double, 3>> initials;       // empty, or one start per point
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+};
+
+std::vector<ProjectionResult> project_batch(ThreadPool& pool, const BatchRequest& request);
+
+}  // namespace footpoint

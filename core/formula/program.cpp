@@ -1,0 +1,384 @@
+// Evaluation of the expression tape: one forward pass over the nodes, for plain values, for
+// second- and third-order jets (exact derivatives by the chain and Leibniz rules) and for intervals.
+#include "formula/program.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "formula/elementary.hpp"
+#include "formula/tape.hpp"
+
+namespace footpoint::formula {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+bool is_binary(Op op) { return (op >= Op::add && op <= Op::div) || (op >= Op::min && op <= Op::logical_or); }
+
+// ---- plain values -----------------------------------------------------------------------------
+struct ValueArith {
+  using T = double;
+  static T constant(double c) { return c; }
+  static T variable(const T* x, int i) { return x[i]; }
+  static T unary(Op op, const T& a, double k) { return unary_value(op, a, k); }
+  static T binary(Op op, const T& a, const T& b) { return binary_value(op, a, b); }
+  static const T& select(const T& c, const T& a, const T& b) { return c != 0.0 ? a : b; }
+};
+
+// ---- second-order jets: value, gradient, Hessian ------------------------------------------------
+template <int N>
+struct Jet2Arith {
+  using T = Jet2<N>;
+  static T constant(double c) {
+    T r;
+    r.v = c;
+    return r;
+  }
+  static T variable(const T* x, int i) { return x[i]; }
+  // Chain rule: (f∘a)_i = f' a_i,  (f∘a)_ij = f' a_ij + f'' a_i a_j.
+  static T chain(const T& a, const double d[4]) {
+    T r;
+    r.v = d[0];
+    for (int i = 0; i < N; ++i) r.g[i] = d[1] * a.g[i];
+    for (int i = 0; i < N; ++i)
+      for (int j = i; j < N; ++j) r.h[j][i] = r.h[i][j] = d[1] * a.h[i][j] + d[2] * a.g[i] * a.g[j];
+    return r;
+  }
+  static T unary(Op op, const T& a, double k) {
+    double d[4];
+    unary_derivatives(op, a.v, k, 2, d);
+    return chain(a, d);
+  }
+  static T binary(Op op, const T& a, const T& b) {
+    T r;
+    switch (op) {
+      case Op::add:
+      case Op::sub: {
+        const double s = op == Op::add ? 1.0 : -1.0;
+        r.v = a.v + s * b.v;
+        for (int i = 0; i < N; ++i) r.g[i] = a.g[i] + s * b.g[i];
+        for (int i = 0; i < N; ++i)
+          for (int j = 0; j < N; ++j) r.h[i][j] = a.h[i][j] + s * b.h[i][j];
+        return r;
+      }
+      case Op::mul:  // Leibniz: (ab)_ij = a_ij b + a_i b_j + a_j b_i + a b_ij
+        r.v = a.v * b.v;
+        for (int i = 0; i < N; ++i) r.g[i] = a.g[i] * b.v + a.v * b.g[i];
+        for (int i = 0; i < N; ++i)
+          for (int j = i; j < N; ++j)
+            r.h[j][i] = r.h[i][j] = a.h[i][j] * b.v + a.g[i] * b.g[j] + a.g[j] * b.g[i] + a.v * b.h[i][j];
+        return r;
+      case Op::div:  // q = a/b from a = q b:  q_i = (a_i - q b_i)/b,  q_ij = (a_ij - q_i b_j - q_j b_i - q b_ij)/b
+        r.v = a.v / b.v;
+        for (int i = 0; i < N; ++i) r.g[i] = (a.g[i] - r.v * b.g[i]) / b.v;
+        for (int i = 0; i < N; ++i)
+          for (int j = i; j < N; ++j)
+            r.h[j][i] = r.h[i][j] = (a.h[i][j] - r.g[i] * b.g[j] - r.g[j] * b.g[i] - r.v * b.h[i][j]) / b.v;
+        return r;
+      case Op::min: return a.v <= b.v ? a : b;
+      case Op::max: return a.v >= b.v ? a : b;
+      default: return constant(binary_value(op, a.v, b.v));
+    }
+  }
+  static const T& select(const T& c, const T& a, const T& b) { return c.v != 0.0 ? a : b; }
+};
+
+// ---- third-order jets ------------------------------------------------------------------------
+template <int N>
+struct Jet3Arith {
+  using T = Jet3<N>;
+  static T constant(double c) {
+    T r;
+    r.v = c;
+    return r;
+  }
+  static T variable(const T* x, int i) { return x[i]; }
+  // Faà di Bruno to third order:
+  //   (f∘a)_ijk = f' a_ijk + f'' (a_ij a_k + a_ik a_j + a_jk a_i) + f''' a_i a_j a_k.
+  static T chain(const T& a, const double d[4]) {
+    T r;
+    r.v = d[0];
+    for (int i = 0; i < N; ++i) r.g[i] = d[1] * a.g[i];
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j) r.h[i][j] = d[1] * a.h[i][j] + d[2] * a.g[i] * a.g[j];
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j)
+        for (int k = 0; k < N; ++k)
+          r.t[i][j][k] = d[1] * a.t[i][j][k] +
+                         d[2] * (a.h[i][j] * a.g[k] + a.h[i][k] * a.g[j] + a.h[j][k] * a.g[i]) +
+                         d[3] * a.g[i] * a.g[j] * a.g[k];
+    return r;
+  }
+  static T unary(Op op, const T& a, double k) {
+    double d[4];
+    unary_derivatives(op, a.v, k, 3, d);
+    return chain(a, d);
+  }
+  // Leibniz to third order: sum over the ways to split {i,j,k} between the two factors.
+  static double leibniz3(const T& a, const T& b, int i, int j, int k) {
+    return a.t[i][j][k] * b.v + a.h[i][j] * b.g[k] + a.h[i][k] * b.g[j] + a.h[j][k] * b.g[i] +
+           a.g[i] * b.h[j][k] + a.g[j] * b.h[i][k] + a.g[k] * b.h[i][j] + a.v * b.t[i][j][k];
+  }
+  static T binary(Op op, const T& a, const T& b) {
+    T r;
+    switch (op) {
+      case Op::add:
+      case Op::sub: {
+        const double s = op == Op::add ? 1.0 : -1.0;
+        r.v = a.v + s * b.v;
+        for (int i = 0; i < N; ++i) r.g[i] = a.g[i] + s * b.g[i];
+        for (int i = 0; i < N; ++i)
+          for (int j = 0; j < N; ++j) {
+            r.h[i][j] = a.h[i][j] + s * b.h[i][j];
+            for (int k = 0; k < N; ++k) r.t[i][j][k] = a.t[i][j][k] + s * b.t[i][j][k];
+          }
+        return r;
+      }
+      case Op::mul:
+        r.v = a.v * b.v;
+        for (int i = 0; i < N; ++i) r.g[i] = a.g[i] * b.v + a.v * b.g[i];
+        for (int i = 0; i < N; ++i)
+          for (int j = 0; j < N; ++j) {
+            r.h[i][j] = a.h[i][j] * b.v + a.g[i] * b.g[j] + a.g[j] * b.g[i] + a.v * b.h[i][j];
+            for (int k = 0; k < N; ++k) r.t[i][j][k] = leibniz3(a, b, i, j, k);
+          }
+        return r;
+      case Op::div: {
+        // q = a/b: solve a = q b order by order; (q b)_ijk = leibniz3(q, b) contains q_ijk b.
+        r.v = a.v / b.v;
+        for (int i = 0; i < N; ++i) r.g[i] = (a.g[i] - r.v * b.g[i]) / b.v;
+        for (int i = 0; i < N; ++i)
+          for (int j = 0; j < N; ++j)
+            r.h[i][j] = (a.h[i][j] - r.g[i] * b.g[j] - r.g[j] * b.g[i] - r.v * b.h[i][j]) / b.v;
+        for (int i = 0; i < N; ++i)
+          for (int j = 0; j < N; ++j)
+            for (int k = 0; k < N; ++k) {
+              r.t[i][j][k] = 0.0;
+              r.t[i][j][k] = (a.t[i][j][k] - leibniz3(r, b, i, j, k)) / b.v;
+            }
+        return r;
+      }
+      case Op::min: return a.v <= b.v ? a : b;
+      case Op::max: return a.v >= b.v ? a : b;
+      default: return constant(binary_value(op, a.v, b.v));
+    }
+  }
+  static const T& select(const T& c, const T& a, const T& b) { return c.v != 0.0 ? a : b; }
+};
+
+// ---- intervals with outward rounding -------------------------------------------------------------
+struct IntervalArith {
+  using T = Interval;
+  static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  static T empty() { return {nan, nan}; }  // no point of the box is in the function's domain
+  static T widen(double lo, double hi) {
+    if (std::isnan(lo) || std::isnan(hi)) return empty();
+    return {std::nextafter(lo, -kInf), std::nextafter(hi, kInf)};
+  }
+  static bool bad(const T& a) { return std::isnan(a.lo) || std::isnan(a.hi); }
+  static T constant(double c) { return {c, c}; }
+  static T variable(const T* x, int i) { return x[i]; }
+  static T hull(const T& a, const T& b) {
+    if (bad(a) || bad(b)) return empty();
+    return {std::min(a.lo, b.lo), std::max(a.hi, b.hi)};
+  }
+  // f increasing on [dlo, dhi]: clip the argument to the domain, map the ends.
+  template <class F>
+  static T increasing(const T& a, F f, double dlo = -kInf, double dhi = kInf) {
+    const double lo = std::max(a.lo, dlo), hi = std::min(a.hi, dhi);
+    if (lo > hi) return empty();
+    return widen(f(lo), f(hi));
+  }
+  template <class F>
+  static T decreasing(const T& a, F f, double dlo = -kInf, double dhi = kInf) {
+    const double lo = std::max(a.lo, dlo), hi = std::min(a.hi, dhi);
+    if (lo > hi) return empty();
+    return widen(f(hi), f(lo));
+  }
+  // f even, increasing in |x| (x^2k, cosh, abs).
+  template <class F>
+  static T even(const T& a, F f) {
+    if (a.lo >= 0.0) return widen(f(a.lo), f(a.hi));
+    if (a.hi <= 0.0) return widen(f(-a.hi), f(-a.lo));
+    return widen(f(0.0), f(std::max(-a.lo, a.hi)));
+  }
+  // sin over [lo, hi]: the ends, plus +1 / -1 where a maximum pi/2 + 2k pi / minimum lies inside.
+  static T sine(double lo, double hi) {
+    if (!(hi - lo < 2.0 * std::numbers::pi)) return {-1.0, 1.0};
+    double rlo = std::min(std::sin(lo), std::sin(hi)), rhi = std::max(std::sin(lo), std::sin(hi));
+    auto contains = [&](double phase) {  // some phase + 2k pi in [lo, hi]
+      const double k = std::ceil((lo - phase) / (2.0 * std::numbers::pi) - 1e-12);
+      return phase + 2.0 * std::numbers::pi * k <= hi + 1e-12;
+    };
+    if (contains(0.5 * std::numbers::pi)) rhi = 1.0;
+    if (contains(-0.5 * std::numbers::pi)) rlo = -1.0;
+    const T r = widen(rlo, rhi);
+    return {std::max(r.lo, -1.0), std::min(r.hi, 1.0)};
+  }
+  static T mul(const T& a, const T& b) {
+    const double p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
+    double lo = kInf, hi = -kInf;
+    for (double x : p) {
+      if (std::isnan(x)) x = 0.0;  // 0 * inf: the bound of a product with an exact zero factor
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+    return widen(lo, hi);
+  }
+  static T div(const T& a, const T& b) {
+    if (b.lo <= 0.0 && b.hi >= 0.0) return {-kInf, kInf};
+    return mul(a, widen(1.0 / b.hi, 1.0 / b.lo));
+  }
+  static T pow_int(const T& a, int k) {
+    if (k < 0) return div(constant(1.0), pow_int(a, -k));
+    auto f = [k](double x) { return formula::pow_int(x, k); };
+    return (k % 2 == 0) ? even(a, f) : increasing(a, f);
+  }
+  static T unary(Op op, const T& a, double k) {
+    if (bad(a)) return empty();
+    switch (op) {
+      case Op::neg: return {-a.hi, -a.lo};
+      case Op::pow_int: return pow_int(a, static_cast<int>(k));
+      case Op::pow_real:
+        if (k > 0) return increasing(a, [k](double x) { return std::pow(x, k); }, 0.0);
+        return decreasing(a, [k](double x) { return std::pow(x, k); }, 0.0);
+      case Op::sqrt: return increasing(a, [](double x) { return std::sqrt(x); }, 0.0);
+      case Op::exp: return increasing(a, [](double x) { return std::exp(x); });
+      case Op::ln: return increasing(a, [](double x) { return std::log(x); }, 0.0);
+      case Op::log2: return increasing(a, [](double x) { return std::log2(x); }, 0.0);
+      case Op::log10: return increasing(a, [](double x) { return std::log10(x); }, 0.0);
+      case Op::sin: return sine(a.lo, a.hi);
+      case Op::cos: {  // cos x = sin(x + pi/2); the shift's rounding is covered by widening
+        const T s = sine(a.lo + 0.5 * std::numbers::pi, a.hi + 0.5 * std::numbers::pi);
+        return {std::max(-1.0, std::nextafter(s.lo, -kInf)), std::min(1.0, std::nextafter(s.hi, kInf))};
+      }
+      case Op::tan: {
+        // A pole pi/2 + k pi inside the interval makes the range unbounded.
+        const double k0 = std::floor((a.lo - 0.5 * std::numbers::pi) / std::numbers::pi);
+        if (0.5 * std::numbers::pi + (k0 + 1.0) * std::numbers::pi <= a.hi + 1e-12) return {-kInf, kInf};
+        return increasing(a, [](double x) { return std::tan(x); });
+      }
+      case Op::asin: return increasing(a, [](double x) { return std::asin(x); }, -1.0, 1.0);
+      case Op::acos: return decreasing(a, [](double x) { return std::acos(x); }, -1.0, 1.0);
+      case Op::atan: return increasing(a, [](double x) { return std::atan(x); });
+      case Op::sinh: return increasing(a, [](double x) { return std::sinh(x); });
+      case Op::cosh: return even(a, [](double x) { return std::cosh(x); });
+      case Op::tanh: return increasing(a, [](double x) { return std::tanh(x); });
+      case Op::asinh: return increasing(a, [](double x) { return std::asinh(x); });
+      case Op::acosh: return increasing(a, [](double x) { return std::acosh(x); }, 1.0);
+      case Op::atanh: return increasing(a, [](double x) { return std::atanh(x); }, -1.0, 1.0);
+      case Op::abs: return even(a, [](double x) { return std::fabs(x); });
+      case Op::sign: return {sign_of(a.lo), sign_of(a.hi)};
+      default: return empty();
+    }
+  }
+  static bool surely_nonzero(const T& a) { return a.excludes_zero(); }
+  static bool surely_zero(const T& a) { return a.lo == 0.0 && a.hi == 0.0; }
+  static T truth(bool surely_true, bool surely_false) {
+    return surely_true ? T{1.0, 1.0} : (surely_false ? T{0.0, 0.0} : T{0.0, 1.0});
+  }
+  static T binary(Op op, const T& a, const T& b) {
+    if (bad(a) || bad(b)) return empty();
+    switch (op) {
+      case Op::add: return widen(a.lo + b.lo, a.hi + b.hi);
+      case Op::sub: return widen(a.lo - b.hi, a.hi - b.lo);
+      case Op::mul: return mul(a, b);
+      case Op::div: return div(a, b);
+      case Op::min: return {std::min(a.lo, b.lo), std::min(a.hi, b.hi)};
+      case Op::max: return {std::max(a.lo, b.lo), std::max(a.hi, b.hi)};
+      case Op::lt: return truth(a.hi < b.lo, a.lo >= b.hi);
+      case Op::le: return truth(a.hi <= b.lo, a.lo > b.hi);
+      case Op::gt: return truth(a.lo > b.hi, a.hi <= b.lo);
+      case Op::ge: return truth(a.lo >= b.hi, a.hi < b.lo);
+      case Op::eq: return truth(a.lo == a.hi && b.lo == b.hi && a.lo == b.lo, a.hi < b.lo || b.hi < a.lo);
+      case Op::ne: return truth(a.hi < b.lo || b.hi < a.lo, a.lo == a.hi && b.lo == b.hi && a.lo == b.lo);
+      case Op::logical_and:
+        return truth(surely_nonzero(a) && surely_nonzero(b), surely_zero(a) || surely_zero(b));
+      case Op::logical_or:
+        return truth(surely_nonzero(a) || surely_nonzero(b), surely_zero(a) && surely_zero(b));
+      default: return empty();
+    }
+  }
+  static T select(const T& c, const T& a, const T& b) {
+    if (surely_nonzero(c)) return a;
+    if (surely_zero(c)) return b;
+    return hull(a, b);
+  }
+};
+
+template <class Arith>
+void run(const Program::Tape& tape, const typename Arith::T* inputs, typename Arith::T* outputs) {
+  using T = typename Arith::T;
+  thread_local std::vector<T> regs;
+  if (regs.size() < tape.nodes.size()) regs.resize(tape.nodes.size());
+  const Node* nodes = tape.nodes.data();
+  const std::size_t n = tape.nodes.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Node& node = nodes[i];
+    switch (node.op) {
+      case Op::constant: regs[i] = Arith::constant(node.k); break;
+      case Op::variable: regs[i] = Arith::variable(inputs, static_cast<int>(node.k)); break;
+      case Op::select: regs[i] = Arith::select(regs[node.c], regs[node.a], regs[node.b]); break;
+      default:
+        if (is_binary(node.op)) regs[i] = Arith::binary(node.op, regs[node.a], regs[node.b]);
+        else regs[i] = Arith::unary(node.op, regs[node.a], node.k);
+    }
+  }
+  for (std::size_t k = 0; k < tape.outputs.size(); ++k) outputs[k] = regs[tape.outputs[k]];
+}
+
+// Seeds the jets of the input variables: x_i has gradient e_i and no higher derivatives.
+template <class J>
+void seed(const double* x, int n, J* jets) {
+  for (int i = 0; i < n; ++i) {
+    jets[i] = J{};
+    jets[i].v = x[i];
+    jets[i].g[i] = 1.0;
+  }
+}
+
+}  // namespace
+
+Program Program::compile(const std::vector<NamedFormula>& formulas, const std::vector<std::string>& variables,
+                         const std::map<std::string, double>& constants, const CompileLimits& limits) {
+  Program p;
+  p.tape_ = std::make_shared<const Tape>(build_tape(formulas, variables, constants, limits));
+  return p;
+}
+
+int Program::num_inputs() const { return tape_->num_inputs; }
+int Program::num_outputs() const { return static_cast<int>(tape_->outputs.size()); }
+std::size_t Program::num_nodes() const { return tape_->nodes.size(); }
+std::size_t Program::memory_bytes() const {
+  return sizeof(Tape) + tape_->nodes.capacity() * sizeof(Node) + tape_->outputs.capacity() * sizeof(std::int32_t);
+}
+
+void Program::values(const double* x, double* out) const { run<ValueArith>(*tape_, x, out); }
+
+template <int N>
+void Program::jets2(const double* x, Jet2<N>* out) const {
+  Jet2<N> in[N];
+  seed(x, N, in);
+  run<Jet2Arith<N>>(*tape_, in, out);
+}
+
+template <int N>
+void Program::jets3(const double* x, Jet3<N>* out) const {
+  Jet3<N> in[N];
+  seed(x, N, in);
+  run<Jet3Arith<N>>(*tape_, in, out);
+}
+
+void Program::intervals(const Interval* x, Interval* out) const { run<IntervalArith>(*tape_, x, out); }
+
+template void Program::jets2<1>(const double*, Jet2<1>*) const;
+template void Program::jets2<2>(const double*, Jet2<2>*) const;
+template void Program::jets2<3>(const double*, Jet2<3>*) const;
+template void Program::jets3<1>(const double*, Jet3<1>*) const;
+template void Program::jets3<2>(const double*, Jet3<2>*) const;
+template void Program::jets3<3>(const double*, Jet3<3>*) const;
+
+}  // namespace footpoint::formula

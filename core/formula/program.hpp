@@ -1,0 +1,73 @@
+// A compiled set of formulas: muparser parses each formula string once, its bytecode is read into
+// an immutable expression tape (static single assignment, constants folded, common subexpressions
+// shared across the formulas) and that tape is evaluated for plain values, second- or third-order
+// jets, or intervals. A Program is immutable after compile() and safe to evaluate from many
+// threads at once without locks (scratch space is thread-local).
+#pragma once
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "formula/interval.hpp"
+#include "formula/jet.hpp"
+
+namespace footpoint::formula {
+
+// Why a formula did not compile. `formula` names the formula ("x", "equations[1]", ...),
+// `position` is the 0-based character position muparser reports (-1 when there is none).
+struct FormulaError : std::runtime_error {
+  enum class Kind { syntax, unknown_variable, empty, too_long, too_complex, bad_constant };
+  FormulaError(Kind kind, std::string formula, int position, std::string message);
+  Kind kind;
+  std::string formula;
+  int position;
+};
+
+const char* to_string(FormulaError::Kind kind);
+
+struct NamedFormula {
+  std::string name;        // e.g. "x", "y", "z" or "equations[0]"
+  std::string expression;  // muparser syntax
+};
+
+struct CompileLimits {
+  std::size_t max_formula_length = 4096;  // characters per formula
+  std::size_t max_nodes = 20000;          // tape length over all formulas
+};
+
+class Program {
+ public:
+  // Compiles the formulas over the given variable names (in that order: input i of every
+  // evaluation is variables[i]). `constants` are user constants (name -> value) usable in the
+  // formulas; `_pi` and `_e` are always defined to full double precision. Throws FormulaError.
+  static Program compile(const std::vector<NamedFormula>& formulas,
+                         const std::vector<std::string>& variables,
+                         const std::map<std::string, double>& constants,
+                         const CompileLimits& limits = {});
+
+  int num_inputs() const;
+  int num_outputs() const;
+  std::size_t num_nodes() const;
+  std::size_t memory_bytes() const;
+
+  // out[k] = value of formula k at x (x has num_inputs() entries).
+  void values(const double* x, double* out) const;
+  // Value, gradient and Hessian of every formula in one forward pass. Requires N == num_inputs().
+  template <int N>
+  void jets2(const double* x, Jet2<N>* out) const;
+  // Up to third derivatives. Requires N == num_inputs().
+  template <int N>
+  void jets3(const double* x, Jet3<N>* out) const;
+  // Rigorous enclosures of every formula's range over the box x[i] (outward rounded).
+  void intervals(const Interval* x, Interval* out) const;
+
+  struct Tape;  // opaque
+
+ private:
+  std::shared_ptr<const Tape> tape_;
+};
+
+}  // namespace footpoint::formula

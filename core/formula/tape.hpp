@@ -1,0 +1,49 @@
+// The expression tape: a list of nodes in static single assignment form. Node i only refers to
+// nodes before it, so one forward pass evaluates every formula. Internal to core/formula.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "formula/program.hpp"
+
+namespace footpoint::formula {
+
+enum class Op : std::uint8_t {
+  // leaves
+  constant, variable,
+  // arithmetic
+  add, sub, mul, div, neg,
+  pow,        // a^b with b not constant: exp(b ln a), needs a > 0
+  pow_int,    // a^k, k integer (node.k): ordinary power rule, fine for a < 0
+  pow_real,   // a^c, c a non-integer constant (node.k)
+  // elementary functions of one argument
+  sqrt, exp, ln, log2, log10, sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, asinh, acosh, atanh,
+  abs, sign,
+  // two arguments, piecewise
+  min, max,
+  // comparisons and logic (value 0 or 1, zero derivatives)
+  lt, le, gt, ge, eq, ne, logical_and, logical_or,
+  // c ? a : b
+  select,
+};
+
+struct Node {
+  Op op;
+  std::int32_t a = -1, b = -1, c = -1;  // operand node indices
+  double k = 0.0;                      // constant value, variable index or exponent
+};
+
+struct Program::Tape {
+  std::vector<Node> nodes;
+  std::vector<std::int32_t> outputs;  // node index of each formula's result
+  int num_inputs = 0;
+};
+
+// Reads muparser's bytecode of every formula into one tape (tape_builder.cpp).
+Program::Tape build_tape(const std::vector<NamedFormula>& formulas, const std::vector<std::string>& variables,
+                         const std::map<std::string, double>& constants, const CompileLimits& limits);
+
+// f and its first three derivatives at x, for the unary ops (elementary.cpp-style table in program.cpp).
+bool is_unary(Op op);
+
+}  // namespace footpoint::formula
