@@ -32,6 +32,11 @@ inline double pow_int(double x, int k) {
 inline double unary_value(Op op, double x, double k) {
   switch (op) {
     case Op::neg: return -x;
+    case Op::add_k: return x + k;
+    case Op::mul_k: return x * k;
+    case Op::div_k: return x / k;
+    case Op::rsub_k: return k - x;
+    case Op::rdiv_k: return k / x;
     case Op::pow_int: return pow_int(x, static_cast<int>(k));
     case Op::pow_real: return std::pow(x, k);
     case Op::sqrt: return std::sqrt(x);
@@ -58,11 +63,34 @@ inline double unary_value(Op op, double x, double k) {
 }
 
 // d[0..order] = f(x), f'(x), f''(x), f'''(x) for a unary op (order <= 3).
-inline void unary_derivatives(Op op, double x, double k, int order, double d[4]) {
+[[gnu::always_inline]] inline void unary_derivatives(Op op, double x, double k, int order, double d[4]) {
   d[1] = d[2] = d[3] = 0.0;
   switch (op) {
     case Op::neg: d[0] = -x; d[1] = -1.0; return;
+    case Op::add_k: d[0] = x + k; d[1] = 1.0; return;
+    case Op::mul_k: d[0] = x * k; d[1] = k; return;
+    case Op::div_k: d[0] = x / k; d[1] = 1.0 / k; return;
+    case Op::rsub_k: d[0] = k - x; d[1] = -1.0; return;
+    case Op::rdiv_k: {  // k/x: derivatives -k/x^2, 2k/x^3, -6k/x^4
+      const double r = 1.0 / x;
+      d[0] = k / x; d[1] = -k * r * r; d[2] = 2.0 * k * r * r * r; d[3] = -6.0 * k * r * r * r * r;
+      return;
+    }
     case Op::pow_int:
+      if (k >= order) {
+        // x^(k-n) for n = order..0 by successive products from one power: d[n] = k!/(k-n)! x^(k-n).
+        double pw[4];
+        pw[order] = pow_int(x, static_cast<int>(k) - order);
+        for (int n = order - 1; n >= 0; --n) pw[n] = pw[n + 1] * x;
+        d[0] = pw[0];
+        double coeff = 1.0;
+        for (int n = 1; n <= order; ++n) {
+          coeff *= (k - (n - 1));
+          d[n] = coeff * pw[n];
+        }
+        return;
+      }
+      [[fallthrough]];
     case Op::pow_real: {
       // (x^k)^(n) = k (k-1) ... (k-n+1) x^(k-n); a zero coefficient gives an exact zero
       // (so x^2 has second derivative 2 and third derivative 0 also at x = 0).

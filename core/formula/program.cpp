@@ -23,8 +23,8 @@ struct ValueArith {
   using T = double;
   static T constant(double c) { return c; }
   static T variable(const T* x, int i) { return x[i]; }
-  static T unary(Op op, const T& a, double k) { return unary_value(op, a, k); }
-  static T binary(Op op, const T& a, const T& b) { return binary_value(op, a, b); }
+  [[gnu::always_inline]] static T unary(Op op, const T& a, double k) { return unary_value(op, a, k); }
+  [[gnu::always_inline]] static T binary(Op op, const T& a, const T& b) { return binary_value(op, a, b); }
   static const T& select(const T& c, const T& a, const T& b) { return c != 0.0 ? a : b; }
 };
 
@@ -39,7 +39,7 @@ struct Jet2Arith {
   }
   static T variable(const T* x, int i) { return x[i]; }
   // Chain rule: (f∘a)_i = f' a_i,  (f∘a)_ij = f' a_ij + f'' a_i a_j.
-  static T chain(const T& a, const double d[4]) {
+  [[gnu::always_inline]] static T chain(const T& a, const double d[4]) {
     T r;
     r.v = d[0];
     for (int i = 0; i < N; ++i) r.g[i] = d[1] * a.g[i];
@@ -47,18 +47,35 @@ struct Jet2Arith {
       for (int j = i; j < N; ++j) r.h[j][i] = r.h[i][j] = d[1] * a.h[i][j] + d[2] * a.g[i] * a.g[j];
     return r;
   }
-  static T unary(Op op, const T& a, double k) {
-    double d[4];
-    unary_derivatives(op, a.v, k, 2, d);
-    return chain(a, d);
+  [[gnu::always_inline]] static T unary(Op op, const T& a, double k) {
+    T r;
+    switch (op) {  // linear ops with a constant: every derivative scales or passes through
+      case Op::add_k: r = a; r.v += k; return r;
+      case Op::mul_k:
+      case Op::div_k:
+      case Op::rsub_k:
+      case Op::neg: {
+        const double s = op == Op::mul_k ? k : (op == Op::div_k ? 1.0 / k : -1.0);
+        r.v = unary_value(op, a.v, k);
+        for (int i = 0; i < N; ++i) r.g[i] = s * a.g[i];
+        for (int i = 0; i < N; ++i)
+          for (int j = 0; j < N; ++j) r.h[i][j] = s * a.h[i][j];
+        return r;
+      }
+      default: {
+        double d[4];
+        unary_derivatives(op, a.v, k, 2, d);
+        return chain(a, d);
+      }
+    }
   }
-  static T binary(Op op, const T& a, const T& b) {
+  [[gnu::always_inline]] static T binary(Op op, const T& a, const T& b) {
     T r;
     switch (op) {
       case Op::add:
       case Op::sub: {
         const double s = op == Op::add ? 1.0 : -1.0;
-        r.v = a.v + s * b.v;
+        r.v = op == Op::add ? a.v + b.v : a.v - b.v;
         for (int i = 0; i < N; ++i) r.g[i] = a.g[i] + s * b.g[i];
         for (int i = 0; i < N; ++i)
           for (int j = 0; j < N; ++j) r.h[i][j] = a.h[i][j] + s * b.h[i][j];
@@ -98,7 +115,7 @@ struct Jet3Arith {
   static T variable(const T* x, int i) { return x[i]; }
   // Faà di Bruno to third order:
   //   (f∘a)_ijk = f' a_ijk + f'' (a_ij a_k + a_ik a_j + a_jk a_i) + f''' a_i a_j a_k.
-  static T chain(const T& a, const double d[4]) {
+  [[gnu::always_inline]] static T chain(const T& a, const double d[4]) {
     T r;
     r.v = d[0];
     for (int i = 0; i < N; ++i) r.g[i] = d[1] * a.g[i];
@@ -112,7 +129,7 @@ struct Jet3Arith {
                          d[3] * a.g[i] * a.g[j] * a.g[k];
     return r;
   }
-  static T unary(Op op, const T& a, double k) {
+  [[gnu::always_inline]] static T unary(Op op, const T& a, double k) {
     double d[4];
     unary_derivatives(op, a.v, k, 3, d);
     return chain(a, d);
@@ -122,13 +139,13 @@ struct Jet3Arith {
     return a.t[i][j][k] * b.v + a.h[i][j] * b.g[k] + a.h[i][k] * b.g[j] + a.h[j][k] * b.g[i] +
            a.g[i] * b.h[j][k] + a.g[j] * b.h[i][k] + a.g[k] * b.h[i][j] + a.v * b.t[i][j][k];
   }
-  static T binary(Op op, const T& a, const T& b) {
+  [[gnu::always_inline]] static T binary(Op op, const T& a, const T& b) {
     T r;
     switch (op) {
       case Op::add:
       case Op::sub: {
         const double s = op == Op::add ? 1.0 : -1.0;
-        r.v = a.v + s * b.v;
+        r.v = op == Op::add ? a.v + b.v : a.v - b.v;
         for (int i = 0; i < N; ++i) r.g[i] = a.g[i] + s * b.g[i];
         for (int i = 0; i < N; ++i)
           for (int j = 0; j < N; ++j) {
@@ -237,10 +254,15 @@ struct IntervalArith {
     auto f = [k](double x) { return formula::pow_int(x, k); };
     return (k % 2 == 0) ? even(a, f) : increasing(a, f);
   }
-  static T unary(Op op, const T& a, double k) {
+  [[gnu::always_inline]] static T unary(Op op, const T& a, double k) {
     if (bad(a)) return empty();
     switch (op) {
       case Op::neg: return {-a.hi, -a.lo};
+      case Op::add_k: return widen(a.lo + k, a.hi + k);
+      case Op::mul_k: return mul(a, constant(k));
+      case Op::div_k: return div(a, constant(k));
+      case Op::rsub_k: return widen(k - a.hi, k - a.lo);
+      case Op::rdiv_k: return div(constant(k), a);
       case Op::pow_int: return pow_int(a, static_cast<int>(k));
       case Op::pow_real:
         if (k > 0) return increasing(a, [k](double x) { return std::pow(x, k); }, 0.0);
@@ -280,7 +302,7 @@ struct IntervalArith {
   static T truth(bool surely_true, bool surely_false) {
     return surely_true ? T{1.0, 1.0} : (surely_false ? T{0.0, 0.0} : T{0.0, 1.0});
   }
-  static T binary(Op op, const T& a, const T& b) {
+  [[gnu::always_inline]] static T binary(Op op, const T& a, const T& b) {
     if (bad(a) || bad(b)) return empty();
     switch (op) {
       case Op::add: return widen(a.lo + b.lo, a.hi + b.hi);
@@ -318,10 +340,21 @@ void run(const Program::Tape& tape, const typename Arith::T* inputs, typename Ar
   const std::size_t n = tape.nodes.size();
   for (std::size_t i = 0; i < n; ++i) {
     const Node& node = nodes[i];
+    // The frequent ops get a case with a constant Op, so that the inlined arithmetic's own switch
+    // folds away; the rest share the generic calls.
     switch (node.op) {
       case Op::constant: regs[i] = Arith::constant(node.k); break;
       case Op::variable: regs[i] = Arith::variable(inputs, static_cast<int>(node.k)); break;
       case Op::select: regs[i] = Arith::select(regs[node.c], regs[node.a], regs[node.b]); break;
+      case Op::add: regs[i] = Arith::binary(Op::add, regs[node.a], regs[node.b]); break;
+      case Op::sub: regs[i] = Arith::binary(Op::sub, regs[node.a], regs[node.b]); break;
+      case Op::mul: regs[i] = Arith::binary(Op::mul, regs[node.a], regs[node.b]); break;
+      case Op::div: regs[i] = Arith::binary(Op::div, regs[node.a], regs[node.b]); break;
+      case Op::add_k: regs[i] = Arith::unary(Op::add_k, regs[node.a], node.k); break;
+      case Op::mul_k: regs[i] = Arith::unary(Op::mul_k, regs[node.a], node.k); break;
+      case Op::pow_int: regs[i] = Arith::unary(Op::pow_int, regs[node.a], node.k); break;
+      case Op::sin: regs[i] = Arith::unary(Op::sin, regs[node.a], node.k); break;
+      case Op::cos: regs[i] = Arith::unary(Op::cos, regs[node.a], node.k); break;
       default:
         if (is_binary(node.op)) regs[i] = Arith::binary(node.op, regs[node.a], regs[node.b]);
         else regs[i] = Arith::unary(node.op, regs[node.a], node.k);

@@ -13,7 +13,13 @@ enum class Op : std::uint8_t {
   constant, variable,
   // arithmetic
   add, sub, mul, div, neg,
-  pow,        // a^b with b not constant: exp(b ln a), needs a > 0
+  // arithmetic with a constant operand k (node.k): cheaper jets than the general rules
+  add_k,   // a + k   (a - k is a + (-k), exact)
+  mul_k,   // a * k
+  div_k,   // a / k
+  rsub_k,  // k - a
+  rdiv_k,  // k / a
+  pow,        // a^b while building only: the tape holds pow_int, pow_real or exp(b ln a)
   pow_int,    // a^k, k integer (node.k): ordinary power rule, fine for a < 0
   pow_real,   // a^c, c a non-integer constant (node.k)
   // elementary functions of one argument

@@ -77,6 +77,20 @@ class TapeBuilder {
   std::int32_t binary(Op op, std::int32_t a, std::int32_t b) {
     if (op == Op::pow) return power(a, b);  // the tape holds pow_int, pow_real or exp(b ln a)
     if (is_constant(a) && is_constant(b)) return constant(binary_value(op, value(a), value(b)));
+    if (is_constant(b)) {
+      const double k = value(b);
+      if (op == Op::add) return k == 0.0 ? a : add({Op::add_k, a, -1, -1, k});
+      if (op == Op::sub) return k == 0.0 ? a : add({Op::add_k, a, -1, -1, -k});
+      if (op == Op::mul) return k == 1.0 ? a : add({Op::mul_k, a, -1, -1, k});
+      if (op == Op::div) return k == 1.0 ? a : add({Op::div_k, a, -1, -1, k});
+    }
+    if (is_constant(a)) {
+      const double k = value(a);
+      if (op == Op::add) return k == 0.0 ? b : add({Op::add_k, b, -1, -1, k});
+      if (op == Op::sub) return add({Op::rsub_k, b, -1, -1, k});
+      if (op == Op::mul) return k == 1.0 ? b : add({Op::mul_k, b, -1, -1, k});
+      if (op == Op::div) return add({Op::rdiv_k, b, -1, -1, k});
+    }
     if ((op == Op::add || op == Op::mul || op == Op::min || op == Op::max || op == Op::eq || op == Op::ne) && a > b)
       std::swap(a, b);  // commutative: one canonical order, so a+b and b+a share a node
     return add({op, a, b, -1, 0.0});
@@ -87,9 +101,27 @@ class TapeBuilder {
     return add({Op::select, a, b, c, 0.0});
   }
 
+  // The tape of the nodes the outputs depend on (constants absorbed into *_k ops drop out), in
+  // their original order, renumbered.
   Program::Tape take(std::vector<std::int32_t> outputs, int num_inputs) {
+    std::vector<char> live(nodes_.size(), 0);
+    for (auto o : outputs) live[o] = 1;
+    for (std::size_t i = nodes_.size(); i-- > 0;) {
+      if (!live[i]) continue;
+      for (auto operand : {nodes_[i].a, nodes_[i].b, nodes_[i].c})
+        if (operand >= 0) live[operand] = 1;
+    }
+    std::vector<std::int32_t> renumber(nodes_.size(), -1);
     Program::Tape tape;
-    tape.nodes = std::move(nodes_);
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+      if (!live[i]) continue;
+      Node n = nodes_[i];
+      for (auto* operand : {&n.a, &n.b, &n.c})
+        if (*operand >= 0) *operand = renumber[*operand];
+      renumber[i] = static_cast<std::int32_t>(tape.nodes.size());
+      tape.nodes.push_back(n);
+    }
+    for (auto& o : outputs) o = renumber[o];
     tape.outputs = std::move(outputs);
     tape.num_inputs = num_inputs;
     return tape;
