@@ -1,0 +1,35 @@
+// The compiled parametric surface: s(u, v) = (x, y, z) over [umin, umax] x [vmin, vmax], the
+// seeding data of `auto`, and projection by method name (auto, gsa, first_order, hybrid, newton).
+#pragma once
+#include <string_view>
+#include <vector>
+
+#include "geometry/geometry.hpp"
+#include "geometry/parametric_surface.hpp"
+#include "seeding/surface_cells.hpp"
+
+namespace footpoint {
+
+class ParametricSurface final : public CompiledGeometry {
+ public:
+  // `program` computes x, y, z (in that order) from (u, v); builds the seeding cells.
+  ParametricSurface(GeometryDefinition def, formula::Program program, const ParamBox& box,
+                    const SurfaceSeedingOptions& seeding = {});
+
+  int point_dim() const override { return 3; }
+  int num_params() const override { return 2; }
+  const std::vector<MethodInfo>& methods() const override;
+  ProjectionResult project(const double* p, std::string_view method, const Options& options) const override;
+  std::size_t memory_bytes() const override;
+
+  const SurfaceFormulas& formulas() const { return formulas_; }
+  const ParamBox& domain() const { return box_; }
+  const SurfaceCells& cells() const { return cells_; }
+
+ private:
+  SurfaceFormulas formulas_;
+  ParamBox box_;
+  SurfaceCells cells_;
+};
+
+}  // namespace footpoint

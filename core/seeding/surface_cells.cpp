@@ -1,0 +1,203 @@
+#include "seeding/surface_cells.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+#include "formula/interval.hpp"
+
+namespace footpoint {
+
+namespace {
+
+struct Rect {
+  double u0, u1, v0, v1;
+};
+
+struct Evaluated {
+  SurfaceJet jet;
+  bool finite = false;
+  double rho = 0.0;
+  double rho2 = 0.0;
+  double extent = 0.0;
+  double score = 0.0;    // rho / extent: how far the cell is from flat
+  bool split_u = true;   // the cell is longer along u on the surface
+};
+
+bool finite_jet(const SurfaceJet& j) {
+  return is_finite(j.s) && is_finite(j.su) && is_finite(j.sv) && is_finite(j.suu) && is_finite(j.suv) &&
+         is_finite(j.svv);
+}
+
+double finite_or_zero(double x) { return std::isfinite(x) ? x : 0.0; }
+
+double chord(const Vec3& a, const Vec3& b) { return finite_or_zero(norm(a - b)); }
+
+Evaluated evaluate(const SurfaceFormulas& f, const Rect& r) {
+  Evaluated e;
+  const double uc = 0.5 * (r.u0 + r.u1), vc = 0.5 * (r.v0 + r.v1);
+  const double hu = 0.5 * (r.u1 - r.u0), hv = 0.5 * (r.v1 - r.v0);
+  e.jet = f.jet(uc, vc);
+  e.finite = finite_jet(e.jet);
+  // corners, edge midpoints, the centres of the four quarters, and the quarter points of the
+  // centre lines
+  constexpr int K = 16;
+  const double du[K] = {-hu, hu, -hu, hu, 0, 0, -hu, hu, -0.5 * hu, 0.5 * hu, -0.5 * hu, 0.5 * hu,
+                        -0.5 * hu, 0.5 * hu, 0, 0};
+  const double dv[K] = {-hv, -hv, hv, hv, -hv, hv, 0, 0, -0.5 * hv, -0.5 * hv, 0.5 * hv, 0.5 * hv,
+                        0, 0, -0.5 * hv, 0.5 * hv};
+  Vec3 s[K];
+  for (int k = 0; k < K; ++k) s[k] = f.point(uc + du[k], vc + dv[k]);
+  // Lengths on the surface along u and v: polylines through the samples (a chord alone is 0 for a
+  // closed parameter line, e.g. u over a full period), and |s_u| x width at the centre.
+  const double along_u = std::max({chord(s[0], s[4]) + chord(s[4], s[1]), chord(s[2], s[5]) + chord(s[5], s[3]),
+                                   chord(s[6], s[12]) + chord(s[12], e.jet.s) + chord(e.jet.s, s[13]) + chord(s[13], s[7]),
+                                   finite_or_zero(norm(e.jet.su) * 2.0 * hu)});
+  const double along_v = std::max({chord(s[0], s[6]) + chord(s[6], s[2]), chord(s[1], s[7]) + chord(s[7], s[3]),
+                                   chord(s[4], s[14]) + chord(s[14], e.jet.s) + chord(e.jet.s, s[15]) + chord(s[15], s[5]),
+                                   finite_or_zero(norm(e.jet.sv) * 2.0 * hv)});
+  e.extent = std::max({along_u, along_v, chord(s[3], s[0]), chord(s[2], s[1])});
+  e.split_u = along_u >= along_v;
+  if (!e.finite) return e;  // nothing to model: no error estimate, no refinement by flatness
+  double dev_lin = 0.0, dev_quad = 0.0, dev_u = 0.0, dev_v = 0.0;
+  for (int k = 0; k < K; ++k) {
+    if (!is_finite(s[k])) continue;
+    const Vec3 lin = e.jet.s + e.jet.su * du[k] + e.jet.sv * dv[k];
+    const Vec3 quad =
+        lin + 0.5 * (e.jet.suu * (du[k] * du[k]) + 2.0 * e.jet.suv * (du[k] * dv[k]) + e.jet.svv * (dv[k] * dv[k]));
+    const double dl = norm(s[k] - lin);
+    dev_lin = std::max(dev_lin, dl);
+    dev_quad = std::max(dev_quad, norm(s[k] - quad));
+    if (dv[k] == 0.0) dev_u = std::max(dev_u, dl);
+    if (du[k] == 0.0) dev_v = std::max(dev_v, dl);
+  }
+  // Split where the model is worse (along u or along v); where both are as good (a plane, or a
+  // twist u*v that no pure direction sees), where the cell is longer. Splitting where it is longer
+  // alone would cut a polar wedge (u around a pole) along its radius for ever.
+  if (dev_u != dev_v) e.split_u = dev_u > dev_v;
+  // Between the samples the tangent-plane error differs from its sampled maximum by at most the
+  // third-order remainder, i.e. about the quadratic model's error: take it twice. A few ulps of
+  // the coordinates cover the rounding of the model itself.
+  const double ulps = 8.0 * std::numeric_limits<double>::epsilon() * (norm(e.jet.s) + e.extent);
+  e.rho = dev_lin + 2.0 * dev_quad + ulps;
+  e.rho2 = 2.0 * dev_quad + ulps;
+  e.score = e.extent > 0.0 ? (e.rho - ulps) / e.extent : 0.0;
+  return e;
+}
+
+}  // namespace
+
+SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box, const SurfaceSeedingOptions& options) {
+  std::vector<Rect> rects;
+  std::vector<Evaluated> evals;
+  std::vector<int> depths;
+  auto add_node = [&](const Rect& r, int depth) {
+    nodes_.emplace_back();
+    rects.push_back(r);
+    evals.push_back(evaluate(formulas, r));
+    depths.push_back(depth);
+    depth_ = std::max(depth_, depth);
+    return static_cast<std::int32_t>(nodes_.size() - 1);
+  };
+  auto split = [&](std::int32_t i) {
+    const Rect r = rects[static_cast<std::size_t>(i)];
+    const int depth = depths[static_cast<std::size_t>(i)] + 1;
+    Rect a = r, b = r;
+    if (evals[static_cast<std::size_t>(i)].split_u) {
+      a.u1 = b.u0 = 0.5 * (r.u0 + r.u1);
+    } else {
+      a.v1 = b.v0 = 0.5 * (r.v0 + r.v1);
+    }
+    const std::int32_t ia = add_node(a, depth);
+    const std::int32_t ib = add_node(b, depth);
+    nodes_[static_cast<std::size_t>(i)].child[0] = ia;
+    nodes_[static_cast<std::size_t>(i)].child[1] = ib;
+    return std::pair{ia, ib};
+  };
+
+  const int max_cells = std::max(1, options.max_cells);
+  const int min_cells = std::clamp(options.min_cells, 1, max_cells);
+  // deeper than this (2^-24 of the domain in both directions) a cell is not split
+  constexpr int max_depth = 48;
+  std::vector<std::int32_t> open{add_node({box.umin, box.umax, box.vmin, box.vmax}, 0)};
+  // uniform subdivision, breadth first
+  while (static_cast<int>(open.size()) < min_cells && static_cast<int>(open.size()) * 2 <= max_cells) {
+    std::vector<std::int32_t> next;
+    next.reserve(open.size() * 2);
+    for (std::int32_t i : open) {
+      const auto [a, b] = split(i);
+      next.push_back(a);
+      next.push_back(b);
+    }
+    open.swap(next);
+  }
+  // adaptive refinement, worst cell first
+  auto worse = [&](std::int32_t a, std::int32_t b) {
+    return evals[static_cast<std::size_t>(a)].score < evals[static_cast<std::size_t>(b)].score;
+  };
+  std::priority_queue<std::int32_t, std::vector<std::int32_t>, decltype(worse)> queue(worse, open);
+  int leaves = static_cast<int>(open.size());
+  while (!queue.empty()) {
+    const std::int32_t i = queue.top();
+    if (leaves >= max_cells || !(evals[static_cast<std::size_t>(i)].score > options.flatness)) break;
+    queue.pop();
+    if (depths[static_cast<std::size_t>(i)] >= max_depth) continue;
+    const auto [a, b] = split(i);
+    queue.push(a);
+    queue.push(b);
+    ++leaves;
+  }
+  // the leaves: cells with their rigorous boxes
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    SurfaceCellNode& node = nodes_[i];
+    if (node.child[0] >= 0) continue;
+    const Rect& r = rects[i];
+    const Evaluated& e = evals[i];
+    SurfaceCell cell;
+    cell.u0 = r.u0;
+    cell.u1 = r.u1;
+    cell.v0 = r.v0;
+    cell.v1 = r.v1;
+    cell.centre = e.jet;
+    cell.rho = e.rho;
+    cell.rho2 = e.rho2;
+    cell.extent = e.extent;
+    cell.finite = e.finite;
+    cell.resolved = e.score <= options.flatness;
+    const formula::Interval x[2] = {{r.u0, r.u1}, {r.v0, r.v1}};
+    formula::Interval out[3];
+    formulas.program().intervals(x, out);
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      node.lo[k] = std::isnan(out[k].lo) ? -inf : out[k].lo;
+      node.hi[k] = std::isnan(out[k].hi) ? inf : out[k].hi;
+    }
+    node.cell = static_cast<std::int32_t>(cells_.size());
+    cells_.push_back(cell);
+  }
+  // parents' boxes: unions of the children's (children come after their parent)
+  for (std::size_t k = nodes_.size(); k-- > 0;) {
+    SurfaceCellNode& node = nodes_[k];
+    if (node.leaf()) continue;
+    const SurfaceCellNode& a = nodes_[static_cast<std::size_t>(node.child[0])];
+    const SurfaceCellNode& b = nodes_[static_cast<std::size_t>(node.child[1])];
+    for (int c = 0; c < 3; ++c) {
+      node.lo[c] = std::min(a.lo[c], b.lo[c]);
+      node.hi[c] = std::max(a.hi[c], b.hi[c]);
+    }
+  }
+}
+
+double SurfaceCells::box_distance(const SurfaceCellNode& node, const Vec3& p) {
+  const double dx = std::max({node.lo.x - p.x, 0.0, p.x - node.hi.x});
+  const double dy = std::max({node.lo.y - p.y, 0.0, p.y - node.hi.y});
+  const double dz = std::max({node.lo.z - p.z, 0.0, p.z - node.hi.z});
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+std::size_t SurfaceCells::memory_bytes() const {
+  return sizeof(*this) + nodes_.capacity() * sizeof(SurfaceCellNode) + cells_.capacity() * sizeof(SurfaceCell);
+}
+
+}  // namespace footpoint

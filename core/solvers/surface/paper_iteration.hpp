@@ -1,0 +1,92 @@
+// The loop shared by the papers' methods (gsa, first_order, hybrid, newton): from a start t0
+// (options.initial, else the domain's centre) repeat t <- t + Δt(t), exactly as published, with
+// no clamping to the domain (GSA paper Algorithm 1 Steps 2-3; hybrid paper Algorithm 1), until the
+// increment and the orthogonality residuals meet the tolerance (surface_convergence.hpp).
+// A converged result outside the domain gets status outside_domain. With options.trace every
+// applied increment (Δu, Δv, 0) is recorded, which is what the papers' tables print.
+#pragma once
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/parametric_surface.hpp"
+#include "solvers/result.hpp"
+#include "solvers/surface/surface_convergence.hpp"
+#include "solvers/surface/surface_result.hpp"
+
+namespace footpoint::surface {
+
+// What one iteration of a method returns: the increment, or why there is none.
+struct PaperStep {
+  double du = 0.0;
+  double dv = 0.0;
+  Status failure = Status::converged;  // degenerate / non_finite stop the iteration
+};
+
+// Budget of the papers' methods (first-order ones need a few hundred steps at 1e-15).
+inline constexpr int kPaperMaxIterations = 1000;
+// |t|∞ beyond this many parameter scales counts as divergence.
+inline constexpr double kDivergenceScales = 1e8;
+
+inline bool is_finite(const SurfaceJet& j) {
+  return is_finite(j.s) && is_finite(j.su) && is_finite(j.sv) && is_finite(j.suu) && is_finite(j.suv) &&
+         is_finite(j.svv);
+}
+
+// Method provides `PaperStep step(const Vec3& p, double u, double v, const SurfaceJet& jet)`;
+// it may keep state between calls (the hybrid method's phase).
+template <class Method>
+ProjectionResult run_paper_iteration(const char* name, Method& method, const SurfaceFormulas& formulas,
+                                     const ParamBox& box, const Vec3& p, const Options& options) {
+  const ConvergenceCriteria crit = convergence_criteria(options, box, kPaperMaxIterations);
+  double u = options.initial ? (*options.initial)[0] : 0.5 * (box.umin + box.umax);
+  double v = options.initial ? (*options.initial)[1] : 0.5 * (box.vmin + box.vmax);
+  const double divergence = kDivergenceScales * crit.scale;
+  ConvergenceTest test(crit);
+  std::vector<std::array<double, 3>> trace;
+
+  SurfaceJet jet = formulas.jet(u, v);
+  Status status = Status::max_iterations;
+  int iterations = 0;
+  double step_norm = 0.0;
+  if (!is_finite(jet)) status = Status::non_finite;
+  while (status == Status::max_iterations && iterations < crit.max_iterations) {
+    const PaperStep step = method.step(p, u, v, jet);
+    if (step.failure != Status::converged) {
+      status = step.failure;
+      break;
+    }
+    if (!std::isfinite(step.du) || !std::isfinite(step.dv)) {
+      status = Status::non_finite;
+      break;
+    }
+    const double un = u + step.du, vn = v + step.dv;
+    const SurfaceJet next = formulas.jet(un, vn);
+    if (!is_finite(next)) {
+      status = Status::non_finite;
+      break;
+    }
+    ++iterations;
+    if (options.trace) trace.push_back({step.du, step.dv, 0.0});
+    u = un;
+    v = vn;
+    jet = next;
+    step_norm = std::hypot(step.du, step.dv);
+    const double step_inf = std::max(std::abs(step.du), std::abs(step.dv));
+    if (test.converged(step_inf, u, v, orthogonality(p, jet.s, jet.su, jet.sv))) {
+      status = Status::converged;
+    } else if (std::max(std::abs(u), std::abs(v)) > divergence) {
+      status = Status::diverged;
+    }
+  }
+  if (status == Status::converged && !box.contains(u, v)) status = Status::outside_domain;
+
+  ProjectionResult r = surface_result(name, p, u, v, jet.s, jet.su, jet.sv, box);
+  r.summary.status = status;
+  r.summary.iterations = iterations;
+  r.summary.step_norm = step_norm;
+  r.summary.starts = 1;
+  r.trace = std::move(trace);
+  return r;
+}
+
+}  // namespace footpoint::surface

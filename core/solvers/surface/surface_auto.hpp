@@ -1,0 +1,38 @@
+// `auto`, the default surface method: the global nearest point of s over the closed parameter
+// domain, edges and corners included.
+//
+// Branch and bound over the precomputed cells (seeding/surface_cells.hpp): the cell tree is walked
+// nearest box first, and a cell is skipped when
+//   1. its box is farther than the best distance known (a solved foot point, or any cell centre:
+//      every s(t) bounds the minimum from above) or than options.max_distance;
+//   2. its tangent-plane model, grown by the model error ρ, is that far (distance to a
+//      parallelogram: a convex quadratic on a rectangle);
+//   3. the minimum of its Newton model (the second-order Taylor expansion of ½|s - p|^2 at the
+//      centre) over the cell grown by a margin lies on the grown cell's border inside the domain:
+//      the distance decreases into a neighbour, which answers for it (two cells claiming each
+//      other are solved from between their two predictions; next to the domain's boundary the
+//      claim must beat the model's error, else the cell is solved);
+//   4. a minimum already found lies within a cell's width of the cell, on the same face of the
+//      domain (interior, the same edge, the same corner) as the cell model's minimiser.
+//      (Distinct minima are told apart by parameters here, not by 3-D foot points: a surface
+//      folding over itself has distinct minima with feet closer than any model can tell apart.
+//      Periodic and degenerate parametrisations, which reach one foot from many (u, v), cost a
+//      local solve per copy; the copies are merged by foot point in the result.)
+// The first cell that survives rules 1-3 is solved at once (a tight bound for the rest of the
+// walk); the later ones are candidates, solved after the walk nearest model foot first, each
+// solve lowering the bound for the rest (rules 1, 2 and 4 applied again), by a local solve
+// (solvers/surface/projected_newton.hpp) from the model's minimiser: 2-5 Newton steps.
+#pragma once
+#include "geometry/parametric_surface.hpp"
+#include "seeding/surface_cells.hpp"
+#include "solvers/result.hpp"
+
+namespace footpoint::surface {
+
+// options.initial is not used (the search needs no start); options.all_minima returns every
+// distinct local minimum found (interior, edge, corner), best first; options.trace the steps of
+// the local solve that gave the answer.
+ProjectionResult project_auto(const SurfaceCells& cells, const SurfaceFormulas& formulas, const ParamBox& box,
+                              const Vec3& p, const Options& options);
+
+}  // namespace footpoint::surface
