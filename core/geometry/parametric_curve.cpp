@@ -1,0 +1,61 @@
+#include "geometry/parametric_curve.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "seeding/curve_parametric_samples.hpp"
+#include "solvers/curve/curvature_circle.hpp"
+#include "solvers/curve/parametric_curve_auto.hpp"
+#include "solvers/curve/parametric_newton.hpp"
+
+namespace footpoint {
+
+ParametricCurve::ParametricCurve(GeometryDefinition def, CurveFormulas formulas, ParamInterval domain)
+    : CompiledGeometry(std::move(def)),
+      formulas_(std::move(formulas)),
+      domain_(domain),
+      samples_(sample_parametric_curve(formulas_, domain_)),
+      index_(samples_) {}
+
+const std::vector<MethodInfo>& ParametricCurve::methods() const {
+  static const std::vector<MethodInfo> methods{
+      {"auto",
+       "global nearest point over [tmin, tmax], ends included: dense adaptive samples seed bracketed "
+       "Newton at every candidate minimum",
+       ""},
+      {"newton", "Newton's method on <c(t) - p, c'(t)> = 0 from options.initial or the nearest sample", ""},
+      {"curvature_circle",
+       "curvature circle iteration (Hu-Wallner) from options.initial or the nearest sample",
+       "gsa-parametric-surface (Section 3, eqs. (21)-(22))"},
+  };
+  return methods;
+}
+
+ProjectionResult ParametricCurve::project(const double* p, std::string_view method, const Options& options) const {
+  const Vec3 q{p[0], p[1], formulas_.dim() == 3 ? p[2] : 0.0};
+  if (method == "auto") return curve::parametric_curve_auto(*this, q, options);
+  if (method == "newton") return curve::parametric_newton(*this, q, options);
+  if (method == "curvature_circle") return curve::curvature_circle(*this, q, options);
+  throw std::invalid_argument("parametric_curve has no method '" + std::string(method) + "'");
+}
+
+std::size_t ParametricCurve::memory_bytes() const {
+  return sizeof(*this) + formulas_.program().memory_bytes() + samples_.memory_bytes() + index_.memory_bytes();
+}
+
+std::shared_ptr<const CompiledGeometry> compile_parametric_curve(const GeometryDefinition& def,
+                                                                 const formula::CompileLimits& limits) {
+  static const char* const names[] = {"x", "y", "z"};
+  const std::size_t n = def.formulas.size();
+  if (n != 2 && n != 3)
+    throw GeometryError("wrong_shape", "formulas", -1, "a parametric curve has formulas x, y (planar) or x, y, z");
+  for (std::size_t i = 0; i < n; ++i)
+    if (def.formulas[i].name != names[i])
+      throw GeometryError("wrong_shape", def.formulas[i].name, -1, "parametric curve formulas are x, y[, z] in order");
+  validate_domain(def, {"t"});
+  formula::Program program = compile_formulas(def, {"t"}, limits);
+  const auto& range = def.domain.front().second;
+  return std::make_shared<ParametricCurve>(def, CurveFormulas(std::move(program)), ParamInterval{range[0], range[1]});
+}
+
+}  // namespace footpoint

@@ -1,0 +1,211 @@
+#include "seeding/curve_discovery.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "geometry/implicit_curve.hpp"
+#include "seeding/curve_enclosure.hpp"
+#include "seeding/curve_tracing.hpp"
+#include "solvers/curve/curve_correction.hpp"
+#include "solvers/curve/implicit_curve_differentials.hpp"
+#include "solvers/curve/singular_point.hpp"
+
+namespace footpoint {
+namespace {
+
+// Cells whose seed fails are bisected again, at most this many extra levels.
+constexpr int kExtraLevels = 4;
+// The walk's largest step is this fraction of the enclosure's cell edge: every cell the curve
+// crosses for more than a step holds a sample.
+constexpr double kStepPerCell = 0.5;
+
+class Discovery {
+ public:
+  Discovery(const ImplicitEquations& equations, const Box3& box) : eq_(equations), box_(box) {}
+
+  CurveDiscovery run() {
+    const auto t0 = std::chrono::steady_clock::now();
+    CurveEnclosure enclosure = enclose_curve(eq_, box_);
+    out_.stats.levels = enclosure.levels;
+    out_.stats.cells = enclosure.cells.size();
+    out_.stats.interval_tests = enclosure.tests;
+    out_.stats.enclosure_truncated = enclosure.truncated;
+    grid_ = enclosure.grid;
+    settings_.max_step = kStepPerCell * grid_.max_edge();
+    settings_.min_step = 1e-7 * settings_.max_step;
+    occupancy_ = std::make_unique<SampleGrid>(grid_);
+
+    for (const CellIndex& c : enclosure.cells) examine(grid_, c, 0);
+    finish();
+    out_.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return std::move(out_);
+  }
+
+ private:
+  CurveSamples& samples() { return out_.samples; }
+
+  std::int32_t add(Vec3 x, SampleKind kind) {
+    const std::int32_t i = samples().add(x, kind);
+    occupancy_->add(x, i);
+    return i;
+  }
+
+  // A cell of `grid` (the enclosure's grid or a finer one): seed it unless samples already pass
+  // through it; bisect it when its seed fails.
+  void examine(const CellGrid& grid, const CellIndex& c, int extra) {
+    const Box3 cell = grid.cell(c);
+    if (extra == 0 && occupancy_->occupied(c)) return;
+    if (extra > 0 && occupancy_->near(samples().points, cell.center(), 0.5 * grid_.max_edge())) return;
+    Vec3 x = cell.center();
+    const double reach = cell.diagonal();
+    if (curve::newton_onto_curve(eq_, x) && norm(x - cell.center()) <= reach &&
+        box_.contains(x, 1e-12 * std::max(1.0, norm(x)))) {
+      if (!occupancy_->near(samples().points, x, 0.5 * settings_.max_step)) seed(x);
+      return;
+    }
+    if (extra >= kExtraLevels) {
+      ++out_.stats.unresolved_cells;
+      return;
+    }
+    std::vector<CellIndex> children;
+    refine_cell(eq_, grid, c, children, out_.stats.interval_tests);
+    const CellGrid fine = grid.refined();
+    for (const CellIndex& child : children) examine(fine, child, extra + 1);
+  }
+
+  void add_singular_point(Vec3 s) {
+    // At a degenerate singular point (a tacnode) Newton stalls where the rounding of grad f
+    // swamps it, ~1e-8 from the point; copies closer than 1e-6 are one point.
+    const double same = 1e-6 * std::max(1.0, norm(s));
+    for (std::int32_t i : singular_)
+      if (norm(samples().points[static_cast<std::size_t>(i)] - s) <= same) return;
+    singular_.push_back(add(s, SampleKind::singular_point));
+    ++out_.stats.singular_points;
+  }
+
+  // Appends a walk's points to the samples, linked in walking order after `from`.
+  std::int32_t append(std::int32_t from, const std::vector<Vec3>& points) {
+    std::int32_t last = from;
+    for (const Vec3& x : points) {
+      const std::int32_t i = add(x, SampleKind::regular);
+      samples().link(last, i);
+      last = i;
+    }
+    return last;
+  }
+
+  // A walk that stalled or ran into earlier samples may have stopped next to a singular point: a
+  // cusp, or a crossing whose branches come closer than h / 2 (for planar curves the angle between
+  // the normals says nothing, grad f2 = e_z), so Newton for a singular point starts at its end.
+  void look_for_singular_point(const TraceOutcome& w, Vec3 end) {
+    if (w.end != TraceEnd::joined && w.end != TraceEnd::stalled) return;
+    Vec3 s = end;
+    if (curve::refine_singular_point(eq_, s) && norm(s - end) <= 4.0 * settings_.max_step &&
+        box_.contains(s, 1e-12 * std::max(1.0, norm(s))))
+      add_singular_point(s);
+  }
+
+  // The end of a walk: a face crossing is linked as the last sample, a singular point is kept
+  // apart (several branches meet there).
+  void finish_end(std::int32_t last, const TraceOutcome& w) {
+    for (const Vec3& s : w.singular_points) add_singular_point(s);
+    if (w.end == TraceEnd::box_face) {
+      const std::int32_t f = add(w.end_point, SampleKind::box_face);
+      samples().link(last, f);
+      ++out_.stats.face_crossings;
+    } else if (w.end == TraceEnd::singular_point) {
+      add_singular_point(w.end_point);
+    }
+  }
+
+  // Traces the curve through the seed x in both directions.
+  void seed(Vec3 x) {
+    const ImplicitJet j = eq_.jet(x);
+    const Vec3 t = curve::unit_tangent(j);
+    const double d = norm(j.grad[0]) * norm(j.grad[1]);
+    if (!(norm(j.tangent()) > settings_.singular_sine * d)) {
+      // The seed sits at (or next to) a singular point: keep the point; branches leaving it are
+      // seeded from the neighbouring cells.
+      Vec3 s = x;
+      if (curve::refine_singular_point(eq_, s)) {
+        add_singular_point(s);
+        return;
+      }
+      if (norm2(t) == 0.0) return;
+    }
+    ++out_.stats.traces;
+    const std::int32_t first = add(x, SampleKind::regular);
+    const TraceOutcome forward = trace_curve(eq_, box_, x, t, x, settings_, *occupancy_, samples(), first);
+    const std::int32_t forward_last = append(first, forward.points);
+    if (forward.end == TraceEnd::closed) {
+      samples().link(forward_last, first);
+      for (const Vec3& s : forward.singular_points) add_singular_point(s);
+      return;
+    }
+    finish_end(forward_last, forward);
+    look_for_singular_point(forward, samples().points[static_cast<std::size_t>(forward_last)]);
+    // Ran into the end of an earlier walk: link them when that end is free on the matching side.
+    if (forward.end == TraceEnd::joined && samples().prev[static_cast<std::size_t>(forward.joined_to)] < 0)
+      samples().link(forward_last, forward.joined_to);
+    // The other way; on a loop whose first walk stopped early it closes on that walk's end.
+    const Vec3 close_on = samples().points[static_cast<std::size_t>(forward_last)];
+    const TraceOutcome backward = trace_curve(eq_, box_, x, -t, close_on, settings_, *occupancy_, samples(), first);
+    // Link the backward points before the seed: walking order reversed.
+    std::int32_t after = first;
+    for (const Vec3& p : backward.points) {
+      const std::int32_t i = add(p, SampleKind::regular);
+      samples().link(i, after);
+      after = i;
+    }
+    if (backward.end == TraceEnd::closed && forward.end != TraceEnd::box_face) {
+      samples().link(forward_last, after);
+      for (const Vec3& s : backward.singular_points) add_singular_point(s);
+      return;
+    }
+    for (const Vec3& s : backward.singular_points) add_singular_point(s);
+    look_for_singular_point(backward, samples().points[static_cast<std::size_t>(after)]);
+    if (backward.end == TraceEnd::joined && samples().next[static_cast<std::size_t>(backward.joined_to)] < 0)
+      samples().link(backward.joined_to, after);
+    if (backward.end == TraceEnd::box_face) {
+      const std::int32_t f = add(backward.end_point, SampleKind::box_face);
+      samples().link(f, after);
+      ++out_.stats.face_crossings;
+    } else if (backward.end == TraceEnd::singular_point) {
+      add_singular_point(backward.end_point);
+    }
+  }
+
+  // Spacing (largest linked chord, plus the arc's excess over the chord for turns <= max_turn)
+  // and scale.
+  void finish() {
+    CurveSamples& s = samples();
+    double longest = 0.0;
+    Vec3 lo{}, hi{};
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (s.next[i] >= 0) longest = std::max(longest, norm(s.points[static_cast<std::size_t>(s.next[i])] - s.points[i]));
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = i == 0 ? s.points[i][k] : std::min(lo[k], s.points[i][k]);
+        hi[k] = i == 0 ? s.points[i][k] : std::max(hi[k], s.points[i][k]);
+      }
+    }
+    s.spacing = 1.01 * std::max(longest, settings_.max_step);
+    out_.scale = std::max(norm(hi - lo), 1e-300);
+  }
+
+  const ImplicitEquations& eq_;
+  Box3 box_;
+  CellGrid grid_;
+  TraceSettings settings_;
+  std::unique_ptr<SampleGrid> occupancy_;
+  std::vector<std::int32_t> singular_;
+  CurveDiscovery out_;
+};
+
+}  // namespace
+
+CurveDiscovery discover_implicit_curve(const ImplicitEquations& equations, const Box3& box) {
+  return Discovery(equations, box).run();
+}
+
+}  // namespace footpoint

@@ -1,0 +1,57 @@
+#include "solvers/curve/curve_descent.hpp"
+
+#include <cmath>
+
+#include "solvers/curve/curve_correction.hpp"
+#include "solvers/curve/implicit_curve_differentials.hpp"
+
+namespace footpoint::curve {
+
+LocalMinimum curve_descent(const ImplicitEquations& equations, Vec3 p, Vec3 x0, double max_step,
+                           const IterationControl& control) {
+  LocalMinimum out;
+  out.x = x0;
+  double distance2 = norm2(p - x0);
+  double previous = kInfinity;
+  for (int n = 0; n < control.max_iterations; ++n) {
+    const ImplicitJet j = equations.jet(out.x);
+    const Vec3 t = unit_tangent(j);
+    Vec3 c;
+    if (norm2(t) == 0.0 || !curvature_vector(j, c)) return out;  // singular point
+    const Vec3 d = out.x - p;
+    const double d1 = dot(d, t);
+    const double d2 = 1.0 + dot(d, c);
+    double ds = d2 > 0.0 ? -d1 / d2 : (d1 > 0.0 ? -max_step : max_step);
+    if (std::fabs(ds) > max_step) ds = std::copysign(max_step, ds);
+    bool moved = false;
+    for (int halving = 0; halving < 40; ++halving, ds *= 0.5) {
+      Vec3 z;
+      int iterations = 0;
+      const Vec3 y = out.x + ds * t + (0.5 * ds * ds) * c;
+      if (!correct_in_normal_plane(equations, y, t, z, iterations)) continue;
+      const double z2 = norm2(p - z);
+      if (z2 <= distance2) {
+        const Vec3 dx = z - out.x;
+        out.step = norm(dx);
+        out.x = z;
+        distance2 = z2;
+        control.record(dx.x, dx.y, dx.z);
+        moved = true;
+        break;
+      }
+    }
+    out.iterations = n + 1;
+    if (!moved) out.step = 0.0;
+    if (!moved || control.stop(out.step, norm(out.x), previous)) {
+      const ImplicitJet jx = equations.jet(out.x);
+      const Vec3 tx = unit_tangent(jx);
+      Vec3 cx;
+      if (norm2(tx) > 0.0 && curvature_vector(jx, cx)) out.second_variation = 1.0 + dot(out.x - p, cx);
+      out.converged = true;
+      return out;
+    }
+  }
+  return out;
+}
+
+}  // namespace footpoint::curve

@@ -1,0 +1,19 @@
+// A monotone descent of the distance along an implicit curve, `auto`'s fallback when Newton on the
+// Lagrange system does not settle on a minimum near its start (e.g. far from a well-conditioned
+// minimum). With s the arc length, phi(s) = |X(s) - p|^2 / 2 has
+//   phi'  = <X - p, T>,    phi'' = 1 + <X - p, c>
+// (T the unit tangent, c the curvature vector of eq. (16) of the spatial-curve paper). A Newton
+// step ds = -phi' / phi'' (or a descent step of length max_step where phi'' <= 0) is predicted to
+// X + ds T + ds^2 / 2 c, corrected back onto the curve in the normal plane, and halved until the
+// distance decreases.
+#pragma once
+#include "geometry/implicit_curve.hpp"
+#include "solvers/curve/iteration_control.hpp"
+#include "solvers/curve/lagrange_newton.hpp"
+
+namespace footpoint::curve {
+
+LocalMinimum curve_descent(const ImplicitEquations& equations, Vec3 p, Vec3 x0, double max_step,
+                           const IterationControl& control);
+
+}  // namespace footpoint::curve

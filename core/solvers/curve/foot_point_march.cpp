@@ -1,0 +1,65 @@
+#include "solvers/curve/foot_point_march.hpp"
+
+#include <cmath>
+
+#include "solvers/curve/steepest_descent.hpp"
+
+namespace footpoint::curve {
+
+bool foot_point(const ImplicitEquations& equations, Vec3 p, Vec3 p_i, Vec3& q) {
+  const Vec3 t = equations.jet(p_i).tangent();
+  const double tt = norm2(t);
+  if (!(tt > 0.0)) return false;
+  const Vec3 q0 = p_i + (dot(p - p_i, t) / tt) * t;  // eq. (11)
+  const double d1 = 0.5 * norm(q0 - p_i);
+  const double d2 = norm(p - q0);
+  // eq. (13); when P lies on the tangent line (d2 = 0) the foot point is Q0 itself.
+  q = d2 > 0.0 ? q0 + (d1 / d2) * (p - q0) : q0;
+  return true;
+}
+
+ProjectionResult foot_point_march(const ImplicitEquations& equations, const Box3& box, Vec3 p,
+                                  const Options& options) {
+  std::vector<std::array<double, 3>> trace;
+  // Rounds of Algorithms 2 + 1. The march slows down as it nears the foot point (Remark 3 of the
+  // paper: "slower and slower"); from Example 1's test points it is still far from converged after
+  // 10,000 rounds, so the default budget stops it early and says so (max_iterations).
+  const IterationControl control = make_control(options, 500, &trace);
+  IterationControl inner = control;
+  inner.max_iterations = options.max_iterations > 0 ? options.max_iterations : kPaperIterations;
+  inner.trace = nullptr;
+
+  Landing l = land_on_curve(equations, paper_start(p, options, equations.planar()), inner);
+  Vec3 x = l.x;
+  Status status = l.status;
+  double step = l.step;
+  int rounds = 0;
+  double previous = kInfinity;
+  while (status == Status::converged) {
+    if (rounds >= control.max_iterations) {
+      status = Status::max_iterations;
+      break;
+    }
+    Vec3 q;
+    if (!foot_point(equations, p, x, q)) {
+      status = Status::degenerate;
+      break;
+    }
+    l = land_on_curve(equations, q, inner);
+    if (l.status != Status::converged) {
+      status = l.status;
+      break;
+    }
+    const Vec3 dx = l.x - x;
+    step = norm(dx);
+    x = l.x;
+    ++rounds;
+    control.record(dx.x, dx.y, dx.z);
+    if (paper_iteration_done(equations, p, x, step, previous, control, true)) break;
+  }
+  ProjectionResult r = paper_result(equations, box, p, x, "foot_point_march", status, rounds, step, control);
+  r.trace = std::move(trace);
+  return r;
+}
+
+}  // namespace footpoint::curve

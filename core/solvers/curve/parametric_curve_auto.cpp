@@ -1,0 +1,146 @@
+#include "solvers/curve/parametric_curve_auto.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "solvers/curve/iteration_control.hpp"
+#include "solvers/curve/parametric_curve_summary.hpp"
+#include "solvers/curve/parametric_newton.hpp"
+
+namespace footpoint::curve {
+namespace {
+
+struct Found {
+  double t = 0.0;
+  double distance = kInfinity;
+  int iterations = 0;
+  double step = 0.0;
+};
+
+// g(t) = <c(t) - p, c'(t)>: the derivative of |c - p|^2 / 2.
+double slope(const CurveFormulas& f, Vec3 p, double t) {
+  const CurveJet j = f.jet(t);
+  return dot(j.c - p, j.d1);
+}
+
+// A sign change of g from - to + in [a, b] (where g(a) < 0 and g(b) < 0, or both > 0, although
+// the samples say a minimum is near: two extrema between neighbouring samples), by scanning.
+bool find_bracket(const CurveFormulas& f, Vec3 p, double& a, double& b) {
+  constexpr int kScan = 16;
+  double ta = a, ga = slope(f, p, a);
+  for (int k = 1; k <= kScan; ++k) {
+    const double tb = a + (b - a) * k / kScan;
+    const double gb = slope(f, p, tb);
+    if (ga <= 0.0 && gb >= 0.0) {
+      a = ta;
+      b = tb;
+      return true;
+    }
+    ta = tb;
+    ga = gb;
+  }
+  return false;
+}
+
+// The local minimum of the distance near sample i (between its neighbours).
+Found solve_from(const ParametricCurve& curve, Vec3 p, std::int32_t i, const IterationControl& control) {
+  const CurveSamples& s = curve.samples();
+  const CurveFormulas& f = curve.formulas();
+  const auto at = [&](std::int32_t k) { return s.params[static_cast<std::size_t>(k)]; };
+  const std::int32_t before = s.prev[static_cast<std::size_t>(i)];
+  const std::int32_t after = s.next[static_cast<std::size_t>(i)];
+  const double ti = at(i);
+  Found out;
+  // Bracket [a, b] of a minimum: g(a) <= 0 <= g(b).
+  double a = ti, b = ti;
+  const double gi = slope(f, p, ti);
+  if (gi == 0.0) {
+    a = b = ti;
+  } else if (gi < 0.0) {
+    if (after < 0) {  // tmax with g < 0: the minimum is the end itself
+      out.t = ti;
+      out.distance = norm(p - s.points[static_cast<std::size_t>(i)]);
+      return out;
+    }
+    b = at(after);
+    if (slope(f, p, b) < 0.0 && !find_bracket(f, p, a, b)) return out;
+  } else {
+    if (before < 0) {  // tmin with g > 0
+      out.t = ti;
+      out.distance = norm(p - s.points[static_cast<std::size_t>(i)]);
+      return out;
+    }
+    a = at(before);
+    if (slope(f, p, a) > 0.0 && !find_bracket(f, p, a, b)) return out;
+  }
+  const double start = (ti >= a && ti <= b) ? ti : 0.5 * (a + b);
+  out.t = a == b ? ti : bracketed_newton(f, p, a, b, start, control, out.iterations, out.step);
+  out.distance = norm(p - f.point(out.t));
+  return out;
+}
+
+}  // namespace
+
+ProjectionResult parametric_curve_auto(const ParametricCurve& curve, Vec3 p, const Options& options) {
+  const CurveSamples& s = curve.samples();
+  const double h = s.spacing;
+  // The nearest sample and the candidates in one pass; with all_minima every discrete local
+  // minimum of the samples is a candidate, else only those that can hold the nearest point.
+  SampleCandidates candidates;
+  double d0sq = 0.0;
+  const std::int32_t nearest =
+      curve.sample_index().nearest_and_local_minima(p, options.all_minima ? kInfinity : 0.5 * h, candidates, d0sq);
+  const double d0 = std::sqrt(d0sq);
+  if (d0 - 0.5 * h > options.max_distance) {
+    ProjectionResult r = parametric_result(curve, p, s.params[static_cast<std::size_t>(nearest)], "auto");
+    r.summary.status = Status::beyond_max_distance;
+    r.summary.starts = 0;
+    return r;
+  }
+  std::vector<std::array<double, 3>> trace;
+  const IterationControl control = make_control(options, 100, options.trace ? &trace : nullptr);
+  const double slack = 1e-12 * std::max(1.0, d0);
+
+  Found best;
+  std::vector<std::array<double, 3>> best_trace;
+  std::vector<Minimum> minima;
+  int starts = 0;
+  for (int k = 0; k < candidates.count; ++k) {
+    const SampleCandidate& c = candidates.items[static_cast<std::size_t>(k)];
+    if (!options.all_minima && std::sqrt(c.distance2) - 0.5 * h > best.distance + slack) break;
+    ++starts;
+    trace.clear();
+    const Found f = solve_from(curve, p, c.index, control);
+    if (!(f.distance < kInfinity)) continue;
+    if (options.all_minima) {
+      const Vec3 x = curve.formulas().point(f.t);
+      const double same = 1e-8 * std::max(1.0, norm(x));
+      const bool known = std::any_of(minima.begin(), minima.end(), [&](const Minimum& m) {
+        return norm(Vec3{m.foot[0], m.foot[1], m.foot[2]} - x) <= same;
+      });
+      if (!known) {
+        const bool end = f.t <= curve.domain().tmin || f.t >= curve.domain().tmax;
+        minima.push_back({{x.x, x.y, x.z}, {f.t, 0.0}, f.distance, end ? Location::endpoint : Location::interior});
+      }
+    }
+    if (f.distance < best.distance) {
+      best = f;
+      if (options.trace) best_trace.swap(trace);
+    }
+  }
+  ProjectionResult r = parametric_result(curve, p, best.t, "auto");
+  r.summary.iterations = best.iterations;
+  r.summary.step_norm = best.step;
+  r.summary.starts = starts;
+  r.summary.status = (best.distance < kInfinity && parametric_residual_met(r, control)) ? Status::converged
+                                                                                        : Status::degenerate;
+  if (r.distance > options.max_distance) r.summary.status = Status::beyond_max_distance;
+  if (options.all_minima) {
+    std::sort(minima.begin(), minima.end(), [](const Minimum& x, const Minimum& y) { return x.distance < y.distance; });
+    r.minima = std::move(minima);
+  }
+  if (options.trace) r.trace = std::move(best_trace);
+  return r;
+}
+
+}  // namespace footpoint::curve

@@ -1,0 +1,16 @@
+// `auto` for parametric curves: the global nearest point over the closed interval [tmin, tmax].
+// The nearest sample s0 (seeding/curve_parametric_samples) bounds d* <= |p - s0| = d0; every point
+// of the curve lies within arc length h/2 of a sample, so the nearest point has a sample within
+// d0 + h/2. The candidates are the samples within that radius that are discrete local minima of
+// the distance, nearest first; each is refined by bracketed Newton between its neighbours
+// (parametric_newton), an end sample by the first-order condition at tmin / tmax, while its
+// distance minus h/2 can still beat the best found.
+#pragma once
+#include "geometry/parametric_curve.hpp"
+#include "solvers/result.hpp"
+
+namespace footpoint::curve {
+
+ProjectionResult parametric_curve_auto(const ParametricCurve& curve, Vec3 p, const Options& options);
+
+}  // namespace footpoint::curve

@@ -1,0 +1,51 @@
+#include "solvers/curve/parametric_curve_summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace footpoint::curve {
+
+ProjectionResult parametric_result(const ParametricCurve& curve, Vec3 p, double t, const char* method) {
+  const CurveJet j = curve.formulas().jet(t);
+  ProjectionResult r;
+  r.dim = curve.point_dim();
+  r.num_params = 1;
+  r.foot = {j.c.x, j.c.y, j.c.z};
+  r.params = {t, 0.0};
+  r.distance = norm(p - j.c);
+  r.summary.method = method;
+  const double speed = norm(j.d1);
+  const Vec3 d = p - j.c;
+  if (!(speed > 0.0)) {
+    // c'(t) = 0: a stationary point of the parametrisation (a cusp); no tangent to be orthogonal to.
+    r.summary.location = Location::singular_point;
+    return r;
+  }
+  const double denominator = std::max(norm(d), 1e-3 * std::max(1.0, norm(j.c))) * speed;
+  const double along = dot(d, j.d1);  // <p - c, c'>
+  const ParamInterval& dom = curve.domain();
+  if (t <= dom.tmin || t >= dom.tmax) {
+    // At tmin the admissible direction is +c'; a minimum there needs <p - c, c'> <= 0 (moving
+    // inwards does not approach p), at tmax <p - c, c'> >= 0. Only a violation is a residual.
+    r.summary.orthogonality[0] = (t <= dom.tmin ? std::max(0.0, along) : std::max(0.0, -along)) / denominator;
+    r.summary.location = Location::endpoint;
+    r.summary.on_boundary = true;
+  } else {
+    r.summary.orthogonality[0] = std::fabs(along) / denominator;
+    r.summary.location = Location::interior;
+  }
+  return r;
+}
+
+bool parametric_residual_met(const ProjectionResult& r, const IterationControl& control) {
+  return r.summary.orthogonality[0] <= control.residual_tolerance;
+}
+
+double parametric_start(const ParametricCurve& curve, Vec3 p, const Options& options) {
+  if (options.initial) return (*options.initial)[0];
+  double d2 = 0.0;
+  const std::int32_t i = curve.sample_index().nearest(p, d2);
+  return i >= 0 ? curve.samples().params[static_cast<std::size_t>(i)] : 0.5 * (curve.domain().tmin + curve.domain().tmax);
+}
+
+}  // namespace footpoint::curve

@@ -1,0 +1,22 @@
+// The Summary of a foot point c(t) of p on a parametric curve: the orthogonality residual
+// |<p - c, c'>| / (|p - c| |c'|) (at an end of the parameter interval, the first-order optimality
+// residual of the distance restricted to the interval instead), and where c(t) lies.
+#pragma once
+#include "geometry/parametric_curve.hpp"
+#include "solvers/curve/iteration_control.hpp"
+#include "solvers/result.hpp"
+
+namespace footpoint::curve {
+
+// A result for c(t) as the foot of p: dim, num_params 1, params[0] = t, foot, distance,
+// orthogonality, location (endpoint when t is tmin or tmax) and on_boundary. When p is (almost) on
+// the curve the orthogonality is measured against max(|p - c|, 1e-3 max(1, |c|)).
+ProjectionResult parametric_result(const ParametricCurve& curve, Vec3 p, double t, const char* method);
+
+// Whether the result's orthogonality meets the control's residual tolerance.
+bool parametric_residual_met(const ProjectionResult& r, const IterationControl& control);
+
+// The start of a local method: options.initial[0], else the parameter of the sample nearest p.
+double parametric_start(const ParametricCurve& curve, Vec3 p, const Options& options);
+
+}  // namespace footpoint::curve

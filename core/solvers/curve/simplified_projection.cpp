@@ -1,0 +1,63 @@
+#include "solvers/curve/simplified_projection.hpp"
+
+#include <cmath>
+
+#include "solvers/curve/accelerated_correction.hpp"
+#include "solvers/curve/steepest_descent.hpp"
+
+namespace footpoint::curve {
+namespace {
+
+constexpr double kDivergence = 1e12;
+
+// Iterates eq. (20) from the curve point x0.
+Landing iterate_eq20(const ImplicitEquations& equations, Vec3 p, Vec3 x0, const IterationControl& control) {
+  Landing out;
+  out.x = x0;
+  const double limit = kDivergence * std::max(1.0, norm(x0) + norm(p));
+  double previous = kInfinity;
+  for (int n = 0;; ++n) {
+    if (n >= control.max_iterations) {
+      out.status = Status::max_iterations;
+      return out;
+    }
+    Vec3 y, z, x1;
+    if (!newton_onto_equation(equations, 0, out.x, y) || !newton_onto_equation(equations, 1, y, z) ||
+        !newton_onto_orthogonality(equations.jet(z), z, p, x1)) {
+      out.status = Status::degenerate;
+      return out;
+    }
+    if (!is_finite(x1)) {
+      out.status = Status::non_finite;
+      return out;
+    }
+    const Vec3 dx = x1 - out.x;
+    out.step = norm(dx);
+    out.x = x1;
+    out.iterations = n + 1;
+    control.record(dx.x, dx.y, dx.z);
+    if (norm(x1) > limit) {
+      out.status = Status::diverged;
+      return out;
+    }
+    if (paper_iteration_done(equations, p, x1, out.step, previous, control, true)) {
+      out.status = Status::converged;
+      return out;
+    }
+  }
+}
+
+}  // namespace
+
+ProjectionResult simplified_projection(const ImplicitEquations& equations, const Box3& box, Vec3 p,
+                                       const Options& options) {
+  std::vector<std::array<double, 3>> trace;
+  const IterationControl control = make_control(options, kPaperIterations, &trace);
+  Landing l = land_on_curve(equations, paper_start(p, options, equations.planar()), control);
+  if (l.status == Status::converged) l = iterate_eq20(equations, p, l.x, control);
+  ProjectionResult r = paper_result(equations, box, p, l.x, "simplified", l.status, l.iterations, l.step, control);
+  r.trace = std::move(trace);
+  return r;
+}
+
+}  // namespace footpoint::curve

@@ -1,0 +1,157 @@
+// `auto` against reference answers computed independently (../shared/cases/oracle.py, 50-digit):
+// parametric curves (helix, trefoil, planar ellipse, a parabola arc with endpoint answers), planar
+// implicit curves (ellipse, cusp and lemniscate singular points, two components, a clipped
+// parabola, two circles touching at a tacnode) and spatial curves (Viviani's curve with its double point, three circles, Example 1's
+// curve clipped by the box, a helix leaving through the box's z faces).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "geometry/implicit_curve.hpp"
+#include "geometry/parametric_curve.hpp"
+
+using namespace footpoint;
+using nlohmann::json;
+
+namespace {
+
+json load(const std::string& name) {
+  std::ifstream in(std::string(FOOTPOINT_TESTS_DIR) + "/data/" + name);
+  REQUIRE(in.good());
+  return json::parse(in);
+}
+
+std::shared_ptr<const CompiledGeometry> compile_case(const json& c) {
+  GeometryDefinition def;
+  const std::string kind = c["kind"];
+  const json& f = c["formulas"];
+  const json& d = c["domain"];
+  if (kind == "paramcurve") {
+    def.type = GeometryType::parametric_curve;
+    def.formulas = {{"x", f["x"]}, {"y", f["y"]}};
+    if (f.contains("z")) def.formulas.push_back({"z", f["z"]});
+    def.domain = {{"t", {d["t"][0], d["t"][1]}}};
+    return compile_parametric_curve(def, {});
+  }
+  def.type = GeometryType::implicit_curve;
+  if (kind == "implicit2d") {
+    def.formulas = {{"equations[0]", f["f"]}};
+    def.domain = {{"x", {d["x"][0], d["x"][1]}}, {"y", {d["y"][0], d["y"][1]}}};
+  } else {
+    def.formulas = {{"equations[0]", f["f1"]}, {"equations[1]", f["f2"]}};
+    def.domain = {{"x", {d["x"][0], d["x"][1]}}, {"y", {d["y"][0], d["y"][1]}}, {"z", {d["z"][0], d["z"][1]}}};
+  }
+  return compile_implicit_curve(def, {});
+}
+
+Location expected_location(const std::string& type) {
+  if (type.rfind("endpoint", 0) == 0) return Location::endpoint;
+  if (type.rfind("box-face", 0) == 0) return Location::box_face;
+  if (type == "singular-point") return Location::singular_point;
+  return Location::interior;
+}
+
+double dist(const std::array<double, 3>& a, const json& b, int dim) {
+  double s = 0.0;
+  for (int k = 0; k < dim; ++k) s += (a[static_cast<std::size_t>(k)] - b[k].get<double>()) * (a[static_cast<std::size_t>(k)] - b[k].get<double>());
+  return std::sqrt(s);
+}
+
+void check_file(const std::string& name) {
+  const json data = load(name);
+  for (const json& c : data["cases"]) {
+    const std::string id = c["id"];
+    const auto g = compile_case(c);
+    const int dim = g->point_dim();
+    int k = 0;
+    for (const json& pt : c["points"]) {
+      CAPTURE(id);
+      CAPTURE(k++);
+      double p[3] = {0.0, 0.0, 0.0};
+      for (int i = 0; i < dim; ++i) p[i] = pt["p"][i];
+      const ProjectionResult r = g->project(p, "auto", {});
+      const double ref = pt["distance"];
+      CHECK(r.summary.status == Status::converged);
+      // The global distance to 1e-12 relative.
+      CHECK(std::fabs(r.distance - ref) <= 1e-12 * ref + 1e-15);
+      // |p - foot| is the distance.
+      double s = 0.0;
+      for (int i = 0; i < dim; ++i) s += (p[i] - r.foot[static_cast<std::size_t>(i)]) * (p[i] - r.foot[static_cast<std::size_t>(i)]);
+      CHECK(std::fabs(std::sqrt(s) - r.distance) <= 1e-14 * (1.0 + r.distance));
+      // The foot lies on the curve: residuals, and for parametric curves c(t) = foot with t inside.
+      CHECK(r.summary.equation_residual[0] <= 1e-12);
+      CHECK(r.summary.equation_residual[1] <= 1e-12);
+      CHECK(r.summary.orthogonality[0] <= 1e-12);
+      if (g->num_params() == 1) {
+        const auto* pc = dynamic_cast<const ParametricCurve*>(g.get());
+        const double t = r.params[0];
+        CHECK(pc->domain().contains(t));
+        const Vec3 c_t = pc->formulas().point(t);
+        CHECK(norm(c_t - Vec3{r.foot[0], r.foot[1], r.foot[2]}) <= 1e-14 * (1.0 + norm(c_t)));
+      }
+      if (!pt["ambiguous"].get<bool>()) {
+        CHECK(dist(r.foot, pt["foot"], dim) <= 1e-7 * (1.0 + ref));
+        // A foot at one of the oracle's singular points is one (the oracle may call the touching
+        // point of two branches, a tacnode, regular: it is a regular point of either branch).
+        bool at_singular = false;
+        if (c.contains("curve_info"))
+          for (const json& sp : c["curve_info"]["singular_points"]) at_singular = at_singular || dist(r.foot, sp, dim) <= 1e-6;
+        if (at_singular) CHECK(r.summary.location == Location::singular_point);
+        else CHECK(r.summary.location == expected_location(pt["type"]));
+      }
+    }
+  }
+}
+
+// Every local minimum the oracle lists is among those all_minima returns, best first.
+void check_all_minima(const std::string& name) {
+  const json data = load(name);
+  for (const json& c : data["cases"]) {
+    const std::string id = c["id"];
+    const auto g = compile_case(c);
+    const int dim = g->point_dim();
+    Options o;
+    o.all_minima = true;
+    int k = 0;
+    for (const json& pt : c["points"]) {
+      CAPTURE(id);
+      CAPTURE(k++);
+      if (pt["ambiguous"].get<bool>()) continue;
+      double p[3] = {0.0, 0.0, 0.0};
+      for (int i = 0; i < dim; ++i) p[i] = pt["p"][i];
+      const ProjectionResult r = g->project(p, "auto", o);
+      REQUIRE(!r.minima.empty());
+      CHECK(std::fabs(r.minima.front().distance - pt["distance"].get<double>()) <= 1e-12 * r.distance + 1e-15);
+      for (std::size_t i = 1; i < r.minima.size(); ++i) CHECK(r.minima[i - 1].distance <= r.minima[i].distance);
+      for (const json& m : pt["local_minima"]) {
+        const double d = m["distance"];
+        bool found = false;
+        for (const Minimum& mine : r.minima) found = found || std::fabs(mine.distance - d) <= 1e-9 * (1.0 + d);
+        CHECK_MESSAGE(found, "local minimum at distance ", d, " not returned");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("auto: parametric curves against the oracle (helix, trefoil, ellipse, parabola arc)") {
+  check_file("curve_parametric_cases.json");
+}
+
+TEST_CASE("auto: planar implicit curves against the oracle (singular points, components, box edges)") {
+  check_file("curve_planar_implicit_cases.json");
+}
+
+TEST_CASE("auto: spatial curves against the oracle (Viviani, three circles, box faces)") {
+  check_file("curve_spatial_cases.json");
+}
+
+TEST_CASE("auto with all_minima returns the oracle's local minima, best first") {
+  check_all_minima("curve_parametric_cases.json");
+  check_all_minima("curve_planar_implicit_cases.json");
+  check_all_minima("curve_spatial_cases.json");
+}
