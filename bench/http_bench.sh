@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# HTTP benchmark on loopback (wrk): footpoint-server against an echo baseline.
+#   bench/http_bench.sh [BUILD_DIR]          (a Release build: BUILD_DIR/footpoint-server and
+#                                              BUILD_DIR/bench/echo_server_bench; default build)
+# Environment: DURATION (seconds per wrk run, default 10), PORT (default 18471; the echo uses
+# PORT+1), CONNECTIONS (single-point runs, default 50), BATCH_CONNECTIONS (default 4).
+# Runs:
+#   1. single-point POST /v1/geometries/{id}/project on the GSA paper's Example 1 surface, random
+#      points, CONNECTIONS connections: requests/s and p50/p99 latency;
+#   2. 10,000-point batches on the same surface: points/s;
+#   3. the same two against the echo server (same HTTP layer and JSON reader/writer, no projection).
+# Only 127.0.0.1 is targeted; every step is bounded by `timeout` and the whole script by 600 s.
+set -euo pipefail
+
+if [ -z "${FOOTPOINT_HTTP_BENCH_BOUNDED:-}" ]; then
+  export FOOTPOINT_HTTP_BENCH_BOUNDED=1
+  exec timeout --kill-after=10 600 "$0" "$@"
+fi
+
+BUILD=${1:-build}
+DURATION=${DURATION:-10}
+PORT=${PORT:-18471}
+ECHO_PORT=$((PORT + 1))
+CONNECTIONS=${CONNECTIONS:-50}
+BATCH_CONNECTIONS=${BATCH_CONNECTIONS:-4}
+HOST=127.0.0.1
+SERVER="$BUILD/footpoint-server"
+ECHO="$BUILD/bench/echo_server_bench"
+for tool in wrk curl; do command -v "$tool" >/dev/null || { echo "http_bench: $tool is required" >&2; exit 2; }; done
+for exe in "$SERVER" "$ECHO"; do [ -x "$exe" ] || { echo "http_bench: $exe not built" >&2; exit 2; }; done
+
+work=$(mktemp -d)
+pids=()
+cleanup() {
+  for pid in "${pids[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
+  for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
+  rm -rf "$work"
+}
+trap cleanup EXIT
+
+start() {  # start EXE PORT: runs it on 127.0.0.1:PORT with default settings, waits for /healthz
+  "$1" --host "$HOST" --port "$2" >/dev/null 2>&1 &  # the request log (one line each) is discarded
+  pids+=($!)
+  for _ in $(seq 100); do
+    curl -fsS --max-time 1 "http://$HOST:$2/healthz" >/dev/null 2>&1 && return 0
+    sleep 0.1
+  done
+  echo "http_bench: $1 did not start:" >&2
+  timeout 2 "$1" --host "$HOST" --port "$2" >&2 || true
+  exit 1
+}
+
+# Random points around the surface's strip; single.lua draws a new point per request.
+cat >"$work/single.lua" <<'LUA'
+wrk.method = "POST"
+wrk.headers["Content-Type"] = "application/json"
+math.randomseed(7)
+request = function()
+  local body = string.format('{"point":[%.17g,%.17g,%.17g]}',
+    math.random() * 40 - 20, math.random() * 6 - 3, math.random() * 3 - 1.5)
+  return wrk.format(nil, nil, nil, body)
+end
+LUA
+cat >"$work/batch.lua" <<'LUA'
+wrk.method = "POST"
+wrk.headers["Content-Type"] = "application/json"
+math.randomseed(11)
+local parts = {}
+for i = 1, 10000 do
+  parts[i] = string.format('[%.17g,%.17g,%.17g]',
+    math.random() * 40 - 20, math.random() * 6 - 3, math.random() * 3 - 1.5)
+end
+wrk.body = '{"points":[' .. table.concat(parts, ',') .. ']}'
+LUA
+
+surface='{"type":"parametric_surface","x":"u+v","y":"sin(u)+2*cos(v)","z":"sin(u+v)","domain":{"u":[-25,25],"v":[-25,25]}}'
+
+run_wrk() {  # run_wrk NAME CONNECTIONS SCRIPT URL -> wrk output in $work/NAME.txt
+  timeout $((DURATION + 30)) wrk -t2 -c"$2" -d"${DURATION}s" --timeout 30s --latency -s "$3" "$4" >"$work/$1.txt"
+}
+rps() { awk '/^Requests\/sec:/ {print $2}' "$work/$1.txt"; }
+pct() { awk -v p="$2" '$1 == p {print $2}' "$work/$1.txt"; }
+errors() { awk '/Non-2xx|Socket errors/ {print}' "$work/$1.txt"; }
+
+start "$SERVER" "$PORT"
+id=$(curl -fsS --max-time 30 -H 'Content-Type: application/json' -d "$surface" "http://$HOST:$PORT/v1/geometries" |
+  sed -E 's/.*"geometry_id":"([0-9a-f]+)".*/\1/')
+url="http://$HOST:$PORT/v1/geometries/$id/project"
+timeout 30 wrk -t2 -c"$CONNECTIONS" -d2s -s "$work/single.lua" "$url" >/dev/null  # warm-up
+run_wrk single "$CONNECTIONS" "$work/single.lua" "$url"
+run_wrk batch "$BATCH_CONNECTIONS" "$work/batch.lua" "$url"
+
+start "$ECHO" "$ECHO_PORT"
+echo_url="http://$HOST:$ECHO_PORT/v1/geometries/$id/project"
+timeout 30 wrk -t2 -c"$CONNECTIONS" -d2s -s "$work/single.lua" "$echo_url" >/dev/null
+run_wrk echo_single "$CONNECTIONS" "$work/single.lua" "$echo_url"
+run_wrk echo_batch "$BATCH_CONNECTIONS" "$work/batch.lua" "$echo_url"
+
+points() { awk -v r="$(rps "$1")" 'BEGIN {printf "%.0f", r * 10000}'; }
+echo "http_bench: wrk -t2 on $HOST, ${DURATION}s per run, $(nproc) cores; GSA paper Example 1 surface"
+printf '  single point, %d connections: footpoint %s req/s (p50 %s, p99 %s); echo %s req/s (p50 %s, p99 %s)\n' \
+  "$CONNECTIONS" "$(rps single)" "$(pct single 50%)" "$(pct single 99%)" \
+  "$(rps echo_single)" "$(pct echo_single 50%)" "$(pct echo_single 99%)"
+printf '  10,000-point batches, %d connections: footpoint %s points/s (p50 %s); echo %s points/s (p50 %s)\n' \
+  "$BATCH_CONNECTIONS" "$(points batch)" "$(pct batch 50%)" "$(points echo_batch)" "$(pct echo_batch 50%)"
+awk -v a="$(rps batch)" -v b="$(rps echo_batch)" \
+  'BEGIN {if (b > 0) printf "  batch throughput / echo throughput: %.1f%% (target >= 50%%)\n", 100 * a / b}'
+for run in single batch echo_single echo_batch; do
+  e=$(errors "$run")
+  [ -z "$e" ] || echo "  $run: $e"
+done

@@ -1,0 +1,98 @@
+// The JSON layer's cost per point for a 10,000-point batch: reading the request body (pull
+// reader, std::from_chars) and writing the response (std::to_chars), against nlohmann's DOM for
+// reference. Target (issue 5): parse + serialize <= 1 us per point. Prints medians of 31 runs.
+//   build/bench/json_bench [points]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "json_writer.hpp"
+#include "project_request.hpp"
+#include "result_json.hpp"
+
+using namespace footpoint;
+using namespace footpoint::server;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+template <class F>
+double median_ns_per_point(F&& f, std::size_t points, int runs = 31) {
+  std::vector<double> t;
+  for (int r = 0; r < runs; ++r) {
+    const auto start = Clock::now();
+    f();
+    t.push_back(std::chrono::duration<double, std::nano>(Clock::now() - start).count() / static_cast<double>(points));
+  }
+  std::nth_element(t.begin(), t.begin() + runs / 2, t.end());
+  return t[runs / 2];
+}
+
+volatile std::size_t sink;  // keeps results alive
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::size_t n = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 10000;
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> d(-30.0, 30.0);
+
+  // A request as a client sends it: full-precision coordinates.
+  JsonWriter w(n * 64);
+  w.begin_object();
+  w.key("points");
+  w.begin_array();
+  for (std::size_t i = 0; i < n; ++i) {
+    w.begin_array();
+    for (int k = 0; k < 3; ++k) w.number(d(rng));
+    w.end_array();
+  }
+  w.end_array();
+  w.end_object();
+  const std::string body = w.take();
+
+  // Results as the solvers fill them: full-precision numbers everywhere.
+  std::vector<ProjectionResult> results(n);
+  for (auto& r : results) {
+    r.foot = {d(rng), d(rng), d(rng)};
+    r.params = {d(rng), d(rng)};
+    r.distance = std::abs(d(rng));
+    r.summary.method = "auto";
+    r.summary.status = Status::converged;
+    r.summary.iterations = 5;
+    r.summary.step_norm = 1.2345678901234567e-9;
+    r.summary.orthogonality = {3.2e-17, 1.1e-16};
+    r.summary.starts = 3;
+    r.summary.location = Location::interior;
+  }
+
+  const double parse = median_ns_per_point([&] { sink = read_project_request(body, false, n).coords.size(); }, n);
+  std::size_t response_bytes = 0;
+  const double write = median_ns_per_point(
+      [&] {
+        const std::string out = project_response("8ca9f0e028af69e7a85f954715c1f082", results, false, false, false, 1.0);
+        response_bytes = out.size();
+        sink = out.size();
+      },
+      n);
+  const std::string response = project_response("8ca9f0e028af69e7a85f954715c1f082", results, false, false, false, 1.0);
+  const double dom_parse = median_ns_per_point([&] { sink = nlohmann::json::parse(body)["points"].size(); }, n, 11);
+  const double dom_write = median_ns_per_point([&] { sink = nlohmann::json::parse(response).dump().size(); }, n, 11) -
+                           median_ns_per_point([&] { sink = nlohmann::json::parse(response).size(); }, n, 11);
+
+  std::printf("json_bench: %zu points, request %zu bytes, response %zu bytes (medians of 31 runs)\n", n, body.size(),
+              response_bytes);
+  std::printf("  parse request  (pull reader + from_chars): %7.1f ns/point\n", parse);
+  std::printf("  write response (direct writer + to_chars): %7.1f ns/point\n", write);
+  std::printf("  parse + write                            : %7.1f ns/point  (target <= 1000)\n", parse + write);
+  std::printf("  reference, nlohmann DOM: parse request %.1f ns/point, dump response %.1f ns/point\n", dom_parse,
+              dom_write);
+  return parse + write <= 1000.0 ? 0 : 1;
+}

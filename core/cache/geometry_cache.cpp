@@ -1,0 +1,121 @@
+#include "cache/geometry_cache.hpp"
+
+#include <utility>
+
+namespace footpoint {
+
+GeometryCache::GeometryCache(GeometryCacheOptions options) : options_(options) {}
+
+GeometryCache::Lookup GeometryCache::get_or_compile(const GeometryDefinition& def,
+                                                     const formula::CompileLimits& limits) {
+  const std::string id = def.id();
+  std::shared_ptr<Pending> pending;
+  {
+    std::unique_lock lock(mutex_);
+    if (auto it = entries_.find(id); it != entries_.end()) {
+      ++stats_.hits;
+      ++it->second.hits;
+      recency_.splice(recency_.begin(), recency_, it->second.recency);
+      return {it->second.geometry, false, {}};
+    }
+    if (auto it = pending_.find(id); it != pending_.end()) {
+      // Someone is compiling this id right now: wait for that one compilation.
+      ++stats_.hits;
+      std::shared_ptr<Pending> other = it->second;
+      done_.wait(lock, [&] { return other->finished; });
+      if (other->error) std::rethrow_exception(other->error);
+      return {other->geometry, false, {}};
+    }
+    ++stats_.misses;
+    pending = std::make_shared<Pending>();
+    pending_.emplace(id, pending);
+  }
+
+  // Compile outside the lock: other ids stay available meanwhile.
+  const auto start = std::chrono::steady_clock::now();
+  std::shared_ptr<const CompiledGeometry> geometry;
+  std::exception_ptr error;
+  try {
+    geometry = compile_geometry(def, limits);
+  } catch (...) {
+    error = std::current_exception();
+  }
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+
+  {
+    std::lock_guard lock(mutex_);
+    pending_.erase(id);
+    pending->finished = true;
+    pending->geometry = geometry;
+    pending->error = error;
+    if (error) {
+      ++stats_.failed_compilations;
+    } else {
+      ++stats_.compilations;
+      insert_locked(id, geometry);
+    }
+  }
+  done_.notify_all();
+  if (error) std::rethrow_exception(error);
+  return {std::move(geometry), true, elapsed};
+}
+
+void GeometryCache::insert_locked(const std::string& id, std::shared_ptr<const CompiledGeometry> geometry) {
+  const std::size_t bytes = geometry->memory_bytes();
+  if (bytes > options_.max_bytes || options_.max_entries == 0) return;  // too large to keep
+  recency_.push_front(id);
+  entries_[id] = Entry{std::move(geometry), bytes, 0, recency_.begin()};
+  stats_.bytes += bytes;
+  evict_locked();
+}
+
+void GeometryCache::evict_locked() {
+  // The newest entry (front) fits on its own, so this stops before reaching it.
+  while (entries_.size() > options_.max_entries || stats_.bytes > options_.max_bytes) {
+    const std::string& oldest = recency_.back();
+    auto it = entries_.find(oldest);
+    stats_.bytes -= it->second.bytes;
+    entries_.erase(it);
+    recency_.pop_back();
+    ++stats_.evictions;
+  }
+  stats_.size = entries_.size();
+}
+
+std::shared_ptr<const CompiledGeometry> GeometryCache::find(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  auto it = entries_.find(id);
+  if (it == entries_.end()) {
+    ++stats_.misses;
+    return nullptr;
+  }
+  ++stats_.hits;
+  ++it->second.hits;
+  recency_.splice(recency_.begin(), recency_, it->second.recency);
+  return it->second.geometry;
+}
+
+bool GeometryCache::erase(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  auto it = entries_.find(id);
+  if (it == entries_.end()) return false;
+  stats_.bytes -= it->second.bytes;
+  recency_.erase(it->second.recency);
+  entries_.erase(it);
+  stats_.size = entries_.size();
+  return true;
+}
+
+std::optional<GeometryCache::EntryStats> GeometryCache::entry_stats(const std::string& id) const {
+  std::lock_guard lock(mutex_);
+  auto it = entries_.find(id);
+  if (it == entries_.end()) return std::nullopt;
+  return EntryStats{it->second.hits, it->second.bytes};
+}
+
+GeometryCacheStats GeometryCache::stats() const {
+  std::lock_guard lock(mutex_);
+  return stats_;
+}
+
+}  // namespace footpoint

@@ -1,0 +1,102 @@
+// A bounded LRU cache of compiled geometries, keyed by the definition's content-hash id.
+// Bounded both by entry count and by the bytes the compiled objects hold
+// (CompiledGeometry::memory_bytes), so a flood of distinct formulas evicts instead of growing.
+// Thread-safe: lookups take one short lock; compilation runs outside the lock, and concurrent
+// requests for the same new id wait for the one compilation in progress instead of repeating it.
+// Entries are shared_ptr<const CompiledGeometry>: an evicted geometry stays alive for the
+// requests still using it.
+#pragma once
+#include <chrono>
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <list>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <unordered_map>
+
+#include "geometry/geometry.hpp"
+
+namespace footpoint {
+
+struct GeometryCacheOptions {
+  // At most this many geometries are kept; beyond it the least recently used is evicted.
+  std::size_t max_entries = 1024;
+  // At most this many bytes (sum of memory_bytes()) are kept: 256 MiB. A single geometry larger
+  // than this is compiled and returned, but not kept.
+  std::size_t max_bytes = std::size_t{256} << 20;
+};
+
+struct GeometryCacheStats {
+  std::size_t size = 0;              // geometries held
+  std::size_t bytes = 0;             // sum of their memory_bytes()
+  std::uint64_t hits = 0;            // lookups answered by a held (or in-progress) geometry
+  std::uint64_t misses = 0;          // lookups that found nothing or had to compile
+  std::uint64_t evictions = 0;       // geometries dropped to respect the bounds
+  std::uint64_t compilations = 0;    // successful compilations
+  std::uint64_t failed_compilations = 0;
+};
+
+class GeometryCache {
+ public:
+  explicit GeometryCache(GeometryCacheOptions options = {});
+  GeometryCache(const GeometryCache&) = delete;
+  GeometryCache& operator=(const GeometryCache&) = delete;
+
+  struct Lookup {
+    std::shared_ptr<const CompiledGeometry> geometry;
+    bool compiled = false;  // this call compiled it (the id was not held nor being compiled)
+    std::chrono::duration<double> compile_time{0.0};  // time this call spent compiling
+  };
+
+  // Returns the geometry with def.id(), compiling it when it is not held. Throws GeometryError
+  // when the definition does not compile (nothing is inserted then); concurrent callers
+  // waiting for that same compilation get the same error.
+  Lookup get_or_compile(const GeometryDefinition& def, const formula::CompileLimits& limits = {});
+
+  // The held geometry with this id (marked most recently used), or nullptr.
+  std::shared_ptr<const CompiledGeometry> find(const std::string& id);
+
+  // Drops the geometry with this id; false when it was not held.
+  bool erase(const std::string& id);
+
+  struct EntryStats {
+    std::uint64_t hits = 0;   // lookups it answered since it was inserted
+    std::size_t bytes = 0;    // its memory_bytes()
+  };
+  // Statistics of one held geometry, without touching its recency or the counters.
+  std::optional<EntryStats> entry_stats(const std::string& id) const;
+
+  GeometryCacheStats stats() const;
+  const GeometryCacheOptions& options() const { return options_; }
+
+ private:
+  struct Entry {
+    std::shared_ptr<const CompiledGeometry> geometry;
+    std::size_t bytes = 0;
+    std::uint64_t hits = 0;
+    std::list<std::string>::iterator recency;  // position in recency_ (front = most recent)
+  };
+  // A compilation in progress: waiters block on `done` until `finished`.
+  struct Pending {
+    bool finished = false;
+    std::shared_ptr<const CompiledGeometry> geometry;
+    std::exception_ptr error;
+  };
+
+  void insert_locked(const std::string& id, std::shared_ptr<const CompiledGeometry> geometry);
+  void evict_locked();
+
+  GeometryCacheOptions options_;
+  mutable std::mutex mutex_;
+  std::condition_variable done_;
+  std::unordered_map<std::string, Entry> entries_;
+  std::unordered_map<std::string, std::shared_ptr<Pending>> pending_;
+  std::list<std::string> recency_;
+  GeometryCacheStats stats_;
+};
+
+}  // namespace footpoint

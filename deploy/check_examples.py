@@ -1,0 +1,179 @@
+#!/usr/bin/python3
+"""Runs the copy-paste curl examples of the operations section against a running server.
+
+  check_examples.py [--server PATH] BASE_URL FILE...
+
+Takes the first FILE whose operations section has ```sh blocks: README.md's text between
+<!-- operations:begin --> and <!-- operations:end -->, or a whole file without those markers
+(deploy/OPERATIONS.md). Every command of every block runs, in order, in one bash (so that `ID=$(...)`
+carries over), with localhost:8080 replaced by BASE_URL. A command starting with `curl` must answer
+2xx, unless a comment `# → CODE (STATUS ...)` just above it names the error code and status it
+expects; its body must then be that JSON error. JSON answers must parse; /metrics and /openapi.yaml
+must look like what they are. A `VAR=$(...)` command must set VAR. With --server, the section's
+configuration table must list exactly the flags, variables and defaults of `PATH --help`.
+"""
+import json
+import os
+import re
+import shlex
+import subprocess
+import sys
+
+import yaml
+
+BEGIN, END = "<!-- operations:begin -->", "<!-- operations:end -->"
+
+
+def section(text):
+    if BEGIN in text:
+        return text.split(BEGIN, 1)[1].split(END, 1)[0]
+    return text
+
+
+def commands(block):
+    """[(expected (code, status) or None, command text)]: lines joined until their quotes close."""
+    out, pending, expected = [], "", None
+    for line in block.splitlines():
+        if not pending:
+            m = re.match(r"#\s*→\s*(\w+)\s*\((\d{3})", line.strip())
+            if m:
+                expected = (m.group(1), int(m.group(2)))
+                continue
+            if not line.strip() or line.strip().startswith("#"):
+                continue
+        pending += line + "\n"
+        try:
+            shlex.split(pending)
+        except ValueError:
+            continue  # an open quote: the command goes on
+        if pending.rstrip().endswith("\\"):
+            continue
+        out.append((expected, pending.rstrip("\n")))
+        pending, expected = "", None
+    if pending:
+        raise SystemExit(f"unterminated command in a block: {pending!r}")
+    return out
+
+
+def check_configuration_table(text, server):
+    """The configuration table (| `--flag` | `ENV` | `default` | ...) against `server --help`."""
+    help_text = subprocess.run([server, "--help"], capture_output=True, text=True, check=True).stdout
+    actual = {m.group(1): (m.group(2), m.group(3))
+              for m in re.finditer(r"^\s+--(\S+)\s+(FOOTPOINT_\w+)\s.*\(default ([^)]*)\)$", help_text, re.M)}
+    documented = {m.group(1): (m.group(2), m.group(3))
+                  for m in re.finditer(r"^\| `--([\w-]+)` \| `(\w+)` \| `([^`]*)` \|", text, re.M)}
+    problems = []
+    for flag in sorted(set(actual) | set(documented)):
+        if flag not in documented:
+            problems.append(f"configuration table lacks --{flag} {actual[flag]}")
+        elif flag not in actual:
+            problems.append(f"configuration table documents --{flag}, which the server does not take")
+        elif actual[flag] != documented[flag]:
+            problems.append(f"configuration table: --{flag} is {documented[flag]}, the server says {actual[flag]}")
+    return problems, len(actual)
+
+
+def main():
+    args = sys.argv[1:]
+    server = None
+    if args[:1] == ["--server"]:
+        server, args = args[1], args[2:]
+    base = args[0].rstrip("/")
+    host = re.sub(r"^https?://", "", base)
+    blocks = []
+    for path in args[1:]:
+        if not os.path.exists(path):
+            continue
+        with open(path, encoding="utf-8") as f:
+            text = section(f.read())
+        blocks = re.findall(r"```sh\n(.*?)```", text, re.S)
+        if blocks:
+            source = path
+            break
+    if not blocks:
+        print("FAIL: no ```sh blocks in " + ", ".join(args[1:]))
+        return 1
+    cmds = [c for b in blocks for c in commands(b)]
+    script = ["set -uo pipefail"]
+    for i, (expected, cmd) in enumerate(cmds):
+        cmd = cmd.replace("localhost:8080", host)
+        script.append(f"echo '@@command {i}'")
+        if cmd.startswith("curl "):
+            script.append("curl -w '\\n@@status %{http_code}\\n' " + cmd[len("curl "):])
+        else:
+            script.append(cmd)
+            m = re.match(r"(\w+)=\$\(", cmd)
+            if m:
+                script.append(f'echo "@@var {m.group(1)}=${m.group(1)}"')
+    run = subprocess.run(["bash", "-c", "\n".join(script)], capture_output=True, text=True, timeout=120)
+    outputs = re.split(r"^@@command \d+\n", run.stdout, flags=re.M)[1:]
+    problems = []
+    if run.stderr.strip():
+        problems.append(f"stderr: {run.stderr.strip()}")
+    if len(outputs) != len(cmds):
+        problems.append(f"ran {len(outputs)} of {len(cmds)} commands")
+    for (expected, cmd), out in zip(cmds, outputs):
+        first = cmd.splitlines()[0]
+        var = re.search(r"^@@var (\w+)=(.*)$", out, re.M)
+        if var:
+            if not re.fullmatch(r"[0-9a-f]{16,64}", var.group(2)):
+                problems.append(f"{first}: {var.group(1)} is {var.group(2)!r}, not a geometry id")
+            continue
+        m = re.search(r"\n?@@status (\d{3})\n$", out)
+        if not m:
+            problems.append(f"{first}: no HTTP status (curl failed?): {out[-300:]!r}")
+            continue
+        status, body = int(m.group(1)), out[: m.start()]
+        if expected:
+            code, want = expected
+            try:
+                got = json.loads(body).get("error", {}).get("code")
+            except (json.JSONDecodeError, AttributeError):
+                got = None
+            if status != want or got != code:
+                problems.append(f"{first}: expected {want} {code}, got {status} {body[:300]}")
+            continue
+        if not 200 <= status < 300:
+            problems.append(f"{first}: HTTP {status}: {body[:300]}")
+        elif "/metrics" in first:
+            if not body.startswith("# HELP footpoint_"):
+                problems.append(f"{first}: not Prometheus text")
+        elif "/openapi.yaml" in first:
+            try:
+                doc = yaml.safe_load(body)
+            except yaml.YAMLError as e:
+                mark = getattr(e, "problem_mark", None)
+                problems.append(f"{first}: not valid YAML: {getattr(e, 'problem', e)}"
+                                + (f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""))
+                continue
+            if not isinstance(doc, dict) or not str(doc.get("openapi", "")).startswith("3.1"):
+                problems.append(f"{first}: not an OpenAPI 3.1 document")
+        elif status == 204:
+            if body:
+                problems.append(f"{first}: 204 with a body")
+        else:
+            try:
+                doc = json.loads(body)
+            except json.JSONDecodeError as e:
+                problems.append(f"{first}: not JSON ({e}): {body[:200]}")
+                continue
+            if "error" in doc:
+                problems.append(f"{first}: unexpected error {doc['error']}")
+            for r in [doc.get("result")] + list(doc.get("results") or []):
+                if r is not None and r.get("diagnostics", {}).get("status") not in ("converged", "beyond_max_distance"):
+                    problems.append(f"{first}: a result did not converge: {r}")
+    settings = 0
+    if server:
+        table_problems, settings = check_configuration_table(text, server)
+        problems += table_problems
+    for q in problems:
+        print("FAIL:", q)
+    if problems:
+        return 1
+    print(f"ok: {len(cmds)} curl examples of {source} ({len(blocks)} blocks) answered as documented"
+          + (f"; its configuration table matches --help ({settings} settings)" if server else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

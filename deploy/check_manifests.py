@@ -1,0 +1,650 @@
+#!/usr/bin/python3
+"""Static checks of footpoint's deployment files, without a Docker engine or a cluster.
+
+  deploy/Dockerfile      stages, build/runtime packages, install prefix, non-root USER, EXPOSE,
+                         HEALTHCHECK, exec-form ENTRYPOINT
+  deploy/compose.yaml    parses; build points at the Dockerfile; port, probe path, image, env
+  deploy/k8s/*.yaml      parses; the fields Kubernetes requires per kind (Deployment, Service,
+                         HorizontalPodAutoscaler, PodDisruptionBudget, Kustomization); selectors
+                         match the pod template; the HPA targets the Deployment
+and their consistency: one port, one probe path per purpose, one image name, one user id, only
+environment variables the server reads (server/config.cpp), grace periods longer than the deadline.
+
+  --binary PATH   also check that every shared library `ldd PATH` shows is installed by the
+                  runtime stage's packages (their Debian dependency closure, read with dpkg-query)
+  --self-test     break each file in memory in ways the checks must catch, and fail if one passes
+
+Prints one line per problem and exits 1 if there is any.
+"""
+import argparse
+import json
+import os
+import re
+import shlex
+import subprocess
+import sys
+
+import yaml
+
+PORT = 8080
+LIVENESS_PATH = "/healthz"
+READINESS_PATH = "/readyz"
+SERVER_BINARY = "footpoint-server"
+# Needed only by the tests, benchmarks and the oracle: not in the image's build stage.
+TEST_ONLY_PACKAGES = {"doctest-dev", "libbenchmark-dev"}
+RUNTIME_LIBRARIES = {"libmuparser2v5", "libcpp-httplib0.11", "libspdlog1.10", "libfmt9"}
+DNS_LABEL = re.compile(r"^[a-z0-9]([-a-z0-9]*[a-z0-9])?$")
+
+
+class Problems:
+    def __init__(self):
+        self.items = []
+
+    def add(self, where, message):
+        self.items.append(f"{where}: {message}")
+
+    def expect(self, condition, where, message):
+        if not condition:
+            self.add(where, message)
+        return bool(condition)
+
+
+def get(node, *keys):
+    """node[k0][k1]... or None when a level is missing or not a mapping/list."""
+    for k in keys:
+        if isinstance(node, dict) and k in node:
+            node = node[k]
+        elif isinstance(node, list) and isinstance(k, int) and -len(node) <= k < len(node):
+            node = node[k]
+        else:
+            return None
+    return node
+
+
+# ---- Dockerfile ---------------------------------------------------------------------------------
+
+def dockerfile_instructions(text):
+    """[(keyword, arguments)] with line continuations joined and comment lines dropped."""
+    out, pending = [], ""
+    for raw in text.splitlines():
+        line = raw.strip()
+        if not line or line.startswith("#"):
+            continue
+        if line.endswith("\\"):
+            pending += line[:-1] + " "
+            continue
+        line = pending + line
+        pending = ""
+        keyword, _, rest = line.partition(" ")
+        out.append((keyword.upper(), rest.strip()))
+    if pending:
+        keyword, _, rest = pending.strip().partition(" ")
+        out.append((keyword.upper(), rest.strip()))
+    return out
+
+
+def apt_packages(run):
+    """Packages named by `apt-get install` in a RUN command."""
+    packages = []
+    for segment in re.split(r"&&|;|\|\|", run):
+        words = shlex.split(segment)
+        if "apt-get" in words and "install" in words:
+            for w in words[words.index("install") + 1:]:
+                if not w.startswith("-") and "=" not in w:
+                    packages.append(w)
+    return packages
+
+
+def parse_stages(text):
+    stages = []
+    for keyword, args in dockerfile_instructions(text):
+        if keyword == "FROM":
+            words = args.split()
+            words = [w for w in words if not w.startswith("--")]
+            name = words[2] if len(words) >= 3 and words[1].upper() == "AS" else None
+            stages.append({"image": words[0], "name": name, "instructions": []})
+        elif stages:
+            stages[-1]["instructions"].append((keyword, args))
+    return stages
+
+
+def instructions_of(stage, keyword):
+    return [args for k, args in stage["instructions"] if k == keyword]
+
+
+def check_dockerfile(text, texts_extra, install_deps_text, p):
+    """Returns facts the other files must agree with: port, uid, health command, prefix."""
+    where = "deploy/Dockerfile"
+    facts = {}
+    stages = parse_stages(text)
+    if not p.expect(len(stages) >= 2, where, "needs a build stage and a runtime stage (multi-stage)"):
+        return facts
+    build, runtime = stages[0], stages[-1]
+    p.expect(build["image"].startswith("debian:bookworm") or build["image"].startswith("debian:12"),
+             where, f"the build stage should be Debian 12, is {build['image']}")
+    p.expect(runtime["image"] in ("debian:bookworm-slim", "debian:12-slim"), where,
+             f"the runtime stage should be slim Debian 12, is {runtime['image']}")
+    p.expect(build["name"], where, "the build stage needs a name (FROM ... AS build)")
+
+    build_packages = [x for r in instructions_of(build, "RUN") for x in apt_packages(r)]
+    needed = set(re.findall(r"\b([a-z0-9.+-]+-dev)\b", install_deps_text)) - TEST_ONLY_PACKAGES
+    needed |= {"cmake", "pkg-config"}
+    for pkg in sorted(needed - set(build_packages)):
+        p.add(where, f"build stage does not install {pkg} (scripts/install-deps.sh needs it to build)")
+    build_runs = " ".join(instructions_of(build, "RUN"))
+    m = re.search(r"cmake --install \S+ --prefix (\S+)", build_runs)
+    if p.expect(m, where, "the build stage must `cmake --install <build> --prefix <dir>`"):
+        facts["prefix"] = m.group(1)
+    p.expect("CMAKE_BUILD_TYPE=Release" in build_runs, where, "the build stage must build Release")
+
+    runtime_packages = [x for r in instructions_of(runtime, "RUN") for x in apt_packages(r)]
+    facts["runtime_packages"] = runtime_packages
+    for pkg in sorted(RUNTIME_LIBRARIES - set(runtime_packages)):
+        p.add(where, f"runtime stage does not install {pkg}")
+    for pkg in runtime_packages:
+        p.expect(not pkg.endswith("-dev") and pkg not in ("build-essential", "cmake", "g++", "gcc"),
+                 where, f"runtime stage installs build-only package {pkg}")
+    copies = instructions_of(runtime, "COPY")
+    from_build = [c for c in copies if re.match(rf"--from={re.escape(build['name'] or '')}\s", c)]
+    if p.expect(from_build, where, "the runtime stage must COPY --from the build stage"):
+        if "prefix" in facts:
+            p.expect(any(c.split()[1].rstrip("/") == facts["prefix"].rstrip("/") for c in from_build),
+                     where, f"the runtime stage must copy the install prefix {facts['prefix']}")
+
+    users = instructions_of(runtime, "USER")
+    if p.expect(users, where, "the runtime stage needs a USER (non-root)"):
+        user, _, group = users[-1].partition(":")
+        p.expect(user not in ("root", "0"), where, "USER must not be root")
+        if p.expect(user.isdigit(), where, "USER should be numeric so that runAsNonRoot can verify it"):
+            facts["uid"] = int(user)
+        if group:
+            p.expect(group.isdigit() and group != "0", where, "USER's group must be numeric and not root")
+            if group.isdigit():
+                facts["gid"] = int(group)
+    exposed = [w.split("/")[0] for e in instructions_of(runtime, "EXPOSE") for w in e.split()]
+    p.expect(str(PORT) in exposed, where, f"the runtime stage must EXPOSE {PORT}")
+
+    checks = instructions_of(runtime, "HEALTHCHECK")
+    if p.expect(checks, where, "the runtime stage needs a HEALTHCHECK"):
+        check = checks[-1]
+        p.expect(LIVENESS_PATH in check, where, f"HEALTHCHECK must probe {LIVENESS_PATH}")
+        tool = "wget" if re.search(r"\bwget\b", check) else "curl" if re.search(r"\bcurl\b", check) else None
+        if p.expect(tool, where, "HEALTHCHECK should use curl or wget"):
+            p.expect(tool in runtime_packages, where, f"HEALTHCHECK uses {tool} but the runtime stage does not install it")
+            facts["health_tool"] = tool
+        port = re.search(r"127\.0\.0\.1:(?:\$\{FOOTPOINT_PORT:-)?(\d+)", check)
+        p.expect(port and int(port.group(1)) == PORT, where, f"HEALTHCHECK must use port {PORT}")
+
+    entry = instructions_of(runtime, "ENTRYPOINT")
+    if p.expect(entry, where, "the runtime stage needs an ENTRYPOINT"):
+        try:
+            argv = json.loads(entry[-1])
+        except json.JSONDecodeError:
+            argv = None
+        if p.expect(isinstance(argv, list) and argv and all(isinstance(a, str) for a in argv), where,
+                    "ENTRYPOINT must be exec form (a JSON array) so that the server is PID 1 and gets SIGTERM"):
+            p.expect(argv[0] not in ("sh", "/bin/sh", "bash", "/bin/bash"), where,
+                     "ENTRYPOINT must run the server, not a shell")
+            if "prefix" in facts:
+                p.expect(argv[0] == f"{facts['prefix'].rstrip('/')}/bin/{SERVER_BINARY}", where,
+                         f"ENTRYPOINT must run {facts['prefix']}/bin/{SERVER_BINARY}, runs {argv[0]}")
+    ignore = texts_extra.get("Dockerfile.dockerignore")
+    if p.expect(ignore is not None, where, "needs deploy/Dockerfile.dockerignore (keeps host build trees out of the context)"):
+        allowed = {line[1:].strip().rstrip("/") for line in ignore.splitlines() if line.startswith("!")}
+        p.expect("*" in [line.strip() for line in ignore.splitlines()], "deploy/Dockerfile.dockerignore",
+                 "should ignore everything (*) but the sources the build copies")
+        for c in instructions_of(build, "COPY"):
+            for src in c.split()[:-1]:
+                if not src.startswith("--"):
+                    p.expect(src.rstrip("/") in allowed, "deploy/Dockerfile.dockerignore",
+                             f"the build stage copies {src} but the context excludes it")
+    stop = instructions_of(runtime, "STOPSIGNAL")
+    p.expect(not stop or stop[-1] in ("SIGTERM", "15"), where, "STOPSIGNAL must be SIGTERM")
+    p.expect(not instructions_of(runtime, "CMD") or entry, where, "CMD without ENTRYPOINT")
+    return facts
+
+
+# ---- environment and durations ------------------------------------------------------------------
+
+def env_names_of_server(config_cpp_text):
+    return set(re.findall(r'"(FOOTPOINT_[A-Z0-9_]+)"', config_cpp_text))
+
+
+def check_env(env, known, where, p):
+    """env: {name: value}. Names must be read by the server; FOOTPOINT_PORT must be the port."""
+    for name, value in env.items():
+        if known:
+            p.expect(name in known, where, f"environment variable {name} is not read by the server (server/config.cpp)")
+        p.expect(isinstance(value, str), where, f"{name}: value must be a string, is {value!r}")
+    if "FOOTPOINT_PORT" in env:
+        p.expect(str(env["FOOTPOINT_PORT"]) == str(PORT), where, f"FOOTPOINT_PORT must be {PORT}")
+    if "FOOTPOINT_HOST" in env:
+        p.expect(env["FOOTPOINT_HOST"] in ("0.0.0.0", "::"), where, "FOOTPOINT_HOST must listen on all addresses")
+
+
+def deadline_seconds(env):
+    return int(env.get("FOOTPOINT_DEADLINE_MS", "30000")) / 1000.0
+
+
+def compose_duration(text):
+    total = 0.0
+    for number, unit in re.findall(r"(\d+(?:\.\d+)?)(ms|s|m|h)", str(text)):
+        total += float(number) * {"ms": 0.001, "s": 1, "m": 60, "h": 3600}[unit]
+    return total
+
+
+# ---- compose ------------------------------------------------------------------------------------
+
+def check_compose(doc, deploy_dir, known_env, facts, p):
+    where = "deploy/compose.yaml"
+    services = get(doc, "services")
+    if not p.expect(isinstance(services, dict) and services, where, "needs a services mapping"):
+        return
+    for name, svc in services.items():
+        w = f"{where}: services.{name}"
+        build = get(svc, "build")
+        if p.expect(isinstance(build, dict), w, "needs build.context and build.dockerfile"):
+            context = os.path.normpath(os.path.join(deploy_dir, str(build.get("context", "."))))
+            dockerfile = os.path.join(context, str(build.get("dockerfile", "Dockerfile")))
+            p.expect(os.path.samefile(dockerfile, os.path.join(deploy_dir, "Dockerfile"))
+                     if os.path.exists(dockerfile) else False, w, "build must use deploy/Dockerfile")
+            p.expect(os.path.exists(os.path.join(context, "CMakeLists.txt")), w,
+                     "build.context must be the repository root")
+        image = get(svc, "image")
+        if p.expect(isinstance(image, str), w, "needs an image name"):
+            facts.setdefault("images", []).append((w, image))
+        ports = get(svc, "ports") or []
+        targets = []
+        for port in ports:
+            if isinstance(port, dict):
+                targets.append(int(port.get("target", -1)))
+            else:
+                targets.append(int(str(port).split(":")[-1].split("/")[0]))
+        p.expect(PORT in targets, w, f"must publish container port {PORT}")
+        env = get(svc, "environment") or {}
+        if isinstance(env, list):
+            env = dict(e.split("=", 1) for e in env)
+        check_env(env, known_env, w, p)
+        test = get(svc, "healthcheck", "test")
+        if p.expect(test, w, "needs a healthcheck"):
+            line = " ".join(test) if isinstance(test, list) else str(test)
+            p.expect(LIVENESS_PATH in line and f":{PORT}/" in line, w, f"healthcheck must probe :{PORT}{LIVENESS_PATH}")
+            if "health_tool" in facts:
+                p.expect(facts["health_tool"] in line, w, f"healthcheck must use {facts['health_tool']} (installed in the image)")
+        signal = get(svc, "stop_signal")
+        p.expect(signal in (None, "SIGTERM"), w, "stop_signal must be SIGTERM")
+        grace = get(svc, "stop_grace_period")
+        p.expect(grace is not None and compose_duration(grace) > deadline_seconds(env), w,
+                 "stop_grace_period must exceed the request deadline (FOOTPOINT_DEADLINE_MS)")
+        user = get(svc, "user")
+        p.expect(user is None or str(user).split(":")[0] not in ("0", "root"), w, "must not run as root")
+
+
+# ---- Kubernetes ---------------------------------------------------------------------------------
+
+def check_metadata(doc, where, p):
+    name = get(doc, "metadata", "name")
+    p.expect(isinstance(name, str) and DNS_LABEL.match(name) and len(name) <= 63, where,
+             f"metadata.name must be a DNS-1123 label, is {name!r}")
+    labels = get(doc, "metadata", "labels") or {}
+    for k, v in labels.items():
+        p.expect(isinstance(v, str), where, f"label {k} must be a string")
+
+
+def selector_matches(selector, labels):
+    return isinstance(selector, dict) and selector and isinstance(labels, dict) and all(
+        labels.get(k) == v for k, v in selector.items())
+
+
+def check_probe(container, probe, path, ports, where, p):
+    spec = get(container, probe)
+    if not p.expect(isinstance(spec, dict), where, f"needs a {probe}"):
+        return
+    http = get(spec, "httpGet")
+    if p.expect(isinstance(http, dict), where, f"{probe} must be an httpGet"):
+        p.expect(http.get("path") == path, where, f"{probe} must probe {path}, probes {http.get('path')}")
+        port = http.get("port")
+        p.expect(port in ports or port == PORT, where, f"{probe} port {port!r} is not the container's port")
+
+
+def check_deployment(doc, where, known_env, facts, p):
+    spec = get(doc, "spec")
+    if not p.expect(isinstance(spec, dict), where, "needs spec"):
+        return
+    selector = get(spec, "selector", "matchLabels")
+    labels = get(spec, "template", "metadata", "labels")
+    p.expect(selector_matches(selector, labels), where,
+             "spec.selector.matchLabels must be non-empty and match spec.template.metadata.labels")
+    facts["pod_labels"] = labels or {}
+    pod = get(spec, "template", "spec")
+    containers = get(pod, "containers")
+    if not p.expect(isinstance(containers, list) and containers, where, "needs spec.template.spec.containers"):
+        return
+    grace = get(pod, "terminationGracePeriodSeconds")
+    uid = get(pod, "securityContext", "runAsUser")
+    p.expect(get(pod, "securityContext", "runAsNonRoot") is True, where, "pod securityContext.runAsNonRoot must be true")
+    if "uid" in facts:
+        p.expect(uid == facts["uid"], where, f"runAsUser {uid} is not the image's USER {facts['uid']}")
+    if "gid" in facts:
+        gid = get(pod, "securityContext", "runAsGroup")
+        p.expect(gid in (None, facts["gid"]), where, f"runAsGroup {gid} is not the image's group {facts['gid']}")
+    for c in containers:
+        w = f"{where}: container {get(c, 'name')}"
+        p.expect(isinstance(get(c, "name"), str) and DNS_LABEL.match(get(c, "name")), w, "needs a DNS-1123 name")
+        image = get(c, "image")
+        if p.expect(isinstance(image, str) and image, w, "needs an image"):
+            facts.setdefault("images", []).append((w, image))
+        ports = {}
+        for port in get(c, "ports") or []:
+            if p.expect(isinstance(get(port, "containerPort"), int), w, "ports[].containerPort must be an integer"):
+                if "name" in port:
+                    ports[port["name"]] = port["containerPort"]
+                ports.setdefault(None, port["containerPort"])
+        p.expect(PORT in ports.values(), w, f"must declare containerPort {PORT}")
+        facts["container_ports"] = ports
+        check_probe(c, "livenessProbe", LIVENESS_PATH, ports, w, p)
+        check_probe(c, "readinessProbe", READINESS_PATH, ports, w, p)
+        for kind in ("requests", "limits"):
+            for res in ("cpu", "memory"):
+                p.expect(get(c, "resources", kind, res) is not None, w, f"needs resources.{kind}.{res}")
+        env = {}
+        for e in get(c, "env") or []:
+            if p.expect(isinstance(get(e, "name"), str), w, "env[].name is required"):
+                env[e["name"]] = e.get("value")
+        check_env(env, known_env, w, p)
+        p.expect(isinstance(grace, int) and grace > deadline_seconds(env), where,
+                 "terminationGracePeriodSeconds must exceed the request deadline (FOOTPOINT_DEADLINE_MS)")
+        p.expect(get(c, "securityContext", "allowPrivilegeEscalation") is False, w,
+                 "securityContext.allowPrivilegeEscalation must be false")
+    facts["deployment"] = get(doc, "metadata", "name")
+
+
+def check_service(doc, where, facts, p):
+    selector = get(doc, "spec", "selector")
+    p.expect(isinstance(selector, dict) and selector, where, "needs spec.selector")
+    facts.setdefault("pending", []).append(("service", where, doc))
+    ports = get(doc, "spec", "ports")
+    if p.expect(isinstance(ports, list) and ports, where, "needs spec.ports"):
+        for port in ports:
+            p.expect(isinstance(get(port, "port"), int), where, "ports[].port must be an integer")
+
+
+def check_hpa(doc, where, facts, p):
+    spec = get(doc, "spec") or {}
+    ref = get(spec, "scaleTargetRef") or {}
+    p.expect(ref.get("apiVersion") == "apps/v1" and ref.get("kind") == "Deployment", where,
+             "scaleTargetRef must be an apps/v1 Deployment")
+    facts.setdefault("pending", []).append(("hpa", where, doc))
+    lo, hi = spec.get("minReplicas", 1), spec.get("maxReplicas")
+    p.expect(isinstance(hi, int) and isinstance(lo, int) and 1 <= lo <= hi, where,
+             "needs 1 <= minReplicas <= maxReplicas")
+    facts["min_replicas"] = lo
+    cpu = [m for m in spec.get("metrics") or []
+           if m.get("type") == "Resource" and get(m, "resource", "name") == "cpu"]
+    if p.expect(cpu, where, "needs a Resource metric on cpu"):
+        target = get(cpu[0], "resource", "target") or {}
+        p.expect(target.get("type") == "Utilization" and isinstance(target.get("averageUtilization"), int),
+                 where, "the cpu target must be a Utilization with an integer averageUtilization")
+
+
+def check_pdb(doc, where, facts, p):
+    spec = get(doc, "spec") or {}
+    p.expect(("minAvailable" in spec) != ("maxUnavailable" in spec), where,
+             "needs exactly one of minAvailable and maxUnavailable")
+    p.expect(isinstance(get(spec, "selector", "matchLabels"), dict), where, "needs spec.selector.matchLabels")
+    facts.setdefault("pending", []).append(("pdb", where, doc))
+
+
+def check_kustomization(doc, where, k8s_files, p):
+    resources = get(doc, "resources") or []
+    others = sorted(f for f in k8s_files if f != os.path.basename(where))
+    p.expect(sorted(resources) == others, where, f"resources {sorted(resources)} must list {others}")
+
+
+KINDS = {
+    "Deployment": "apps/v1",
+    "Service": "v1",
+    "HorizontalPodAutoscaler": "autoscaling/v2",
+    "PodDisruptionBudget": "policy/v1",
+    "Kustomization": "kustomize.config.k8s.io/v1beta1",
+}
+
+
+def check_k8s(docs_by_file, known_env, facts, p):
+    seen = {}
+    for name, docs in sorted(docs_by_file.items()):
+        for i, doc in enumerate(docs):
+            where = f"deploy/k8s/{name}" + (f"[{i}]" if len(docs) > 1 else "")
+            if not p.expect(isinstance(doc, dict), where, "must be a mapping"):
+                continue
+            kind = doc.get("kind")
+            if not p.expect(kind in KINDS, where, f"unexpected kind {kind!r}"):
+                continue
+            p.expect(doc.get("apiVersion") == KINDS[kind], where, f"{kind} must be apiVersion {KINDS[kind]}")
+            seen.setdefault(kind, []).append(where)
+            if kind == "Kustomization":
+                check_kustomization(doc, where, list(docs_by_file), p)
+                continue
+            check_metadata(doc, where, p)
+            if kind == "Deployment":
+                check_deployment(doc, where, known_env, facts, p)
+            elif kind == "Service":
+                check_service(doc, where, facts, p)
+            elif kind == "HorizontalPodAutoscaler":
+                check_hpa(doc, where, facts, p)
+            elif kind == "PodDisruptionBudget":
+                check_pdb(doc, where, facts, p)
+    for kind in ("Deployment", "Service", "HorizontalPodAutoscaler", "PodDisruptionBudget"):
+        p.expect(len(seen.get(kind, [])) == 1, "deploy/k8s", f"needs exactly one {kind}")
+    # Cross-references, now that the Deployment is known.
+    labels = facts.get("pod_labels", {})
+    ports = facts.get("container_ports", {})
+    for what, where, doc in facts.get("pending", []):
+        if what == "service":
+            p.expect(selector_matches(get(doc, "spec", "selector"), labels), where,
+                     "spec.selector must select the Deployment's pods")
+            for port in get(doc, "spec", "ports") or []:
+                target = port.get("targetPort", port.get("port"))
+                p.expect(target in ports or target == PORT, where, f"targetPort {target!r} is not the container's port")
+                p.expect(port.get("port") == PORT, where, f"the Service port should be {PORT} like everywhere else")
+        elif what == "hpa":
+            p.expect(get(doc, "spec", "scaleTargetRef", "name") == facts.get("deployment"), where,
+                     "scaleTargetRef.name must name the Deployment")
+        elif what == "pdb":
+            p.expect(selector_matches(get(doc, "spec", "selector", "matchLabels"), labels), where,
+                     "spec.selector must select the Deployment's pods")
+            lo = get(doc, "spec", "minAvailable")
+            if isinstance(lo, int):
+                p.expect(lo < facts.get("min_replicas", 1), where,
+                         "minAvailable must be below the HPA's minReplicas, or no node can ever be drained")
+
+
+# ---- all files ----------------------------------------------------------------------------------
+
+def check_texts(texts, deploy_dir, install_deps_text, config_cpp_text):
+    """texts: {relative path under deploy/: content}. Returns the list of problems and the facts."""
+    p = Problems()
+    facts = check_dockerfile(texts.get("Dockerfile", ""), texts, install_deps_text, p)
+    known_env = env_names_of_server(config_cpp_text) if config_cpp_text else set()
+    k8s_docs = {}
+    for rel, text in sorted(texts.items()):
+        if not rel.endswith((".yaml", ".yml")):
+            continue
+        try:
+            docs = [d for d in yaml.safe_load_all(text) if d is not None]
+        except yaml.YAMLError as e:
+            p.add(f"deploy/{rel}", f"does not parse: {e}")
+            continue
+        if rel.startswith("k8s/"):
+            k8s_docs[rel[len("k8s/"):]] = docs
+        elif rel in ("compose.yaml", "compose.yml"):
+            p.expect(len(docs) == 1, f"deploy/{rel}", "must hold one document")
+            if docs:
+                check_compose(docs[0], deploy_dir, known_env, facts, p)
+        else:
+            p.add(f"deploy/{rel}", "unexpected YAML file (not compose, not k8s)")
+    p.expect("compose.yaml" in texts, "deploy", "needs compose.yaml")
+    check_k8s(k8s_docs, known_env, facts, p)
+    images = facts.get("images", [])
+    for where, image in images:
+        p.expect(image.split("@")[0].split("/")[-1] == images[0][1].split("@")[0].split("/")[-1], where,
+                 f"image {image} differs from {images[0][1]} ({images[0][0]})")
+    return p.items, facts
+
+
+def read_texts(deploy_dir):
+    texts = {}
+    for root, _, files in os.walk(deploy_dir):
+        for f in files:
+            if f.endswith((".yaml", ".yml")) or f in ("Dockerfile", "Dockerfile.dockerignore"):
+                path = os.path.join(root, f)
+                with open(path, encoding="utf-8") as fh:
+                    texts[os.path.relpath(path, deploy_dir)] = fh.read()
+    return texts
+
+
+# ---- the runtime libraries of a built binary ------------------------------------------------------
+
+def package_of(path):
+    candidates = [path, os.path.realpath(path)]
+    for c in list(candidates):
+        candidates.append(c[4:] if c.startswith("/usr/") else "/usr" + c)
+    for c in candidates:
+        r = subprocess.run(["dpkg-query", "-S", c], capture_output=True, text=True)
+        if r.returncode == 0:
+            return r.stdout.split(":")[0].strip()
+    return None
+
+
+def dependency_closure(packages):
+    done, todo = set(), list(packages)
+    while todo:
+        pkg = todo.pop()
+        if pkg in done:
+            continue
+        done.add(pkg)
+        r = subprocess.run(["dpkg-query", "-W", "-f=${Depends},${Pre-Depends}", pkg], capture_output=True, text=True)
+        for alternative in re.split(r"[,|]", r.stdout):
+            name = alternative.strip().split(" ")[0].split(":")[0]
+            if name:
+                todo.append(name)
+    return done
+
+
+def check_binary(binary, runtime_packages):
+    problems = []
+    if not os.path.exists("/usr/bin/dpkg-query"):
+        return [f"{binary}: dpkg-query not found: cannot map libraries to packages"]
+    out = subprocess.run(["ldd", binary], capture_output=True, text=True, check=True).stdout
+    closure = dependency_closure(runtime_packages)
+    for line in out.splitlines():
+        m = re.match(r"\s*(\S+)\s+=>\s+(\S+)", line) or re.match(r"\s*(/\S+)\s+\(", line)
+        if not m:
+            continue
+        path = m.group(2) if m.lastindex == 2 else m.group(1)
+        if path == "not":
+            problems.append(f"{binary}: {m.group(1)} not found")
+            continue
+        pkg = package_of(path)
+        if pkg is None:
+            problems.append(f"{binary}: {path} belongs to no Debian package")
+        elif pkg not in closure:
+            problems.append(f"deploy/Dockerfile: runtime stage lacks {pkg} (for {path}, linked by {binary})")
+    return problems
+
+
+# ---- self-test: the checks must catch broken files ----------------------------------------------
+
+MUTATIONS = [
+    ("Dockerfile", "USER 10001:10001", "USER root", "USER must not be root"),
+    ("Dockerfile", "USER 10001:10001\n", "", "needs a USER"),
+    ("Dockerfile", "EXPOSE 8080", "EXPOSE 9090", "EXPOSE 8080"),
+    ("Dockerfile", "HEALTHCHECK --interval", "#HEALTHCHECK --interval", "needs a HEALTHCHECK"),
+    ("Dockerfile", 'ENTRYPOINT ["/opt/footpoint/bin/footpoint-server"]',
+     "ENTRYPOINT /opt/footpoint/bin/footpoint-server", "exec form"),
+    ("Dockerfile", "FROM debian:bookworm-slim AS runtime", "FROM debian:bookworm AS runtime", "slim"),
+    ("Dockerfile", " libfmt9", " libfmt-dev", "build-only package"),
+    ("Dockerfile", " libnanoflann-dev", "", "libnanoflann-dev"),
+    ("Dockerfile.dockerignore", "!server/\n", "", "copies server/"),
+    ("compose.yaml", '"8080:8080"', '"8080:9090"', "publish container port"),
+    ("compose.yaml", "stop_grace_period: 40s", "stop_grace_period: 10s", "stop_grace_period"),
+    ("compose.yaml", "FOOTPOINT_MAX_POINTS", "FOOTPOINT_MAXPOINTS", "not read by the server"),
+    ("compose.yaml", "image: footpoint:", "image: other:", "differs from"),
+    ("k8s/deployment.yaml", "path: /readyz", "path: /ready", "readinessProbe must probe /readyz"),
+    ("k8s/deployment.yaml", "path: /healthz", "path: /health", "livenessProbe must probe /healthz"),
+    ("k8s/deployment.yaml", "containerPort: 8080", "containerPort: 8081", "containerPort 8080"),
+    ("k8s/deployment.yaml", "runAsUser: 10001", "runAsUser: 1000", "is not the image's USER"),
+    ("k8s/deployment.yaml", "runAsGroup: 10001", "runAsGroup: 0", "is not the image's group"),
+    ("k8s/deployment.yaml", "terminationGracePeriodSeconds: 45", "terminationGracePeriodSeconds: 20",
+     "terminationGracePeriodSeconds"),
+    ("k8s/deployment.yaml", "  selector:\n    matchLabels:\n      app.kubernetes.io/name: footpoint",
+     "  selector:\n    matchLabels:\n      app.kubernetes.io/name: footprint", "match spec.template"),
+    ("k8s/deployment.yaml", "              memory: 2Gi", "", "resources.limits.memory"),
+    ("k8s/deployment.yaml", "name: footpoint\n  labels", "name: Foot_point\n  labels", "DNS-1123"),
+    ("k8s/service.yaml", "targetPort: http", "targetPort: web", "targetPort"),
+    ("k8s/service.yaml", "component: server\n  ports", "component: client\n  ports", "select the Deployment"),
+    ("k8s/hpa.yaml", "    name: footpoint\n  minReplicas", "    name: footpoint-x\n  minReplicas",
+     "scaleTargetRef.name"),
+    ("k8s/hpa.yaml", "autoscaling/v2", "autoscaling/v1", "apiVersion autoscaling/v2"),
+    ("k8s/hpa.yaml", "name: cpu", "name: memory", "Resource metric on cpu"),
+    ("k8s/pdb.yaml", "maxUnavailable: 1", "minAvailable: 2", "below the HPA's minReplicas"),
+    ("k8s/pdb.yaml", "      app.kubernetes.io/component: server", "      app.kubernetes.io/component: db",
+     "select the Deployment"),
+    ("k8s/pdb.yaml", "kind: PodDisruptionBudget", "kind: PodDisruptionBudget\n  bad: [", "does not parse"),
+    ("k8s/kustomization.yaml", "  - pdb.yaml\n", "", "must list"),
+]
+
+
+def self_test(texts, deploy_dir, install_deps_text, config_cpp_text):
+    failures = []
+    for rel, old, new, expected in MUTATIONS:
+        if rel not in texts or old not in texts[rel]:
+            failures.append(f"self-test: {rel} no longer contains {old!r}: update MUTATIONS")
+            continue
+        broken = dict(texts)
+        broken[rel] = texts[rel].replace(old, new, 1)
+        problems, _ = check_texts(broken, deploy_dir, install_deps_text, config_cpp_text)
+        if not any(expected in q for q in problems):
+            failures.append(f"self-test: {rel}: {old!r} -> {new!r} was not reported (expected '{expected}'); "
+                            f"got {problems}")
+    return failures
+
+
+def main():
+    here = os.path.dirname(os.path.abspath(__file__))
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--deploy-dir", default=here)
+    ap.add_argument("--binary", help="a built footpoint-server whose ldd libraries the runtime stage must provide")
+    ap.add_argument("--self-test", action="store_true")
+    args = ap.parse_args()
+    root = os.path.dirname(os.path.abspath(args.deploy_dir))
+
+    def read(path):
+        try:
+            with open(os.path.join(root, path), encoding="utf-8") as f:
+                return f.read()
+        except FileNotFoundError:
+            return ""
+
+    install_deps_text, config_cpp_text = read("scripts/install-deps.sh"), read("server/config.cpp")
+    texts = read_texts(args.deploy_dir)
+    problems, facts = check_texts(texts, args.deploy_dir, install_deps_text, config_cpp_text)
+    if not config_cpp_text:
+        print("note: server/config.cpp not found: environment variable names not checked")
+    if args.binary:
+        problems += check_binary(args.binary, facts.get("runtime_packages", []))
+    if args.self_test:
+        problems += self_test(texts, args.deploy_dir, install_deps_text, config_cpp_text)
+    for q in problems:
+        print(q)
+    files = sorted(texts)
+    checked = f"{len(files)} files ({', '.join(files)})" + (f", {len(MUTATIONS)} mutations" if args.self_test else "")
+    if problems:
+        print(f"FAILED: {len(problems)} problem(s) in {checked}")
+        return 1
+    print(f"OK: {checked}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

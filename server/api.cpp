@@ -1,0 +1,355 @@
+#include "api.hpp"
+
+#include <chrono>
+#include <new>
+#include <vector>
+
+#include "batch/batch.hpp"
+#include "geometry_json.hpp"
+#include "json_reader.hpp"
+#include "json_writer.hpp"
+#include "openapi_text.hpp"
+#include "project_request.hpp"
+#include "request_log.hpp"
+#include "result_json.hpp"
+
+namespace footpoint::server {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+ApiResponse json_response(int status, std::string body) {
+  ApiResponse r;
+  r.status = status;
+  r.body = std::move(body);
+  return r;
+}
+
+// Counts the requests being answered (load shedding reads the count).
+struct InFlight {
+  explicit InFlight(std::atomic<std::size_t>& n) : n(n) { n.fetch_add(1, std::memory_order_relaxed); }
+  ~InFlight() { n.fetch_sub(1, std::memory_order_relaxed); }
+  InFlight(const InFlight&) = delete;
+  InFlight& operator=(const InFlight&) = delete;
+  std::atomic<std::size_t>& n;
+};
+
+// Takes `n` points from the in-flight budget for the life of a request, or refuses: the
+// budget bounds the memory of results and responses. A request is always admitted when nothing
+// else is in flight, so even a request larger than the budget runs, alone.
+class PointsReservation {
+ public:
+  PointsReservation(std::atomic<std::size_t>& in_flight, std::size_t n, std::size_t budget)
+      : in_flight_(in_flight), n_(n) {
+    std::size_t current = in_flight_.load();
+    do {
+      if (current != 0 && current + n > budget)
+        throw ApiError(503, "overloaded",
+                       "too many points in progress (" + std::to_string(current) + " + " + std::to_string(n) +
+                           " > " + std::to_string(budget) + "); retry shortly");
+    } while (!in_flight_.compare_exchange_weak(current, current + n));
+  }
+  ~PointsReservation() { in_flight_.fetch_sub(n_); }
+  PointsReservation(const PointsReservation&) = delete;
+  PointsReservation& operator=(const PointsReservation&) = delete;
+
+ private:
+  std::atomic<std::size_t>& in_flight_;
+  std::size_t n_;
+};
+
+void write_method_names(JsonWriter& w, const CompiledGeometry& g) {
+  w.begin_array();
+  for (const auto& m : g.methods()) w.string(m.name);
+  w.end_array();
+}
+
+}  // namespace
+
+Api::Api(const ServerConfig& config, GeometryCache& cache, ThreadPool& pool, Metrics& metrics)
+    : config_(config), cache_(cache), pool_(pool), metrics_(metrics) {}
+
+ApiResponse Api::error_response(const ApiError& error) {
+  ApiResponse r = json_response(error.status, error_body(error));
+  if (error.code == "overloaded") r.retry_after_s = 1;
+  return r;
+}
+
+Metrics::Gauges Api::gauges() const {
+  Metrics::Gauges g;
+  g.cache = cache_.stats();
+  g.worker_threads = pool_.size();
+  g.worker_queue = pool_.queued();
+  g.in_flight = in_flight();
+  g.in_flight_points = in_flight_points();
+  g.shutting_down = shutting_down();
+  return g;
+}
+
+ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::string_view body) {
+  try {
+    switch (match.route) {
+      case Route::healthz: return health();
+      case Route::readyz: return ready();
+      case Route::metrics: return metrics();
+      case Route::openapi: return openapi();
+      case Route::methods: return methods();
+      case Route::geometries: {
+        InFlight counted(in_flight_);
+        return create_geometry(body);
+      }
+      case Route::geometry:
+        if (method == "DELETE") return delete_geometry(match.id);
+        return get_geometry(match.id);  // HEAD: the HTTP layer drops the body
+      case Route::geometry_project: {
+        InFlight counted(in_flight_);
+        return project(match.id, body);
+      }
+      case Route::project: {
+        InFlight counted(in_flight_);
+        return project({}, body);
+      }
+      case Route::none: break;
+    }
+    return error_response(ApiError(404, "route_not_found", "no such route (see GET /openapi.yaml)"));
+  } catch (const ApiError& e) {
+    return error_response(e);
+  } catch (const std::bad_alloc&) {
+    log_event(spdlog::level::err, "out of memory while answering a request");
+    return error_response(ApiError(503, "overloaded", "the server ran out of memory for this request; retry later"));
+  } catch (const std::exception& e) {
+    log_event(spdlog::level::err, "internal error", {{"what", e.what()}});
+    return error_response(ApiError(500, "internal_error", "internal error"));
+  }
+}
+
+ApiResponse Api::health() const { return json_response(200, R"({"status":"ok"})"); }
+
+ApiResponse Api::ready() const {
+  if (shutting_down())
+    return error_response(ApiError(503, "shutting_down", "the server is shutting down"));
+  return json_response(200, R"({"status":"ready"})");
+}
+
+ApiResponse Api::metrics() const {
+  ApiResponse r;
+  r.content_type = "text/plain; version=0.0.4; charset=utf-8";
+  r.body = metrics_.render(gauges());
+  return r;
+}
+
+ApiResponse Api::openapi() const {
+  ApiResponse r;
+  r.content_type = "application/yaml";
+  r.body = std::string(openapi_text());
+  return r;
+}
+
+ApiResponse Api::methods() {
+  std::lock_guard lock(methods_mutex_);
+  if (methods_body_.empty()) {
+    // Each type's methods are those its compiled geometries offer: compile a small sample of
+    // each (planar and spatial where the type has both) and list the union, in order.
+    struct Sample {
+      GeometryType type;
+      std::vector<GeometryDefinition> defs;
+    };
+    auto def = [](GeometryType t, std::vector<formula::NamedFormula> f,
+                  std::vector<std::pair<std::string, std::array<double, 2>>> d) {
+      GeometryDefinition g;
+      g.type = t;
+      g.formulas = std::move(f);
+      g.domain = std::move(d);
+      return g;
+    };
+    const std::vector<Sample> samples = {
+        {GeometryType::parametric_surface,
+         {def(GeometryType::parametric_surface, {{"x", "u"}, {"y", "v"}, {"z", "u*v"}},
+              {{"u", {0, 1}}, {"v", {0, 1}}})}},
+        {GeometryType::parametric_curve,
+         {def(GeometryType::parametric_curve, {{"x", "t"}, {"y", "t^2"}}, {{"t", {0, 1}}}),
+          def(GeometryType::parametric_curve, {{"x", "t"}, {"y", "t^2"}, {"z", "t^3"}}, {{"t", {0, 1}}})}},
+        {GeometryType::implicit_curve,
+         {def(GeometryType::implicit_curve, {{"equations[0]", "x^2+y^2-1"}}, {{"x", {-2, 2}}, {"y", {-2, 2}}}),
+          def(GeometryType::implicit_curve, {{"equations[0]", "x^2+y^2+z^2-4"}, {"equations[1]", "z-1"}},
+              {{"x", {-3, 3}}, {"y", {-3, 3}}, {"z", {-3, 3}}})}},
+    };
+    JsonWriter w;
+    w.begin_object();
+    w.key("geometry_types");
+    w.begin_array();
+    for (const auto& sample : samples) {
+      std::vector<MethodInfo> methods;
+      for (const auto& d : sample.defs) {
+        std::shared_ptr<const CompiledGeometry> g;
+        try {
+          g = compile_geometry(d);
+        } catch (const std::exception&) {
+          continue;  // this type is not available in this build
+        }
+        for (const auto& m : g->methods()) {
+          bool seen = false;
+          for (const auto& have : methods) seen = seen || have.name == m.name;
+          if (!seen) methods.push_back(m);
+        }
+      }
+      w.begin_object();
+      w.key("type");
+      w.string(to_string(sample.type));
+      w.key("methods");
+      w.begin_array();
+      for (const auto& m : methods) {
+        w.begin_object();
+        w.key("name");
+        w.string(m.name);
+        w.key("description");
+        w.string(m.description);
+        w.key("paper");
+        w.string(m.paper);
+        w.end_object();
+      }
+      w.end_array();
+      w.end_object();
+    }
+    w.end_array();
+    w.end_object();
+    methods_body_ = w.take();
+  }
+  return json_response(200, methods_body_);
+}
+
+GeometryCache::Lookup Api::compile(const GeometryDefinition& def, const std::string& field_prefix) {
+  try {
+    formula::CompileLimits limits;
+    limits.max_formula_length = config_.max_formula_length;
+    auto lookup = cache_.get_or_compile(def, limits);
+    if (lookup.compiled) metrics_.observe_compile(lookup.compile_time.count());
+    return lookup;
+  } catch (const GeometryError& e) {
+    throw ApiError(422, e.code, e.what(), e.field.empty() ? std::string() : field_prefix + e.field, e.position);
+  }
+}
+
+ApiResponse Api::create_geometry(std::string_view body) {
+  GeometryDefinition def;
+  try {
+    JsonReader reader(body);
+    def = read_geometry(reader, "");
+    try {
+      reader.finish();
+    } catch (const JsonReadError& e) {
+      throw request_error(e, "body");
+    }
+  } catch (const ApiError& e) {
+    throw unless_malformed(body, e);
+  }
+  const auto lookup = compile(def, "");
+  const CompiledGeometry& g = *lookup.geometry;
+  JsonWriter w;
+  w.begin_object();
+  w.key("geometry_id");
+  w.string(g.id());
+  w.key("type");
+  w.string(to_string(g.definition().type));
+  w.key("point_dim");
+  w.integer(g.point_dim());
+  w.key("num_params");
+  w.integer(g.num_params());
+  w.key("methods");
+  write_method_names(w, g);
+  w.key("memory_bytes");
+  w.integer(static_cast<long long>(g.memory_bytes()));
+  w.key("compile_ms");
+  w.number(lookup.compile_time.count() * 1e3);
+  w.end_object();
+  ApiResponse r = json_response(lookup.compiled ? 201 : 200, w.take());
+  r.location = "/v1/geometries/" + g.id();
+  return r;
+}
+
+ApiResponse Api::get_geometry(std::string_view id) {
+  const auto g = cache_.find(std::string(id));
+  if (!g)
+    throw ApiError(404, "geometry_not_found",
+                   "geometry " + std::string(id) + " is not held (evicted, deleted, or never posted): " +
+                       "POST its definition to /v1/geometries again (the id stays the same)",
+                   "id");
+  const auto entry = cache_.entry_stats(g->id());
+  JsonWriter w;
+  w.begin_object();
+  w.key("geometry_id");
+  w.string(g->id());
+  w.key("definition");
+  write_geometry(w, g->definition());
+  w.key("point_dim");
+  w.integer(g->point_dim());
+  w.key("num_params");
+  w.integer(g->num_params());
+  w.key("methods");
+  write_method_names(w, *g);
+  w.key("cache");
+  w.begin_object();
+  w.key("hits");
+  w.integer(entry ? static_cast<long long>(entry->hits) : 0);
+  w.key("memory_bytes");
+  w.integer(static_cast<long long>(g->memory_bytes()));
+  w.end_object();
+  w.end_object();
+  return json_response(200, w.take());
+}
+
+ApiResponse Api::delete_geometry(std::string_view id) {
+  if (!cache_.erase(std::string(id)))
+    throw ApiError(404, "geometry_not_found", "geometry " + std::string(id) + " is not held", "id");
+  ApiResponse r;
+  r.status = 204;
+  r.content_type.clear();
+  return r;
+}
+
+ApiResponse Api::project(std::string_view id, std::string_view body) {
+  const bool inline_geometry = id.empty();
+  std::shared_ptr<const CompiledGeometry> geometry;
+  if (!inline_geometry) {
+    geometry = cache_.find(std::string(id));
+    if (!geometry)
+      throw ApiError(404, "geometry_not_found",
+                     "geometry " + std::string(id) + " is not held (evicted, deleted, or never posted): " +
+                         "POST its definition to /v1/geometries again (the id stays the same), or use " +
+                         "POST /v1/project with the definition inline",
+                     "id");
+  }
+  ProjectRequest request = read_project_request(body, inline_geometry, config_.max_points);
+  if (inline_geometry) geometry = compile(*request.geometry, "geometry.").geometry;
+  check_project_request(request, *geometry);
+  const PointsReservation reserved(in_flight_points_, request.count, config_.max_inflight_points);
+
+  BatchRequest batch;
+  batch.geometry = geometry.get();
+  batch.method = request.method;
+  batch.options = request.options;
+  batch.points = request.coords.data();
+  batch.count = request.count;
+  batch.initials = std::move(request.initials);
+  const auto start = Clock::now();
+  batch.deadline = start + config_.deadline;
+  const std::vector<ProjectionResult> results = project_batch(pool_, batch);
+  const double elapsed_ms = ms_since(start);
+
+  std::array<std::uint64_t, Metrics::kStatusCount> by_status{};
+  for (const auto& r : results) ++by_status[static_cast<std::size_t>(reported_status(r))];
+  metrics_.add_projections(by_status);
+
+  ApiResponse r = json_response(
+      200, project_response(geometry->id(), results, request.single, request.options.all_minima,
+                            request.options.trace, elapsed_ms));
+  r.points = results.size();
+  return r;
+}
+
+}  // namespace footpoint::server

@@ -1,0 +1,72 @@
+// The v1 API behind the HTTP layer: given a matched route, the method and the body, produce the
+// response. Validation and error mapping live here (core error kinds -> HTTP status + JSON error);
+// the numerical work is handed to the core (cache, thread pool, project_batch). No HTTP library
+// types: the same object serves the HTTP server, the tests and the fuzzers.
+#pragma once
+#include <atomic>
+#include <cstddef>
+#include <mutex>
+#include <string>
+#include <string_view>
+
+#include "api_error.hpp"
+#include "batch/thread_pool.hpp"
+#include "cache/geometry_cache.hpp"
+#include "config.hpp"
+#include "metrics.hpp"
+#include "route.hpp"
+
+namespace footpoint::server {
+
+struct ApiResponse {
+  int status = 200;
+  std::string content_type = "application/json";
+  std::string body;
+  std::string location;     // Location header (201 Created), empty otherwise
+  std::size_t points = 0;   // points projected (for the request log)
+  int retry_after_s = 0;    // Retry-After header (503 overloaded), 0: none
+};
+
+class Api {
+ public:
+  Api(const ServerConfig& config, GeometryCache& cache, ThreadPool& pool, Metrics& metrics);
+
+  // Answers a request that matched `match` with an allowed method. Never throws: every
+  // failure becomes a JSON error response with its status.
+  ApiResponse handle(const RouteMatch& match, std::string_view method, std::string_view body);
+
+  // While shutting down, /readyz answers 503 (the HTTP layer refuses new API requests).
+  void set_shutting_down() { shutting_down_.store(true); }
+  bool shutting_down() const { return shutting_down_.load(); }
+  // API requests being answered now, and the points they are projecting (load shedding, metrics).
+  std::size_t in_flight() const { return in_flight_.load(std::memory_order_relaxed); }
+  std::size_t in_flight_points() const { return in_flight_points_.load(std::memory_order_relaxed); }
+
+  Metrics::Gauges gauges() const;
+  static ApiResponse error_response(const ApiError& error);
+
+ private:
+  ApiResponse health() const;
+  ApiResponse ready() const;
+  ApiResponse metrics() const;
+  ApiResponse openapi() const;
+  ApiResponse methods();
+  ApiResponse create_geometry(std::string_view body);
+  ApiResponse get_geometry(std::string_view id);
+  ApiResponse delete_geometry(std::string_view id);
+  ApiResponse project(std::string_view id, std::string_view body);  // id empty: inline geometry
+
+  GeometryCache::Lookup compile(const GeometryDefinition& def, const std::string& field_prefix);
+
+  const ServerConfig& config_;
+  GeometryCache& cache_;
+  ThreadPool& pool_;
+  Metrics& metrics_;
+  std::atomic<bool> shutting_down_{false};
+  std::atomic<std::size_t> in_flight_{0};
+  std::atomic<std::size_t> in_flight_points_{0};
+  std::mutex methods_mutex_;
+  std::string methods_body_;  // built on first use
+};
+
+}  // namespace footpoint::server

@@ -1,0 +1,38 @@
+// The one error a request can end with: an HTTP status and the JSON body
+//   {"error":{"code":"...","message":"...","field":"...","position":n}}
+// `code` is stable and machine-readable, `field` names the offending request field when there is
+// one ("points[17][2]", "geometry.x", "options.tolerance"), `position` is a character position
+// (in the body for malformed JSON, in the formula for a formula that does not compile).
+#pragma once
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "json_reader.hpp"
+
+namespace footpoint::server {
+
+struct ApiError : std::runtime_error {
+  ApiError(int status, std::string code, std::string message, std::string field = {}, long position = -1)
+      : std::runtime_error(std::move(message)), status(status), code(std::move(code)),
+        field(std::move(field)), position(position) {}
+  int status;
+  std::string code;
+  std::string field;   // empty when the error is not about one field
+  long position;       // -1 when there is no position
+};
+
+// A JSON reading problem at `field` as a 400: malformed_json (syntax; no field), wrong_type or
+// number_out_of_range (naming the field).
+ApiError request_error(const JsonReadError& error, const std::string& field);
+
+// A body that is not acceptable JSON (syntax, nesting deeper than the reader's limit) gets
+// malformed_json whatever else is wrong with it: the request parsers stop at the first problem
+// in document order, so before reporting a shape problem, `error`, they let this check the
+// whole body. Returns the malformed_json error, or `error` when the body is well-formed.
+ApiError unless_malformed(std::string_view body, ApiError error);
+
+// The JSON body of an error response.
+std::string error_body(const ApiError& error);
+
+}  // namespace footpoint::server

@@ -1,0 +1,174 @@
+#include "config.hpp"
+
+#include <charconv>
+#include <limits>
+#include <vector>
+
+namespace footpoint::server {
+
+namespace {
+
+template <class T>
+T parse_integer(const std::string& name, const std::string& text, T min, T max) {
+  T value{};
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (r.ec != std::errc() || r.ptr != text.data() + text.size() || value < min || value > max)
+    throw ConfigError(name + ": expected an integer in [" + std::to_string(min) + ", " +
+                      std::to_string(max) + "], got '" + text + "'");
+  return value;
+}
+
+struct Setting {
+  const char* flag;  // without the leading "--"
+  const char* env;
+  const char* help;
+  void (*set)(ServerConfig&, const std::string& name, const std::string& value);
+  std::string (*show)(const ServerConfig&);
+};
+
+constexpr std::size_t kMaxSize = std::size_t{1} << 40;
+
+const std::vector<Setting>& settings() {
+  static const std::vector<Setting> table = {
+      {"host", "FOOTPOINT_HOST", "address to listen on",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         if (v.empty()) throw ConfigError(n + ": empty host");
+         c.host = v;
+       },
+       [](const ServerConfig& c) { return c.host; }},
+      {"port", "FOOTPOINT_PORT", "TCP port (0: any free port)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) { c.port = parse_integer<int>(n, v, 0, 65535); },
+       [](const ServerConfig& c) { return std::to_string(c.port); }},
+      {"threads", "FOOTPOINT_THREADS", "numerical worker threads (0: hardware threads)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) { c.threads = parse_integer<unsigned>(n, v, 0, 1024); },
+       [](const ServerConfig& c) { return std::to_string(c.threads); }},
+      {"connection-threads", "FOOTPOINT_CONNECTION_THREADS", "HTTP connections served at once",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.connection_threads = parse_integer<unsigned>(n, v, 2, 16384);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.connection_threads); }},
+      {"max-inflight", "FOOTPOINT_MAX_INFLIGHT", "API requests answered at once before 503 overloaded (0: 7/8 of connection threads)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) { c.max_inflight = parse_integer<unsigned>(n, v, 0, 1u << 20); },
+       [](const ServerConfig& c) { return std::to_string(c.max_inflight); }},
+      {"max-inflight-points", "FOOTPOINT_MAX_INFLIGHT_POINTS", "points being projected at once before 503 overloaded",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.max_inflight_points = parse_integer<std::size_t>(n, v, 1, std::size_t{1} << 40);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.max_inflight_points); }},
+      {"max-body-bytes", "FOOTPOINT_MAX_BODY_BYTES", "request body limit in bytes",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.max_body_bytes = parse_integer<std::size_t>(n, v, 1024, kMaxSize);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.max_body_bytes); }},
+      {"max-points", "FOOTPOINT_MAX_POINTS", "points per request",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.max_points = parse_integer<std::size_t>(n, v, 1, std::size_t{1} << 32);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.max_points); }},
+      {"max-formula-length", "FOOTPOINT_MAX_FORMULA_LENGTH", "characters per formula",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.max_formula_length = parse_integer<std::size_t>(n, v, 1, std::size_t{1} << 24);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.max_formula_length); }},
+      {"deadline-ms", "FOOTPOINT_DEADLINE_MS", "per-request deadline in milliseconds",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.deadline = std::chrono::milliseconds(parse_integer<long>(n, v, 1, 86400000));
+       },
+       [](const ServerConfig& c) { return std::to_string(c.deadline.count()); }},
+      {"cache-entries", "FOOTPOINT_CACHE_ENTRIES", "compiled geometries kept (LRU)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.cache_entries = parse_integer<std::size_t>(n, v, 1, std::size_t{1} << 24);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.cache_entries); }},
+      {"cache-bytes", "FOOTPOINT_CACHE_BYTES", "memory the kept geometries may hold, in bytes",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.cache_bytes = parse_integer<std::size_t>(n, v, 1, kMaxSize);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.cache_bytes); }},
+      {"keep-alive-timeout-s", "FOOTPOINT_KEEP_ALIVE_TIMEOUT_S", "idle connection timeout in seconds",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.keep_alive_timeout_s = parse_integer<int>(n, v, 1, 3600);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.keep_alive_timeout_s); }},
+      {"keep-alive-max", "FOOTPOINT_KEEP_ALIVE_MAX", "requests per connection",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.keep_alive_max = parse_integer<std::size_t>(n, v, 1, std::size_t{1} << 40);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.keep_alive_max); }},
+      {"io-timeout-s", "FOOTPOINT_IO_TIMEOUT_S", "socket read/write timeout in seconds",
+       [](ServerConfig& c, const std::string& n, const std::string& v) { c.io_timeout_s = parse_integer<int>(n, v, 1, 3600); },
+       [](const ServerConfig& c) { return std::to_string(c.io_timeout_s); }},
+      {"backlog", "FOOTPOINT_BACKLOG", "listen queue length",
+       [](ServerConfig& c, const std::string& n, const std::string& v) { c.backlog = parse_integer<int>(n, v, 1, 65535); },
+       [](const ServerConfig& c) { return std::to_string(c.backlog); }},
+      {"log-level", "FOOTPOINT_LOG_LEVEL", "trace, debug, info, warn, error, critical or off",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         static const char* const levels[] = {"trace", "debug", "info", "warn", "error", "critical", "off"};
+         for (const char* l : levels)
+           if (v == l) {
+             c.log_level = v;
+             return;
+           }
+         throw ConfigError(n + ": unknown log level '" + v + "'");
+       },
+       [](const ServerConfig& c) { return c.log_level; }},
+  };
+  return table;
+}
+
+const Setting* find_flag(const std::string& flag) {
+  for (const auto& s : settings())
+    if (flag == s.flag) return &s;
+  return nullptr;
+}
+
+}  // namespace
+
+ServerConfig load_config(int argc, const char* const* argv,
+                         const std::function<const char*(const char*)>& env, bool& help) {
+  ServerConfig config;
+  help = false;
+  for (const auto& s : settings())
+    if (const char* value = env ? env(s.env) : nullptr) s.set(config, s.env, value);
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      help = true;
+      continue;
+    }
+    if (arg.rfind("--", 0) != 0) throw ConfigError("unexpected argument '" + arg + "'");
+    std::string name = arg.substr(2), value;
+    bool has_value = false;
+    if (const auto eq = name.find('='); eq != std::string::npos) {
+      value = name.substr(eq + 1);
+      name.resize(eq);
+      has_value = true;
+    }
+    const Setting* s = find_flag(name);
+    if (!s) throw ConfigError("unknown flag --" + name + " (see --help)");
+    if (!has_value) {
+      if (i + 1 >= argc) throw ConfigError("--" + name + " needs a value");
+      value = argv[++i];
+    }
+    s->set(config, "--" + name, value);
+  }
+  if (config.effective_max_inflight() > config.connection_threads)
+    throw ConfigError("--max-inflight must not exceed --connection-threads");
+  return config;
+}
+
+std::string usage() {
+  const ServerConfig defaults;
+  std::string text = "usage: footpoint-server [--flag value | --flag=value]...\n\n";
+  for (const auto& s : settings()) {
+    std::string line = std::string("  --") + s.flag;
+    line.resize(std::max<std::size_t>(line.size() + 1, 24), ' ');
+    line += std::string(s.env);
+    line.resize(std::max<std::size_t>(line.size() + 1, 56), ' ');
+    line += std::string(s.help) + " (default " + s.show(defaults) + ")\n";
+    text += line;
+  }
+  return text;
+}
+
+}  // namespace footpoint::server

@@ -1,0 +1,74 @@
+// Everything an operator can set, with its default. Each field is read from a command-line flag
+// and an environment variable; the flag wins over the variable, the variable over the default.
+#pragma once
+#include <chrono>
+#include <cstddef>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace footpoint::server {
+
+struct ServerConfig {
+  // --host / FOOTPOINT_HOST: the address to listen on.
+  std::string host = "0.0.0.0";
+  // --port / FOOTPOINT_PORT: the TCP port; 0 picks a free one (tests).
+  int port = 8080;
+  // --threads / FOOTPOINT_THREADS: workers of the numerical pool; 0 = hardware threads.
+  unsigned threads = 0;
+  // --connection-threads / FOOTPOINT_CONNECTION_THREADS: HTTP connections served at once (one
+  // thread each; further connections wait in the accept queue). Well above the expected number
+  // of client connections: the threads only wait while the numerical pool works.
+  unsigned connection_threads = 128;
+  // --max-inflight / FOOTPOINT_MAX_INFLIGHT: API requests being answered at once; beyond it a
+  // request gets 503 "overloaded" at once instead of queueing behind the others. 0 = 7/8 of
+  // connection_threads, so that health checks and metrics always find a free thread.
+  unsigned max_inflight = 0;
+  unsigned effective_max_inflight() const {
+    return max_inflight ? max_inflight : (connection_threads * 7 + 7) / 8;
+  }
+  // --max-inflight-points / FOOTPOINT_MAX_INFLIGHT_POINTS: points of the requests being
+  // projected at once. Bounds the memory of results and responses (~0.6 kB per point); a
+  // request that would exceed it gets 503 "overloaded", unless nothing else is in flight.
+  std::size_t max_inflight_points = 500000;
+  // --max-body-bytes / FOOTPOINT_MAX_BODY_BYTES: request body limit (413 above it): 16 MiB holds
+  // a 100,000-point batch at full precision.
+  std::size_t max_body_bytes = std::size_t{16} << 20;
+  // --max-points / FOOTPOINT_MAX_POINTS: points per request (413 above it).
+  std::size_t max_points = 100000;
+  // --max-formula-length / FOOTPOINT_MAX_FORMULA_LENGTH: characters per formula (422 above it).
+  std::size_t max_formula_length = 4096;
+  // --deadline-ms / FOOTPOINT_DEADLINE_MS: per-request deadline; points not started by then
+  // get the status deadline_exceeded.
+  std::chrono::milliseconds deadline{30000};
+  // --cache-entries / FOOTPOINT_CACHE_ENTRIES: compiled geometries kept (LRU).
+  std::size_t cache_entries = 1024;
+  // --cache-bytes / FOOTPOINT_CACHE_BYTES: memory the kept geometries may hold (LRU): 256 MiB.
+  std::size_t cache_bytes = std::size_t{256} << 20;
+  // --keep-alive-timeout-s / FOOTPOINT_KEEP_ALIVE_TIMEOUT_S: an idle connection is closed after
+  // this long; it also bounds how long a graceful shutdown waits for idle connections.
+  int keep_alive_timeout_s = 5;
+  // --keep-alive-max / FOOTPOINT_KEEP_ALIVE_MAX: requests served per connection before it closes.
+  std::size_t keep_alive_max = 100000;
+  // --io-timeout-s / FOOTPOINT_IO_TIMEOUT_S: socket read/write timeout for a stalled peer.
+  int io_timeout_s = 30;
+  // --backlog / FOOTPOINT_BACKLOG: the listen queue of not yet accepted connections.
+  int backlog = 1024;
+  // --log-level / FOOTPOINT_LOG_LEVEL: trace, debug, info, warn, error, critical or off.
+  std::string log_level = "info";
+};
+
+struct ConfigError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Reads flags (--name value or --name=value) and environment variables (through `env`, which
+// returns nullptr for an unset variable). Throws ConfigError for an unknown flag or a bad value.
+// Sets `help` when --help is given (the caller prints usage()).
+ServerConfig load_config(int argc, const char* const* argv,
+                         const std::function<const char*(const char*)>& env, bool& help);
+
+// The flags, their variables and defaults, one per line.
+std::string usage();
+
+}  // namespace footpoint::server

@@ -1,0 +1,255 @@
+#include "geometry_json.hpp"
+
+#include <array>
+#include <optional>
+#include <vector>
+
+#include "api_error.hpp"
+
+namespace footpoint::server {
+
+namespace {
+
+using Interval = std::array<double, 2>;
+
+std::string join(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// The members of a definition object as read, before the type decides which are allowed.
+struct RawDefinition {
+  std::optional<std::string> type, x, y, z;
+  std::optional<std::vector<std::string>> equations;
+  std::optional<std::vector<std::pair<std::string, Interval>>> domain;
+  std::map<std::string, double> constants;
+};
+
+Interval read_interval(JsonReader& r, const std::string& field) {
+  Interval v{};
+  int n = 0;
+  try {
+    r.begin_array();
+    while (r.next_element()) {
+      if (n == 2) throw ApiError(400, "wrong_shape", field + " must be [lo, hi]", field);
+      v[n++] = r.number();
+    }
+  } catch (const JsonReadError& e) {
+    throw request_error(e, n < 2 ? field + "[" + std::to_string(n) + "]" : field);
+  }
+  if (n != 2) throw ApiError(400, "wrong_shape", field + " must be [lo, hi]", field);
+  return v;
+}
+
+RawDefinition read_members(JsonReader& r, const std::string& prefix) {
+  RawDefinition raw;
+  std::vector<std::string> seen;
+  auto read_string = [&](const std::string& field) {
+    try {
+      return r.string();
+    } catch (const JsonReadError& e) {
+      throw request_error(e, field);
+    }
+  };
+  try {
+    r.begin_object();
+  } catch (const JsonReadError& e) {
+    throw request_error(e, prefix.empty() ? "body" : prefix.substr(0, prefix.size() - 1));
+  }
+  std::string key;
+  for (;;) {
+    try {
+      if (!r.next_member(key)) break;
+    } catch (const JsonReadError& e) {
+      throw request_error(e, prefix);
+    }
+    const std::string field = prefix + key;
+    for (const auto& s : seen)
+      if (s == key) throw ApiError(400, "duplicate_field", field + " appears twice", field);
+    seen.push_back(key);
+    if (key == "type") {
+      raw.type = read_string(field);
+    } else if (key == "x") {
+      raw.x = read_string(field);
+    } else if (key == "y") {
+      raw.y = read_string(field);
+    } else if (key == "z") {
+      raw.z = read_string(field);
+    } else if (key == "equations") {
+      std::vector<std::string> eqs;
+      try {
+        r.begin_array();
+      } catch (const JsonReadError& e) {
+        throw request_error(e, field);
+      }
+      for (;;) {
+        const std::string item = field + "[" + std::to_string(eqs.size()) + "]";
+        try {
+          if (!r.next_element()) break;
+        } catch (const JsonReadError& e) {
+          throw request_error(e, item);
+        }
+        if (eqs.size() == 2)
+          throw ApiError(400, "wrong_shape", field + " holds one equation (planar) or two (spatial)", field);
+        eqs.push_back(read_string(item));
+      }
+      raw.equations = std::move(eqs);
+    } else if (key == "domain") {
+      std::vector<std::pair<std::string, Interval>> domain;
+      try {
+        r.begin_object();
+      } catch (const JsonReadError& e) {
+        throw request_error(e, field);
+      }
+      std::string name;
+      for (;;) {
+        try {
+          if (!r.next_member(name)) break;
+        } catch (const JsonReadError& e) {
+          throw request_error(e, field);
+        }
+        const std::string item = field + "." + name;
+        for (const auto& d : domain)
+          if (d.first == name) throw ApiError(400, "duplicate_field", item + " appears twice", item);
+        domain.emplace_back(name, read_interval(r, item));
+      }
+      raw.domain = std::move(domain);
+    } else if (key == "constants") {
+      try {
+        r.begin_object();
+      } catch (const JsonReadError& e) {
+        throw request_error(e, field);
+      }
+      std::string name;
+      for (;;) {
+        try {
+          if (!r.next_member(name)) break;
+        } catch (const JsonReadError& e) {
+          throw request_error(e, field);
+        }
+        const std::string item = field + "." + name;
+        if (raw.constants.count(name)) throw ApiError(400, "duplicate_field", item + " appears twice", item);
+        try {
+          raw.constants[name] = r.number();
+        } catch (const JsonReadError& e) {
+          throw request_error(e, item);
+        }
+      }
+    } else {
+      throw ApiError(400, "unknown_field", "unknown field " + field, field);
+    }
+  }
+  return raw;
+}
+
+}  // namespace
+
+GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
+  RawDefinition raw = read_members(r, prefix);
+  GeometryDefinition def;
+  if (!raw.type) throw ApiError(400, "missing_field", prefix + "type is required", prefix + "type");
+  const std::string& type = *raw.type;
+  std::vector<std::string> names;  // the domain's variables, in order
+  auto forbid = [&](bool present, const char* name) {
+    if (present)
+      throw ApiError(400, "unknown_field", prefix + name + " is not a field of " + type, prefix + name);
+  };
+  auto require = [&](const std::optional<std::string>& formula, const char* name) {
+    if (!formula) throw ApiError(400, "missing_field", prefix + name + " is required for " + type, prefix + name);
+    def.formulas.push_back({name, *formula});
+  };
+  if (type == "parametric_surface") {
+    def.type = GeometryType::parametric_surface;
+    forbid(raw.equations.has_value(), "equations");
+    require(raw.x, "x");
+    require(raw.y, "y");
+    require(raw.z, "z");
+    names = {"u", "v"};
+  } else if (type == "parametric_curve") {
+    def.type = GeometryType::parametric_curve;
+    forbid(raw.equations.has_value(), "equations");
+    require(raw.x, "x");
+    require(raw.y, "y");
+    if (raw.z) def.formulas.push_back({"z", *raw.z});
+    names = {"t"};
+  } else if (type == "implicit_curve") {
+    def.type = GeometryType::implicit_curve;
+    forbid(raw.x.has_value(), "x");
+    forbid(raw.y.has_value(), "y");
+    forbid(raw.z.has_value(), "z");
+    if (!raw.equations)
+      throw ApiError(400, "missing_field", prefix + "equations is required for implicit_curve", prefix + "equations");
+    if (raw.equations->empty())
+      throw ApiError(400, "wrong_shape", prefix + "equations holds one equation (planar) or two (spatial)",
+                     prefix + "equations");
+    for (std::size_t i = 0; i < raw.equations->size(); ++i)
+      def.formulas.push_back({"equations[" + std::to_string(i) + "]", (*raw.equations)[i]});
+    names = raw.equations->size() == 1 ? std::vector<std::string>{"x", "y"}
+                                       : std::vector<std::string>{"x", "y", "z"};
+  } else {
+    throw ApiError(400, "unknown_geometry_type",
+                   "unknown geometry type '" + type + "' (parametric_surface, parametric_curve, implicit_curve)",
+                   prefix + "type");
+  }
+
+  if (!raw.domain) throw ApiError(400, "missing_field", prefix + "domain is required", prefix + "domain");
+  // The domain in canonical order (u, v / t / x, y, z) whatever the order of the members.
+  for (const auto& [name, interval] : *raw.domain) {
+    bool known = false;
+    for (const auto& n : names) known = known || n == name;
+    if (!known)
+      throw ApiError(400, "unknown_field",
+                     prefix + "domain." + name + ": the domain of this " + type + " has " + join(names),
+                     prefix + "domain." + name);
+  }
+  for (const auto& n : names) {
+    const std::pair<std::string, Interval>* found = nullptr;
+    for (const auto& d : *raw.domain)
+      if (d.first == n) found = &d;
+    if (!found)
+      throw ApiError(400, "missing_field", prefix + "domain." + n + " is required", prefix + "domain." + n);
+    def.domain.push_back(*found);
+  }
+  def.constants = std::move(raw.constants);
+  return def;
+}
+
+void write_geometry(JsonWriter& w, const GeometryDefinition& def) {
+  w.begin_object();
+  w.key("type");
+  w.string(to_string(def.type));
+  if (def.type == GeometryType::implicit_curve) {
+    w.key("equations");
+    w.begin_array();
+    for (const auto& f : def.formulas) w.string(f.expression);
+    w.end_array();
+  } else {
+    for (const auto& f : def.formulas) {
+      w.key(f.name);
+      w.string(f.expression);
+    }
+  }
+  w.key("domain");
+  w.begin_object();
+  for (const auto& [name, interval] : def.domain) {
+    w.key(name);
+    w.begin_array();
+    w.number(interval[0]);
+    w.number(interval[1]);
+    w.end_array();
+  }
+  w.end_object();
+  if (!def.constants.empty()) {
+    w.key("constants");
+    w.begin_object();
+    for (const auto& [name, value] : def.constants) {
+      w.key(name);
+      w.number(value);
+    }
+    w.end_object();
+  }
+  w.end_object();
+}
+
+}  // namespace footpoint::server

@@ -1,0 +1,306 @@
+#include "http_server.hpp"
+
+#include <sys/socket.h>
+
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include <httplib.h>
+
+#include "request_log.hpp"
+
+namespace footpoint::server {
+
+// httplib keeps the listening socket protected; the backlog is set on it after binding.
+class HttpServer::Listener : public httplib::Server {
+ public:
+  int listening_socket() const { return svr_sock_; }
+};
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// What the log line and the metrics need about the request the current connection thread is
+// answering: httplib runs pre-routing, the handler and the logger of one request on one thread.
+struct RequestContext {
+  bool active = false;  // false when httplib answered before pre-routing (malformed request)
+  Clock::time_point start;
+  std::string request_id;
+  Route route = Route::none;
+  std::size_t points = 0;
+  bool admitted = false;  // already checked when the client asked "Expect: 100-continue"
+};
+thread_local RequestContext t_request;
+
+std::string lower(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// "application/json; charset=utf-8" -> "application/json"
+std::string media_type(const std::string& content_type) {
+  std::string t = content_type.substr(0, content_type.find(';'));
+  const auto b = t.find_first_not_of(" \t"), e = t.find_last_not_of(" \t");
+  return b == std::string::npos ? std::string() : lower(t.substr(b, e - b + 1));
+}
+
+bool parse_length(const std::string& text, std::size_t& length) {
+  if (text.empty() || text.size() > 18) return false;
+  length = 0;
+  for (char c : text) {
+    if (c < '0' || c > '9') return false;
+    length = length * 10 + static_cast<std::size_t>(c - '0');
+  }
+  return true;
+}
+
+void set_response(httplib::Response& res, ApiResponse&& r) {
+  res.status = r.status;
+  res.body = std::move(r.body);
+  if (!r.content_type.empty()) res.set_header("Content-Type", r.content_type);
+  if (!r.location.empty()) res.set_header("Location", r.location);
+  if (r.retry_after_s > 0) res.set_header("Retry-After", std::to_string(r.retry_after_s));
+}
+
+// Answers from pre-routing. When the request carries a body that will now not be read, the
+// connection must close: its unread bytes cannot be taken for the next request.
+httplib::Server::HandlerResponse reject(httplib::Response& res, const ApiError& error, bool close) {
+  set_response(res, Api::error_response(error));
+  if (close) res.set_header("Connection", "close");
+  return httplib::Server::HandlerResponse::Handled;
+}
+
+// The JSON error for a status httplib set itself.
+ApiError http_error(int status) {
+  switch (status) {
+    case 400: return ApiError(400, "bad_request", "malformed HTTP request");
+    case 404: return ApiError(404, "route_not_found", "no such route (see GET /openapi.yaml)");
+    case 408: return ApiError(408, "request_timeout", "the request was not received in time");
+    case 413: return ApiError(413, "body_too_large", "the body is over the size limit");
+    case 414: return ApiError(414, "uri_too_long", "the request URI is too long");
+    case 416: return ApiError(416, "range_not_satisfiable", "ranges are not supported");
+    default: return ApiError(status, "http_error", "HTTP error " + std::to_string(status));
+  }
+}
+
+}  // namespace
+
+HttpServer::HttpServer(ServerConfig config, Handler handler)
+    : config_(std::move(config)),
+      cache_(GeometryCacheOptions{config_.cache_entries, config_.cache_bytes}),
+      pool_(config_.threads),
+      api_(config_, cache_, pool_, metrics_),
+      handler_(std::move(handler)),
+      http_(std::make_unique<Listener>()) {
+  init_logging(config_.log_level);
+  if (!handler_)
+    handler_ = [this](const RouteMatch& m, std::string_view method, std::string_view body) {
+      return api_.handle(m, method, body);
+    };
+  Listener& http = *http_;
+
+  const unsigned connection_threads = config_.connection_threads;
+  http.new_task_queue = [connection_threads] { return new httplib::ThreadPool(connection_threads); };
+  http.set_tcp_nodelay(true);
+  // SO_REUSEADDR only: restarts need not wait for TIME_WAIT, but unlike httplib's default
+  // SO_REUSEPORT a second instance cannot bind the same port and silently share it.
+  http.set_socket_options([](socket_t fd) {
+    int yes = 1;
+    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
+  http.set_keep_alive_max_count(config_.keep_alive_max);
+  http.set_keep_alive_timeout(config_.keep_alive_timeout_s);
+  http.set_read_timeout(config_.io_timeout_s);
+  http.set_write_timeout(config_.io_timeout_s);
+  http.set_payload_max_length(config_.max_body_bytes);
+
+  // The checks every request passes before its body is read (see http_server.hpp).
+  auto admit = [this](const httplib::Request& req, httplib::Response& res) {
+    RequestContext& ctx = t_request;
+    ctx = RequestContext{};
+    ctx.active = true;
+    ctx.start = Clock::now();
+    // httplib would compress the response by the client's Accept-Encoding (brotli at quality 11
+    // costs far more than the projection) and cut it by Range: the service sends plain, whole
+    // bodies. The request object is httplib's own mutable one, handed over as const.
+    auto& mutable_req = const_cast<httplib::Request&>(req);
+    mutable_req.headers.erase("Accept-Encoding");
+    mutable_req.headers.erase("Range");
+    mutable_req.ranges.clear();
+
+    const std::string given_id = req.get_header_value("X-Request-Id");
+    ctx.request_id = acceptable_request_id(given_id) ? given_id : make_request_id();
+    res.set_header("X-Request-Id", ctx.request_id);
+
+    const bool has_length = req.has_header("Content-Length");
+    const bool chunked = req.has_header("Transfer-Encoding");
+    std::size_t length = 0;
+    if (has_length && !parse_length(req.get_header_value("Content-Length"), length))
+      return reject(res, ApiError(400, "bad_request", "invalid Content-Length"), true);
+    const bool has_body = chunked || length > 0;
+
+    if (api_.shutting_down())
+      return reject(res, ApiError(503, "shutting_down", "the server is shutting down; retry on another replica"),
+                    true);
+    const RouteMatch match = match_route(req.method, req.path);
+    ctx.route = match.route;
+    if (match.route == Route::none)
+      return reject(res, ApiError(404, "route_not_found", "no route " + req.path + " (see GET /openapi.yaml)"),
+                    has_body);
+    if (!match.method_allowed) {
+      res.set_header("Allow", match.allow);
+      return reject(res,
+                    ApiError(405, "method_not_allowed",
+                             req.method + " is not allowed on " + route_template(match.route) + " (allowed: " +
+                                 match.allow + ")"),
+                    has_body);
+    }
+    if (chunked)
+      return reject(res,
+                    ApiError(411, "length_required",
+                             "send the body with a Content-Length (Transfer-Encoding is not accepted)"),
+                    true);
+    if (req.method != "POST") {
+      if (has_body) return reject(res, ApiError(400, "body_not_allowed", req.method + " takes no body"), true);
+      return httplib::Server::HandlerResponse::Unhandled;
+    }
+    if (!has_length)
+      return reject(res, ApiError(411, "length_required", "a Content-Length header is required"), true);
+    if (length > config_.max_body_bytes)
+      return reject(res,
+                    ApiError(413, "body_too_large",
+                             "the body has " + std::to_string(length) + " bytes, the limit is " +
+                                 std::to_string(config_.max_body_bytes)),
+                    true);
+    const std::string encoding = lower(req.get_header_value("Content-Encoding"));
+    if (!encoding.empty() && encoding != "identity")
+      return reject(res,
+                    ApiError(415, "unsupported_content_encoding",
+                             "Content-Encoding " + encoding + " is not accepted; send the JSON uncompressed"),
+                    true);
+    if (media_type(req.get_header_value("Content-Type")) != "application/json")
+      return reject(res,
+                    ApiError(415, "unsupported_media_type",
+                             "the body must be JSON (Content-Type: application/json)"),
+                    true);
+    if (is_compute_route(match.route) && api_.in_flight() >= config_.effective_max_inflight())
+      return reject(res, ApiError(503, "overloaded", "too many requests in progress; retry shortly"), true);
+    return httplib::Server::HandlerResponse::Unhandled;
+  };
+  // A client that waits for "100 Continue" before sending its body (curl does for large
+  // bodies) gets the final answer instead when the request would be refused anyway.
+  http.set_expect_100_continue_handler([admit](const httplib::Request& req, httplib::Response& res) {
+    if (admit(req, res) == httplib::Server::HandlerResponse::Handled) return res.status;
+    t_request.admitted = true;
+    return 100;
+  });
+  http.set_pre_routing_handler([admit](const httplib::Request& req, httplib::Response& res) {
+    if (t_request.admitted) {
+      t_request.admitted = false;
+      return httplib::Server::HandlerResponse::Unhandled;
+    }
+    return admit(req, res);
+  });
+
+  auto handle = [this](const httplib::Request& req, httplib::Response& res) {
+    const RouteMatch match = match_route(req.method, req.path);
+    ApiResponse r = handler_(match, req.method, req.body);
+    t_request.points = r.points;
+    set_response(res, std::move(r));
+  };
+  http.Get(".*", handle);
+  http.Post(".*", handle);
+  http.Delete(".*", handle);
+
+  // Called for every status >= 400. Errors httplib answers itself (malformed request line or
+  // headers, URI too long, a body that could not be read) get the same JSON error shape.
+  http.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request& req,
+                                                                   httplib::Response& res) {
+    // "Handled" also makes httplib set Content-Length on a response it would otherwise send
+    // without one (an answer to "Expect: 100-continue").
+    const_cast<httplib::Request&>(req).headers.erase("Accept-Encoding");
+    if (!res.has_header("X-Request-Id"))
+      res.set_header("X-Request-Id", t_request.active ? t_request.request_id : make_request_id());
+    if (res.body.empty()) {
+      res.body = error_body(http_error(res.status));
+      res.set_header("Content-Type", "application/json");
+    }
+    return httplib::Server::HandlerResponse::Handled;
+  }));
+
+  // Without this, httplib would put the exception text in a response header.
+  http.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
+    set_response(res, Api::error_response(ApiError(500, "internal_error", "internal error")));
+  });
+
+  // Called once per request after its response is written; an exception here would abort the
+  // process, hence the catch-all.
+  http.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
+    try {
+      RequestContext& ctx = t_request;
+      const double seconds =
+          ctx.active ? std::chrono::duration<double>(Clock::now() - ctx.start).count() : 0.0;
+      const Route route = ctx.active ? ctx.route : Route::none;
+      metrics_.observe_request(route, res.status, seconds);
+      RequestRecord record;
+      record.request_id = ctx.active ? std::string_view(ctx.request_id) : std::string_view("-");
+      record.method = req.method;
+      record.path = req.path;
+      record.route = route_template(route);
+      record.remote_addr = req.remote_addr;
+      record.status = res.status;
+      record.points = ctx.active ? ctx.points : 0;
+      record.body_bytes = req.body.size();
+      record.duration_ms = seconds * 1e3;
+      log_request(record);
+      ctx.active = false;
+    } catch (...) {
+    }
+  });
+}
+
+HttpServer::~HttpServer() { shutdown(); }
+
+int HttpServer::bind() {
+  const bool any = config_.port == 0;
+  const int port = any ? http_->bind_to_any_port(config_.host) : config_.port;
+  if (port < 0 || (!any && !http_->bind_to_port(config_.host, config_.port)))
+    throw std::runtime_error("cannot listen on " + config_.host + ":" + std::to_string(config_.port) + ": " +
+                             std::strerror(errno));
+  // httplib listens with a backlog of 5: connection bursts beyond it would be refused or
+  // retried by the kernel, so listen again with the configured length.
+  if (::listen(http_->listening_socket(), config_.backlog) != 0)
+    throw std::runtime_error(std::string("listen() failed: ") + std::strerror(errno));
+  port_ = port;
+  return port;
+}
+
+void HttpServer::run() {
+  // Publish "starting" before looking at the shutdown flag: shutdown() sets the flag before
+  // reading the state, so one of the two always sees the other.
+  run_state_.store(RunState::starting);
+  if (!api_.shutting_down() && port_ >= 0) http_->listen_after_bind();
+  run_state_.store(RunState::finished);
+}
+
+void HttpServer::shutdown() {
+  api_.set_shutting_down();
+  std::lock_guard lock(stop_mutex_);
+  if (stopped_) return;
+  // httplib ignores stop() until listen_after_bind() is running: wait for it to start (or to
+  // have given up). When run() was never called there is nothing to stop.
+  while (run_state_.load() == RunState::starting && !http_->is_running())
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  if (http_->is_running()) {
+    http_->stop();
+    stopped_ = true;
+  }
+}
+
+}  // namespace footpoint::server

@@ -1,0 +1,67 @@
+// The HTTP layer (cpp-httplib 0.11.4, a compiled library whose defaults need changing): one
+// thread per connection from a pool of --connection-threads, TCP_NODELAY on, a real listen
+// backlog, no SO_REUSEPORT (a second instance cannot silently share the port), long keep-alive.
+// Every request first passes a pre-routing check that needs no body: shutting down (503),
+// unknown route (404), method (405), framing (411 for chunked or missing Content-Length, 413 over
+// the body limit, 415 for Content-Encoding or a non-JSON Content-Type) and load (503 beyond
+// --max-inflight; the Api also sheds beyond --max-inflight-points once the body is read). Responses are never compressed (clients' Accept-Encoding is ignored), byte
+// ranges are ignored. One JSON log line and the metrics are recorded per request.
+// Graceful shutdown: stop accepting, answer 503 to requests arriving on open connections, let
+// in-flight requests finish; run() returns when every connection is closed.
+#pragma once
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string_view>
+
+#include "api.hpp"
+#include "batch/thread_pool.hpp"
+#include "cache/geometry_cache.hpp"
+#include "config.hpp"
+#include "metrics.hpp"
+
+namespace footpoint::server {
+
+class HttpServer {
+ public:
+  // Answers a request whose route and method passed the pre-routing checks. The default is the
+  // Api; benchmarks substitute their own (e.g. an echo) to measure the HTTP and JSON layers.
+  using Handler = std::function<ApiResponse(const RouteMatch&, std::string_view method, std::string_view body)>;
+
+  explicit HttpServer(ServerConfig config, Handler handler = nullptr);
+  ~HttpServer();
+  HttpServer(const HttpServer&) = delete;
+  HttpServer& operator=(const HttpServer&) = delete;
+
+  // Binds host:port (port 0: a free port) and starts listening; returns the port. Throws
+  // std::runtime_error when the address is unavailable.
+  int bind();
+  // Serves until shutdown(); returns once in-flight requests are answered.
+  void run();
+  // Starts a graceful shutdown and returns at once. Thread-safe; later calls do nothing.
+  void shutdown();
+
+  int port() const { return port_; }
+  const ServerConfig& config() const { return config_; }
+  Api& api() { return api_; }
+  GeometryCache& cache() { return cache_; }
+
+  class Listener;  // the httplib server
+
+ private:
+  ServerConfig config_;
+  Metrics metrics_;
+  GeometryCache cache_;
+  ThreadPool pool_;
+  Api api_;
+  Handler handler_;
+  std::unique_ptr<Listener> http_;
+  int port_ = -1;
+  enum class RunState { idle, starting, finished };
+  std::atomic<RunState> run_state_{RunState::idle};
+  std::mutex stop_mutex_;
+  bool stopped_ = false;
+};
+
+}  // namespace footpoint::server

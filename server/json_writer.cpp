@@ -1,0 +1,130 @@
+#include "json_writer.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+
+namespace footpoint::server {
+
+void append_json_string(std::string& out, std::string_view s) {
+  static constexpr char hex[] = "0123456789abcdef";
+  out += '"';
+  std::size_t run = 0;  // start of the pending run of characters that need no escape
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c >= 0x20 && c != '"' && c != '\\') continue;
+    out.append(s.data() + run, i - run);
+    run = i + 1;
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      case '\b': out += "\\b"; break;
+      case '\f': out += "\\f"; break;
+      default:
+        out += "\\u00";
+        out += hex[c >> 4];
+        out += hex[c & 15];
+    }
+  }
+  out.append(s.data() + run, s.size() - run);
+  out += '"';
+}
+
+void append_shortest(std::string& out, double x) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  out.append(buf, r.ptr);
+}
+
+void JsonWriter::key(std::string_view name) {
+  if (!first_) out_ += ',';
+  first_ = false;
+  append_json_string(out_, name);
+  out_ += ':';
+  after_key_ = true;
+}
+
+void JsonWriter::string(std::string_view s) {
+  before_value();
+  append_json_string(out_, s);
+}
+
+void JsonWriter::number(double x) {
+  before_value();
+  if (std::isfinite(x))
+    append_shortest(out_, x);
+  else
+    out_ += "null";
+}
+
+void JsonWriter::integer(long long x) {
+  before_value();
+  char buf[24];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  out_.append(buf, r.ptr);
+}
+
+void JsonWriter::boolean(bool b) {
+  before_value();
+  out_ += b ? "true" : "false";
+}
+
+void JsonWriter::null() {
+  before_value();
+  out_ += "null";
+}
+
+void JsonWriter::raw(std::string_view json) {
+  before_value();
+  out_ += json;
+}
+
+void JsonAppender::literal(std::string_view text) {
+  if (text.size() > sizeof buf_) {
+    flush();
+    out_.append(text);
+    return;
+  }
+  room(text.size());
+  std::memcpy(p_, text.data(), text.size());
+  p_ += text.size();
+}
+
+void JsonAppender::number(double x) {
+  room(32);
+  if (std::isfinite(x)) {
+    p_ = std::to_chars(p_, p_ + 32, x).ptr;
+  } else {
+    std::memcpy(p_, "null", 4);
+    p_ += 4;
+  }
+}
+
+void JsonAppender::integer(long long x) {
+  room(24);
+  p_ = std::to_chars(p_, p_ + 24, x).ptr;
+}
+
+void JsonAppender::string(std::string_view s) {
+  flush();
+  append_json_string(out_, s);
+}
+
+void JsonAppender::numbers(const double* x, int n) {
+  room(1);
+  *p_++ = '[';
+  for (int k = 0; k < n; ++k) {
+    if (k) {
+      room(1);
+      *p_++ = ',';
+    }
+    number(x[k]);
+  }
+  room(1);
+  *p_++ = ']';
+}
+
+}  // namespace footpoint::server

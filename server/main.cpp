@@ -1,0 +1,67 @@
+// footpoint-server: the HTTP/JSON service. Flags and environment variables: see --help
+// (server/config.hpp). Exits 0 after a graceful shutdown on SIGTERM or SIGINT.
+#include <pthread.h>
+#include <signal.h>
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
+#include <thread>
+
+#include <spdlog/spdlog.h>
+
+#include "config.hpp"
+#include "http_server.hpp"
+#include "request_log.hpp"
+#include "shutdown_signals.hpp"
+
+int main(int argc, char** argv) {
+  using namespace footpoint::server;
+  // Before any thread exists, so that every thread inherits the mask.
+  block_shutdown_signals();
+
+  ServerConfig config;
+  try {
+    bool help = false;
+    config = load_config(argc, argv, [](const char* name) { return std::getenv(name); }, help);
+    if (help) {
+      std::fputs(usage().c_str(), stdout);
+      return 0;
+    }
+  } catch (const ConfigError& e) {
+    std::fprintf(stderr, "footpoint-server: %s\n", e.what());
+    return 2;
+  }
+
+  int status = 0;
+  try {
+    HttpServer server(config);
+    const int port = server.bind();
+    const unsigned threads = config.threads ? config.threads : std::thread::hardware_concurrency();
+    log_event(spdlog::level::info, "listening",
+              {{"host", config.host},
+               {"port", std::to_string(port)},
+               {"threads", std::to_string(threads)},
+               {"connection_threads", std::to_string(config.connection_threads)}});
+
+    std::atomic<bool> signalled{false};
+    std::thread signals([&server, &signalled] {
+      const int sig = wait_for_shutdown_signal();
+      signalled.store(true);
+      log_event(spdlog::level::info, "shutting down", {{"signal", sig == SIGTERM ? "SIGTERM" : "SIGINT"}});
+      server.shutdown();
+    });
+    server.run();
+    // run() also returns when listening fails; release the signal thread then.
+    if (!signalled.load()) pthread_kill(signals.native_handle(), SIGTERM);
+    signals.join();
+    log_event(spdlog::level::info, "stopped");
+  } catch (const std::exception& e) {
+    log_event(spdlog::level::critical, "cannot start", {{"error", e.what()}});
+    status = 1;
+  }
+  spdlog::shutdown();
+  return status;
+}

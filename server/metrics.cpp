@@ -1,0 +1,135 @@
+#include "metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "json_writer.hpp"
+
+namespace footpoint::server {
+
+namespace {
+
+void line(std::string& out, const std::string& name, const std::string& labels, double value) {
+  out += name;
+  if (!labels.empty()) out += "{" + labels + "}";
+  out += ' ';
+  if (std::isfinite(value))
+    append_shortest(out, value);
+  else
+    out += value > 0 ? "+Inf" : "NaN";
+  out += '\n';
+}
+
+void header(std::string& out, const char* name, const char* type, const char* help) {
+  out += std::string("# HELP ") + name + " " + help + "\n# TYPE " + name + " " + type + "\n";
+}
+
+template <class H, std::size_t N>
+void histogram_lines(std::string& out, const std::string& name, const std::string& labels, const H& h,
+                     const std::array<double, N>& bounds) {
+  const std::string sep = labels.empty() ? "" : labels + ",";
+  std::uint64_t cumulative = 0;
+  for (std::size_t b = 0; b < N; ++b) {
+    cumulative += h.buckets[b].load(std::memory_order_relaxed);
+    std::string le;
+    append_shortest(le, bounds[b]);
+    line(out, name + "_bucket", sep + "le=\"" + le + "\"", static_cast<double>(cumulative));
+  }
+  cumulative += h.buckets[N].load(std::memory_order_relaxed);
+  line(out, name + "_bucket", sep + "le=\"+Inf\"", static_cast<double>(cumulative));
+  line(out, name + "_sum", labels, static_cast<double>(h.sum_ns.load(std::memory_order_relaxed)) * 1e-9);
+  line(out, name + "_count", labels, static_cast<double>(h.count.load(std::memory_order_relaxed)));
+}
+
+}  // namespace
+
+template <std::size_t N>
+void Metrics::Histogram<N>::observe(const std::array<double, N>& bounds, double seconds) {
+  std::size_t b = 0;
+  while (b < N && seconds > bounds[b]) ++b;
+  buckets[b].fetch_add(1, std::memory_order_relaxed);
+  sum_ns.fetch_add(static_cast<std::uint64_t>(std::max(0.0, seconds) * 1e9), std::memory_order_relaxed);
+  count.fetch_add(1, std::memory_order_relaxed);
+}
+
+int Metrics::status_index(int status) {
+  for (std::size_t i = 0; i + 1 < kHttpStatuses.size(); ++i)
+    if (kHttpStatuses[i] == status) return static_cast<int>(i);
+  return static_cast<int>(kHttpStatuses.size()) - 1;
+}
+
+void Metrics::observe_request(Route route, int status, double seconds) {
+  const auto r = static_cast<std::size_t>(route);
+  requests_[r][static_cast<std::size_t>(status_index(status))].fetch_add(1, std::memory_order_relaxed);
+  durations_[r].observe(kRequestBuckets, seconds);
+}
+
+void Metrics::observe_compile(double seconds) { compile_.observe(kCompileBuckets, seconds); }
+
+void Metrics::add_projections(const std::array<std::uint64_t, kStatusCount>& by_status) {
+  std::uint64_t total = 0;
+  for (int s = 0; s < kStatusCount; ++s) {
+    if (by_status[s] == 0) continue;
+    projections_[s].fetch_add(by_status[s], std::memory_order_relaxed);
+    total += by_status[s];
+  }
+  points_.fetch_add(total, std::memory_order_relaxed);
+}
+
+std::string Metrics::render(const Gauges& g) const {
+  std::string out;
+  out.reserve(8192);
+  header(out, "footpoint_http_requests_total", "counter", "HTTP requests answered, by route and status.");
+  for (int r = 0; r < kRouteCount; ++r)
+    for (std::size_t s = 0; s < kHttpStatuses.size(); ++s) {
+      const auto n = requests_[r][s].load(std::memory_order_relaxed);
+      if (n == 0) continue;
+      const std::string status = kHttpStatuses[s] ? std::to_string(kHttpStatuses[s]) : "other";
+      line(out, "footpoint_http_requests_total",
+           std::string("route=\"") + route_template(static_cast<Route>(r)) + "\",status=\"" + status + "\"",
+           static_cast<double>(n));
+    }
+  header(out, "footpoint_http_request_duration_seconds", "histogram",
+         "Time from reading a request to writing its response, by route.");
+  for (int r = 0; r < kRouteCount; ++r) {
+    if (durations_[r].count.load(std::memory_order_relaxed) == 0) continue;
+    histogram_lines(out, "footpoint_http_request_duration_seconds",
+                    std::string("route=\"") + route_template(static_cast<Route>(r)) + "\"", durations_[r],
+                    kRequestBuckets);
+  }
+  header(out, "footpoint_http_requests_in_flight", "gauge", "API requests being answered now.");
+  line(out, "footpoint_http_requests_in_flight", "", static_cast<double>(g.in_flight));
+  header(out, "footpoint_points_in_flight", "gauge", "Points of the requests being projected now.");
+  line(out, "footpoint_points_in_flight", "", static_cast<double>(g.in_flight_points));
+  header(out, "footpoint_points_projected_total", "counter", "Points projected (every status).");
+  line(out, "footpoint_points_projected_total", "", static_cast<double>(points_.load(std::memory_order_relaxed)));
+  header(out, "footpoint_projections_total", "counter", "Projections by solver status.");
+  for (int s = 0; s < kStatusCount; ++s)
+    line(out, "footpoint_projections_total", std::string("status=\"") + to_string(static_cast<Status>(s)) + "\"",
+         static_cast<double>(projections_[s].load(std::memory_order_relaxed)));
+  header(out, "footpoint_geometry_compile_seconds", "histogram", "Time to compile a new geometry.");
+  histogram_lines(out, "footpoint_geometry_compile_seconds", "", compile_, kCompileBuckets);
+  header(out, "footpoint_geometry_compilations_total", "counter", "Geometry compilations, by result.");
+  line(out, "footpoint_geometry_compilations_total", "result=\"ok\"", static_cast<double>(g.cache.compilations));
+  line(out, "footpoint_geometry_compilations_total", "result=\"error\"",
+       static_cast<double>(g.cache.failed_compilations));
+  header(out, "footpoint_geometry_cache_entries", "gauge", "Compiled geometries held by the cache.");
+  line(out, "footpoint_geometry_cache_entries", "", static_cast<double>(g.cache.size));
+  header(out, "footpoint_geometry_cache_bytes", "gauge", "Memory held by the cached geometries.");
+  line(out, "footpoint_geometry_cache_bytes", "", static_cast<double>(g.cache.bytes));
+  header(out, "footpoint_geometry_cache_hits_total", "counter", "Cache lookups that found the geometry.");
+  line(out, "footpoint_geometry_cache_hits_total", "", static_cast<double>(g.cache.hits));
+  header(out, "footpoint_geometry_cache_misses_total", "counter", "Cache lookups that did not.");
+  line(out, "footpoint_geometry_cache_misses_total", "", static_cast<double>(g.cache.misses));
+  header(out, "footpoint_geometry_cache_evictions_total", "counter", "Geometries evicted to respect the bounds.");
+  line(out, "footpoint_geometry_cache_evictions_total", "", static_cast<double>(g.cache.evictions));
+  header(out, "footpoint_worker_threads", "gauge", "Threads of the numerical pool.");
+  line(out, "footpoint_worker_threads", "", g.worker_threads);
+  header(out, "footpoint_worker_queue_tasks", "gauge", "Chunks of points waiting for a worker.");
+  line(out, "footpoint_worker_queue_tasks", "", static_cast<double>(g.worker_queue));
+  header(out, "footpoint_shutting_down", "gauge", "1 while the server drains before exiting.");
+  line(out, "footpoint_shutting_down", "", g.shutting_down ? 1.0 : 0.0);
+  return out;
+}
+
+}  // namespace footpoint::server

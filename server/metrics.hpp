@@ -1,0 +1,73 @@
+// Prometheus metrics (text exposition format 0.0.4), recorded lock-free with atomics:
+//   footpoint_http_requests_total{route,status}              counter
+//   footpoint_http_request_duration_seconds{route}           histogram
+//   footpoint_http_requests_in_flight                        gauge
+//   footpoint_points_in_flight                               gauge
+//   footpoint_points_projected_total                         counter
+//   footpoint_projections_total{status}                      counter (solver statuses)
+//   footpoint_geometry_compile_seconds                       histogram
+//   footpoint_geometry_cache_{entries,bytes}                 gauges
+//   footpoint_geometry_cache_{hits,misses,evictions}_total   counters
+//   footpoint_geometry_compilations_total{result}            counter (ok, error)
+//   footpoint_worker_threads, footpoint_worker_queue_tasks   gauges (the numerical pool)
+//   footpoint_shutting_down                                  gauge (1 while draining)
+#pragma once
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "cache/geometry_cache.hpp"
+#include "route.hpp"
+#include "solvers/result.hpp"
+
+namespace footpoint::server {
+
+class Metrics {
+ public:
+  // One answered request: its route, status and duration from the first header byte read.
+  void observe_request(Route route, int status, double seconds);
+  void observe_compile(double seconds);
+  // The statuses of the points of one request (indexed by Status).
+  static constexpr int kStatusCount = static_cast<int>(Status::deadline_exceeded) + 1;
+  void add_projections(const std::array<std::uint64_t, kStatusCount>& by_status);
+
+  struct Gauges {
+    GeometryCacheStats cache;
+    unsigned worker_threads = 0;
+    std::size_t worker_queue = 0;
+    std::size_t in_flight = 0;
+    std::size_t in_flight_points = 0;
+    bool shutting_down = false;
+  };
+  std::string render(const Gauges& gauges) const;
+
+  // Latency buckets (upper bounds in seconds) for requests and compilations.
+  static constexpr std::array<double, 14> kRequestBuckets{0.0001, 0.00025, 0.0005, 0.001, 0.0025, 0.005, 0.01,
+                                                          0.025, 0.05, 0.1, 0.25, 1.0, 5.0, 30.0};
+  static constexpr std::array<double, 10> kCompileBuckets{0.0001, 0.0005, 0.001, 0.005, 0.01,
+                                                          0.05, 0.1, 0.5, 1.0, 5.0};
+
+ private:
+  // Statuses counted by name; anything else lands in "other".
+  static constexpr std::array<int, 16> kHttpStatuses{200, 201, 204, 400, 404, 405, 408, 411,
+                                                     413, 414, 415, 416, 422, 500, 503, 0};
+  static int status_index(int status);
+
+  template <std::size_t N>
+  struct Histogram {
+    std::array<std::atomic<std::uint64_t>, N + 1> buckets{};  // not cumulative; last = +Inf
+    std::atomic<std::uint64_t> sum_ns{0};
+    std::atomic<std::uint64_t> count{0};
+    void observe(const std::array<double, N>& bounds, double seconds);
+  };
+
+  std::array<std::array<std::atomic<std::uint64_t>, kHttpStatuses.size()>, kRouteCount> requests_{};
+  std::array<Histogram<kRequestBuckets.size()>, kRouteCount> durations_{};
+  Histogram<kCompileBuckets.size()> compile_{};
+  std::array<std::atomic<std::uint64_t>, kStatusCount> projections_{};
+  std::atomic<std::uint64_t> points_{0};
+};
+
+}  // namespace footpoint::server

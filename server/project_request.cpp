@@ -1,0 +1,279 @@
+#include "project_request.hpp"
+
+#include <cmath>
+
+#include "api_error.hpp"
+#include "geometry_json.hpp"
+#include "json_reader.hpp"
+
+namespace footpoint::server {
+
+namespace {
+
+std::string indexed(const char* name, std::size_t i) { return std::string(name) + "[" + std::to_string(i) + "]"; }
+
+// Points: [[x,y(,z)], ...] appended to request.coords, all of one length (1 to 3 numbers).
+void read_points(JsonReader& r, ProjectRequest& request, std::size_t max_points) {
+  std::size_t i = 0;
+  int j = 0;
+  bool started = false, in_point = false;  // where a reading error happened, to name the field
+  try {
+    r.begin_array();
+    started = true;
+    while (r.next_element()) {
+      if (i == max_points)
+        throw ApiError(413, "too_many_points",
+                       "more than " + std::to_string(max_points) + " points in one request", "points");
+      j = 0;
+      r.begin_array();
+      in_point = true;
+      while (r.next_element()) {
+        if (j == 3)
+          throw ApiError(400, "wrong_dimension", indexed("points", i) + " has more than 3 coordinates",
+                         indexed("points", i));
+        request.coords.push_back(r.number());
+        ++j;
+      }
+      in_point = false;
+      if (j == 0) throw ApiError(400, "wrong_dimension", indexed("points", i) + " is empty", indexed("points", i));
+      if (i == 0) {
+        request.point_length = j;
+      } else if (j != request.point_length) {
+        throw ApiError(400, "wrong_dimension",
+                       indexed("points", i) + " has " + std::to_string(j) + " coordinates, points[0] has " +
+                           std::to_string(request.point_length),
+                       indexed("points", i));
+      }
+      ++i;
+    }
+  } catch (const JsonReadError& e) {
+    throw request_error(e, !started ? std::string("points")
+                           : in_point ? indexed("points", i) + "[" + std::to_string(j) + "]"
+                                      : indexed("points", i));
+  }
+  if (i == 0) throw ApiError(400, "empty_batch", "points is empty", "points");
+  request.count = i;
+}
+
+// A start: [a(,b(,c))] (1 to 3 numbers).
+int read_start(JsonReader& r, std::array<double, 3>& start, const std::string& field) {
+  int n = 0;
+  try {
+    r.begin_array();
+    while (r.next_element()) {
+      if (n == 3) throw ApiError(400, "wrong_dimension", field + " has more than 3 numbers", field);
+      start[n++] = r.number();
+    }
+  } catch (const JsonReadError& e) {
+    throw request_error(e, field);
+  }
+  if (n == 0) throw ApiError(400, "wrong_dimension", field + " is empty", field);
+  return n;
+}
+
+void read_initial(JsonReader& r, ProjectRequest& request) {
+  const std::string field = "options.initial";
+  try {
+    r.begin_array();
+    const bool per_point = r.peek() == JsonReader::Type::array;
+    if (!per_point) {
+      // One start for every point: [a, b].
+      std::array<double, 3> start{};
+      int n = 0;
+      while (r.next_element()) {
+        if (n == 3) throw ApiError(400, "wrong_dimension", field + " has more than 3 numbers", field);
+        start[n++] = r.number();
+      }
+      if (n == 0) throw ApiError(400, "wrong_dimension", field + " is empty", field);
+      request.options.initial = start;
+      request.initial_length = n;
+      return;
+    }
+    // One start per point: [[a, b], ...].
+    while (r.next_element()) {
+      const std::string item = indexed("options.initial", request.initials.size());
+      std::array<double, 3> start{};
+      const int n = read_start(r, start, item);
+      if (request.initial_length == 0) request.initial_length = n;
+      if (n != request.initial_length)
+        throw ApiError(400, "wrong_dimension", item + " has " + std::to_string(n) + " numbers, " + field +
+                                                   "[0] has " + std::to_string(request.initial_length),
+                       item);
+      request.initials.push_back(start);
+    }
+  } catch (const JsonReadError& e) {
+    throw request_error(e, field);
+  }
+}
+
+void read_options(JsonReader& r, ProjectRequest& request) {
+  Options& o = request.options;
+  std::vector<std::string> seen;
+  try {
+    r.begin_object();
+  } catch (const JsonReadError& e) {
+    throw request_error(e, "options");
+  }
+  std::string key;
+  for (;;) {
+    try {
+      if (!r.next_member(key)) break;
+    } catch (const JsonReadError& e) {
+      throw request_error(e, "options");
+    }
+    const std::string field = "options." + key;
+    for (const auto& s : seen)
+      if (s == key) throw ApiError(400, "duplicate_field", field + " appears twice", field);
+    seen.push_back(key);
+    try {
+      if (key == "tolerance") {
+        const double t = r.number();
+        if (!(t >= 0.0 && t < 1.0))
+          throw ApiError(400, "invalid_option", field + " must be in [0, 1) (0: the method's default)", field);
+        o.tolerance = t;
+      } else if (key == "max_iterations") {
+        const double n = r.number();
+        if (!(n >= 0.0 && n <= 10000.0 && n == std::floor(n)))
+          throw ApiError(400, "invalid_option", field + " must be an integer in [0, 10000] (0: the method's default)",
+                         field);
+        o.max_iterations = static_cast<int>(n);
+      } else if (key == "max_distance") {
+        const double d = r.number();
+        if (!(d > 0.0)) throw ApiError(400, "invalid_option", field + " must be positive", field);
+        o.max_distance = d;
+      } else if (key == "all_minima") {
+        o.all_minima = r.boolean();
+      } else if (key == "trace") {
+        o.trace = r.boolean();
+      } else if (key == "initial") {
+        read_initial(r, request);
+      } else {
+        throw ApiError(400, "unknown_field",
+                       "unknown option " + field +
+                           " (tolerance, max_iterations, initial, all_minima, trace, max_distance)",
+                       field);
+      }
+    } catch (const JsonReadError& e) {
+      throw request_error(e, field);
+    }
+  }
+}
+
+}  // namespace
+
+namespace {
+
+ProjectRequest read_request(std::string_view body, bool inline_geometry, std::size_t max_points) {
+  ProjectRequest request;
+  JsonReader r(body);
+  bool has_point = false, has_points = false;
+  std::vector<std::string> seen;
+  try {
+    r.begin_object();
+  } catch (const JsonReadError& e) {
+    throw request_error(e, "body");
+  }
+  std::string key;
+  for (;;) {
+    try {
+      if (!r.next_member(key)) break;
+    } catch (const JsonReadError& e) {
+      throw request_error(e, "body");
+    }
+    for (const auto& s : seen)
+      if (s == key) throw ApiError(400, "duplicate_field", key + " appears twice", key);
+    seen.push_back(key);
+    if (key == "point") {
+      int n = 0;
+      bool started = false;
+      try {
+        r.begin_array();
+        started = true;
+        while (r.next_element()) {
+          if (n == 3) throw ApiError(400, "wrong_dimension", "point has more than 3 coordinates", "point");
+          request.coords.push_back(r.number());
+          ++n;
+        }
+      } catch (const JsonReadError& e) {
+        throw request_error(e, started ? indexed("point", n) : std::string("point"));
+      }
+      if (n == 0) throw ApiError(400, "wrong_dimension", "point is empty", "point");
+      request.point_length = n;
+      request.count = 1;
+      has_point = true;
+    } else if (key == "points") {
+      read_points(r, request, max_points);
+      has_points = true;
+    } else if (key == "method") {
+      try {
+        request.method = r.string();
+      } catch (const JsonReadError& e) {
+        throw request_error(e, "method");
+      }
+    } else if (key == "options") {
+      read_options(r, request);
+    } else if (key == "geometry" && inline_geometry) {
+      request.geometry = read_geometry(r, "geometry.");
+    } else {
+      throw ApiError(400, "unknown_field",
+                     "unknown field " + key +
+                         (inline_geometry ? " (geometry, point, points, method, options)" : " (point, points, method, options)"),
+                     key);
+    }
+    if (has_point && has_points)
+      throw ApiError(400, "conflicting_fields", "give either point or points, not both", "points");
+  }
+  try {
+    r.finish();
+  } catch (const JsonReadError& e) {
+    throw request_error(e, "body");
+  }
+  if (!has_point && !has_points)
+    throw ApiError(400, "missing_field", "point (one point) or points (a batch) is required", "point");
+  if (inline_geometry && !request.geometry)
+    throw ApiError(400, "missing_field", "geometry (the definition) is required", "geometry");
+  request.single = has_point;
+  if (!request.initials.empty() && request.initials.size() != request.count)
+    throw ApiError(400, "wrong_shape",
+                   "options.initial has " + std::to_string(request.initials.size()) + " starts for " +
+                       std::to_string(request.count) + " points",
+                   "options.initial");
+  return request;
+}
+
+}  // namespace
+
+ProjectRequest read_project_request(std::string_view body, bool inline_geometry, std::size_t max_points) {
+  try {
+    return read_request(body, inline_geometry, max_points);
+  } catch (const ApiError& e) {
+    throw unless_malformed(body, e);
+  }
+}
+
+void check_project_request(const ProjectRequest& request, const CompiledGeometry& geometry) {
+  const int dim = geometry.point_dim();
+  const char* type = to_string(geometry.definition().type);
+  if (request.point_length != dim)
+    throw ApiError(400, "wrong_dimension",
+                   std::string(request.single ? "point" : "points") + " must have " + std::to_string(dim) +
+                       " coordinates for this " + type + ", got " + std::to_string(request.point_length),
+                   request.single ? "point" : "points[0]");
+  if (!geometry.has_method(request.method)) {
+    std::string names;
+    for (const auto& m : geometry.methods()) names += (names.empty() ? "" : ", ") + m.name;
+    throw ApiError(400, "unknown_method",
+                   "unknown method '" + request.method + "' for a " + type + " (" + names + ")", "method");
+  }
+  if (request.initial_length != 0) {
+    const int expected = geometry.num_params() > 0 ? geometry.num_params() : dim;
+    if (request.initial_length != expected)
+      throw ApiError(400, "wrong_dimension",
+                     "options.initial: a start has " + std::to_string(expected) + " numbers for a " + type +
+                         " (" + (geometry.num_params() == 2 ? "[u, v]" : geometry.num_params() == 1 ? "[t]" : "a point") +
+                         ")",
+                     "options.initial");
+  }
+}
+
+}  // namespace footpoint::server

@@ -1,0 +1,24 @@
+# Deployment checks (deploy/, examples/), included from tests/CMakeLists.txt. No Docker engine or
+# cluster is needed: the manifests are checked statically, and the image's install step and
+# runtime layout are exercised by installing this build into a staging prefix.
+
+# deploy/Dockerfile, compose.yaml and k8s/*.yaml: required fields, consistency, and --self-test
+# (each check must catch a broken copy of the files).
+add_test(NAME deploy_manifests
+         COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/deploy/check_manifests.py --self-test)
+
+# cmake --install into a staging prefix (as the Dockerfile does), the runtime libraries, then the
+# installed server: probes, projections, examples/project_csv.sh, logs, metrics, SIGTERM -> exit 0.
+if(TARGET footpoint-server)
+  add_test(NAME deploy_layout
+           COMMAND bash ${CMAKE_SOURCE_DIR}/deploy/check_layout.sh ${CMAKE_BINARY_DIR})
+  set_tests_properties(deploy_layout PROPERTIES TIMEOUT 120)
+endif()
+
+# The shell scripts users run, when shellcheck is installed (it is not a build dependency).
+find_program(FOOTPOINT_SHELLCHECK shellcheck)
+if(FOOTPOINT_SHELLCHECK)
+  add_test(NAME deploy_shellcheck
+           COMMAND ${FOOTPOINT_SHELLCHECK} ${CMAKE_SOURCE_DIR}/deploy/check_layout.sh
+                   ${CMAKE_SOURCE_DIR}/examples/project_csv.sh)
+endif()

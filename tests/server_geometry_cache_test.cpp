@@ -1,0 +1,157 @@
+// core/cache/geometry_cache: LRU by count and by bytes, statistics, one compilation per id under
+// concurrency, failed compilations leave nothing behind. Real geometries throughout.
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cache/geometry_cache.hpp"
+
+using namespace footpoint;
+
+namespace {
+
+GeometryDefinition curve(int k) {
+  GeometryDefinition d;
+  d.type = GeometryType::parametric_curve;
+  d.formulas = {{"x", "t"}, {"y", "t^2+" + std::to_string(k)}};
+  d.domain = {{"t", {0.0, 1.0}}};
+  return d;
+}
+
+GeometryDefinition surface(const std::string& z) {
+  GeometryDefinition d;
+  d.type = GeometryType::parametric_surface;
+  d.formulas = {{"x", "u"}, {"y", "v"}, {"z", z}};
+  d.domain = {{"u", {-1.0, 1.0}}, {"v", {-1.0, 1.0}}};
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("the cache evicts the least recently used beyond its entry count") {
+  GeometryCache cache({3, std::size_t{1} << 30});
+  std::vector<std::string> ids;
+  for (int k = 0; k < 3; ++k) {
+    const auto r = cache.get_or_compile(curve(k));
+    CHECK(r.compiled);
+    CHECK(r.compile_time.count() > 0.0);
+    ids.push_back(r.geometry->id());
+  }
+  CHECK(cache.find(ids[0]) != nullptr);  // 0 becomes the most recent; 1 is now the oldest
+  const auto again = cache.get_or_compile(curve(2));
+  CHECK_FALSE(again.compiled);
+  cache.get_or_compile(curve(3));  // evicts 1
+  CHECK(cache.find(ids[1]) == nullptr);
+  CHECK(cache.find(ids[0]) != nullptr);
+  CHECK(cache.find(ids[2]) != nullptr);
+  const auto s = cache.stats();
+  CHECK(s.size == 3);
+  CHECK(s.evictions == 1);
+  CHECK(s.compilations == 4);
+  CHECK(s.hits == 4);    // find(0), get(2), find(0), find(2)
+  CHECK(s.misses == 5);  // four compilations and find(1)
+  CHECK(cache.entry_stats(ids[0])->hits == 2);
+  CHECK(cache.erase(ids[0]));
+  CHECK_FALSE(cache.erase(ids[0]));
+  CHECK(cache.stats().size == 2);
+}
+
+TEST_CASE("the cache evicts by bytes and never keeps a geometry larger than its budget") {
+  GeometryCache probe;
+  const std::size_t a = probe.get_or_compile(surface("u*v")).geometry->memory_bytes();
+  const std::size_t b = probe.get_or_compile(surface("u^2-v^2")).geometry->memory_bytes();
+  REQUIRE(a > 0);
+  REQUIRE(b > 0);
+  GeometryCache cache({100, a + b - 1});
+  const auto first = cache.get_or_compile(surface("u*v")).geometry;
+  cache.get_or_compile(surface("u^2-v^2"));  // a + b > budget: the first goes
+  CHECK(cache.find(first->id()) == nullptr);
+  CHECK(cache.stats().size == 1);
+  CHECK(cache.stats().bytes == b);
+  CHECK(cache.stats().evictions == 1);
+  CHECK(first->memory_bytes() == a);  // an evicted geometry stays valid for its holders
+
+  GeometryCache tiny({100, 1});
+  const auto big = tiny.get_or_compile(surface("u*v"));
+  CHECK(big.geometry != nullptr);  // compiled and returned...
+  CHECK(tiny.stats().size == 0);   // ...but not kept
+  CHECK(tiny.stats().bytes == 0);
+}
+
+TEST_CASE("concurrent requests for one new id compile it once and share it") {
+  GeometryCache cache;
+  const GeometryDefinition def = surface("sin(3*u)*cos(2*v)+u^3");
+  constexpr int kThreads = 8;
+  std::vector<std::shared_ptr<const CompiledGeometry>> got(kThreads);
+  std::atomic<int> compiled{0}, ready{0};
+  std::vector<std::thread> threads;
+  for (int i = 0; i < kThreads; ++i)
+    threads.emplace_back([&, i] {
+      ++ready;
+      while (ready.load() < kThreads) std::this_thread::yield();
+      const auto r = cache.get_or_compile(def);
+      compiled += r.compiled;
+      got[i] = r.geometry;
+    });
+  for (auto& t : threads) t.join();
+  CHECK(compiled.load() == 1);
+  CHECK(cache.stats().compilations == 1);
+  CHECK(cache.stats().misses == 1);
+  CHECK(cache.stats().hits == kThreads - 1);
+  for (const auto& g : got) CHECK(g.get() == got[0].get());
+}
+
+TEST_CASE("a definition that does not compile leaves the cache as it was") {
+  GeometryCache cache;
+  const auto good = cache.get_or_compile(surface("u*v")).geometry;
+  const auto before = cache.stats();
+  CHECK_THROWS_AS(cache.get_or_compile(surface("u*(v")), GeometryError);
+  CHECK_THROWS_AS(cache.get_or_compile(surface("u*w")), GeometryError);
+  const auto after = cache.stats();
+  CHECK(after.size == before.size);
+  CHECK(after.bytes == before.bytes);
+  CHECK(after.failed_compilations == 2);
+  CHECK(cache.find(good->id()) == good);
+  // Many threads failing on the same bad definition at once all get the error.
+  std::atomic<int> errors{0};
+  std::vector<std::thread> threads;
+  for (int i = 0; i < 6; ++i)
+    threads.emplace_back([&] {
+      try {
+        cache.get_or_compile(surface("sin(u"));
+      } catch (const GeometryError& e) {
+        errors += std::string(e.code) == "formula_syntax";
+      }
+    });
+  for (auto& t : threads) t.join();
+  CHECK(errors.load() == 6);
+  CHECK(cache.stats().size == 1);
+}
+
+TEST_CASE("the cache stays consistent under concurrent mixed use") {
+  GeometryCache cache({8, std::size_t{1} << 30});
+  std::vector<std::thread> threads;
+  std::atomic<int> wrong{0};
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      for (int i = 0; i < 60; ++i) {
+        const int k = (i * 7 + t * 3) % 20;
+        const auto r = cache.get_or_compile(curve(k));
+        if (r.geometry->definition().formulas[1].expression != "t^2+" + std::to_string(k)) ++wrong;
+        if (i % 5 == 0) cache.erase(r.geometry->id());
+        if (const auto f = cache.find(curve((k + 1) % 20).id()); f && f->id() != curve((k + 1) % 20).id()) ++wrong;
+      }
+    });
+  for (auto& th : threads) th.join();
+  CHECK(wrong.load() == 0);
+  const auto s = cache.stats();
+  CHECK(s.size <= 8);
+  std::set<std::string> ids;
+  for (int k = 0; k < 20; ++k)
+    if (cache.find(curve(k).id())) ids.insert(curve(k).id());
+  CHECK(ids.size() == cache.stats().size);
+}

@@ -1,0 +1,206 @@
+// Every endpoint's responses, successes and errors, validated against openapi.yaml with a JSON
+// Schema 2020-12 validator (Debian's python3-jsonschema and python3-yaml): the response schema is
+// looked up by path, method, status and media type, so an undocumented status or a body that
+// does not match its schema fails the test. Every operation of the document must be exercised.
+#include <doctest/doctest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "server_support.hpp"
+
+using namespace footpoint::server;
+using namespace footpoint::server::testing;
+using json = nlohmann::json;
+
+namespace {
+
+// Validates samples.json against openapi.yaml; prints one line per failure, exits 1 if any.
+const char* const kValidator = R"PY(
+import json, sys
+import yaml
+from jsonschema import Draft202012Validator
+
+spec = yaml.safe_load(open(sys.argv[1]))
+samples = json.load(open(sys.argv[2]))
+
+def esc(s):
+    return s.replace("~", "~0").replace("/", "~1")
+
+def resolve(node, pointer):
+    while "$ref" in node:
+        pointer = node["$ref"]
+        node = spec
+        for part in pointer[2:].split("/"):
+            node = node[part.replace("~1", "/").replace("~0", "~")]
+    return node, pointer
+
+failures = []
+seen = set()
+for s in samples:
+    where = "%s %s -> %d" % (s["method"], s["template"], s["status"])
+    item = spec["paths"].get(s["template"], {})
+    method = s["method"].lower()
+    if method not in item and s["status"] == 405:
+        # A method the path does not have: its 405 is documented on the path's operations.
+        method = next((m for m in item if m in ("get", "post", "delete")), method)
+    else:
+        seen.add((s["template"], method))
+    op = item.get(method)
+    if op is None:
+        failures.append(where + ": operation not documented"); continue
+    status = str(s["status"])
+    if status not in op["responses"]:
+        failures.append(where + ": status not documented"); continue
+    pointer = "#/paths/%s/%s/responses/%s" % (esc(s["template"]), method, status)
+    response, pointer = resolve(op["responses"][status], pointer)
+    content = response.get("content")
+    if not content:
+        if s["body"]:
+            failures.append(where + ": documented without a body, got one")
+        continue
+    media = s["content_type"].split(";")[0].strip()
+    if media not in content:
+        failures.append(where + ": media type %s not documented" % media); continue
+    if s["method"] == "POST" and s["status"] < 300:
+        # An accepted request must match the documented request body too.
+        request_pointer = "#/paths/%s/post/requestBody/content/application~1json/schema" % esc(s["template"])
+        root = dict(spec)
+        root["$ref"] = request_pointer
+        for e in list(Draft202012Validator(root).iter_errors(json.loads(s["request"])))[:3]:
+            failures.append("%s: request body: %s at %s" % (where, e.message[:300], "/".join(map(str, e.path))))
+    schema_pointer = pointer + "/content/" + esc(media) + "/schema"
+    instance = json.loads(s["body"]) if media == "application/json" else s["body"]
+    root = dict(spec)
+    root["$ref"] = schema_pointer
+    errors = sorted(Draft202012Validator(root).iter_errors(instance), key=lambda e: list(e.path))
+    for e in errors[:3]:
+        failures.append("%s: %s at %s" % (where, e.message[:300], "/".join(map(str, e.path))))
+
+for path, ops in spec["paths"].items():
+    for method in ops:
+        if method in ("get", "post", "delete", "put", "patch") and (path, method) not in seen:
+            failures.append("%s %s: no sample exercised it" % (method.upper(), path))
+
+for f in failures:
+    print(f)
+print("%d samples, %d failures" % (len(samples), len(failures)))
+sys.exit(1 if failures else 0)
+)PY";
+
+struct Sample {
+  std::string method, template_path;
+  int status;
+  std::string content_type, body, request;
+};
+
+}  // namespace
+
+TEST_CASE("every response matches openapi.yaml") {
+  ServerConfig config;
+  config.max_points = 50;
+  config.deadline = std::chrono::milliseconds(1);
+  TestServer s(config);
+  auto c = s.client();
+  std::vector<Sample> samples;
+  auto record = [&](const std::string& method, const std::string& templ, const httplib::Result& r,
+                    const std::string& request = "") {
+    INFO(method << " " << templ << " after " << samples.size() << " samples");
+    REQUIRE(r);
+    CHECK_FALSE(r->get_header_value("X-Request-Id").empty());
+    samples.push_back({method, templ, r->status, r->get_header_value("Content-Type"), r->body, request});
+  };
+  auto post = [&](const std::string& templ, const std::string& path, const std::string& body,
+                  const char* type = "application/json") {
+    record("POST", templ, c->Post(path.c_str(), body, type), body);
+  };
+
+  const std::string surface =
+      R"J({"type":"parametric_surface","x":"u+v","y":"sin(u)+2*cos(v)","z":"sin(u+v)","domain":{"u":[-25,25],"v":[-25,25]}})J";
+  const std::string curve =
+      R"J({"type":"implicit_curve","equations":["x^2/9+y^2/16+z^2/9-1","x^2+y^2-4*z"],"domain":{"x":[-300,300],"y":[-300,300],"z":[-300,300]}})J";
+  const std::string planar = R"J({"type":"implicit_curve","equations":["x^2+y^2/4-1"],"domain":{"x":[-3,3],"y":[-3,3]},"constants":{"k":2}})J";
+  const std::string param = R"J({"type":"parametric_curve","x":"cos(t)","y":"sin(t)","z":"t","domain":{"t":[0,6]}})J";
+
+  for (const char* path : {"/healthz", "/readyz", "/metrics", "/openapi.yaml", "/v1/methods"})
+    record("GET", path, c->Get(path));
+  for (const auto& def : {surface, curve, planar, param}) post("/v1/geometries", "/v1/geometries", def);
+  post("/v1/geometries", "/v1/geometries", surface);  // 200: cached
+  const std::string id = json::parse(samples.back().body)["geometry_id"];
+  const std::string curve_id = json::parse(samples[6].body)["geometry_id"];
+  const std::string geometry = "/v1/geometries/{id}", project = "/v1/geometries/{id}/project";
+  record("GET", geometry, c->Get(("/v1/geometries/" + id).c_str()));
+  record("GET", geometry, c->Get(("/v1/geometries/" + curve_id).c_str()));
+
+  const std::string on = "/v1/geometries/" + id + "/project";
+  post(project, on, R"J({"point":[1,2,2]})J");
+  post(project, on, R"J({"points":[[1,2,2],[0,0,3],[5,-1,0.5]],"options":{"all_minima":true,"trace":true}})J");
+  post(project, on, R"J({"point":[1,2,2],"method":"gsa","options":{"initial":[0.5,0.7],"trace":true}})J");
+  post(project, on, R"J({"point":[100,2,2],"options":{"max_distance":1}})J");
+  post(project, "/v1/geometries/" + curve_id + "/project", R"J({"point":[217,273,129],"options":{"all_minima":true}})J");
+  {
+    std::string big = R"J({"points":[)J";
+    for (int i = 0; i < 50; ++i) big += std::string(i ? "," : "") + "[" + std::to_string(i) + ",1,2]";
+    post(project, on, big + "]}");  // some points hit the 1 ms deadline
+  }
+  post("/v1/project", "/v1/project", R"J({"geometry":)J" + planar + R"J(,"points":[[2,2],[0,0]]})J");
+  post("/v1/project", "/v1/project", R"J({"geometry":)J" + param + R"J(,"point":[1,1,1],"options":{"all_minima":true}})J");
+
+  // Errors of every class.
+  post(project, on, R"J({"point":[1,2,)J");                                  // 400
+  post(project, on, R"J({"points":[[1,2,3],[1,"x",3]]})J");                  // 400
+  post(project, on, R"J({"point":[1,2,2],"method":"nope"})J");               // 400
+  post("/v1/geometries", "/v1/geometries", R"J({"type":"torus"})J");         // 400
+  post("/v1/project", "/v1/project", R"J({"point":[1,2,3]})J");              // 400
+  post(project, "/v1/geometries/00000000000000000000000000000000/project", R"J({"point":[1,2,2]})J");  // 404
+  record("GET", geometry, c->Get("/v1/geometries/00000000000000000000000000000000"));                // 404
+  record("GET", "/v1/project", c->Get("/v1/project"));                                               // 405
+  record("DELETE", "/healthz", c->Delete("/healthz"));                                               // 405
+  {
+    std::string big = R"J({"points":[)J";
+    for (int i = 0; i < 51; ++i) big += std::string(i ? "," : "") + "[1,2,3]";
+    post(project, on, big + "]}");  // 413
+  }
+  post(project, on, R"J({"point":[1,2,2]})J", "text/plain");                                           // 415
+  post("/v1/geometries", "/v1/geometries",
+       R"J({"type":"parametric_surface","x":"u+","y":"v","z":"0","domain":{"u":[0,1],"v":[0,1]}})J");  // 422
+  post("/v1/project", "/v1/project",
+       R"J({"geometry":{"type":"parametric_curve","x":"t","y":"t","domain":{"t":[1,0]}},"point":[1,2]})J");  // 422
+  record("DELETE", geometry, c->Delete(("/v1/geometries/" + id).c_str()));                           // 204
+  record("DELETE", geometry, c->Delete(("/v1/geometries/" + id).c_str()));                           // 404
+
+  // 503 while shutting down, on a connection opened before. httplib closes a connection that
+  // is between two requests when the shutdown starts, so let it settle into its keep-alive wait.
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  s.server().shutdown();
+  record("GET", "/readyz", c->Get("/readyz"));
+  CHECK(samples.back().status == 503);
+
+  json out = json::array();
+  for (const auto& x : samples)
+    out.push_back({{"method", x.method}, {"template", x.template_path}, {"status", x.status},
+                   {"content_type", x.content_type}, {"body", x.body}, {"request", x.request}});
+  const std::string dir = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp");
+  const std::string samples_file = dir + "/footpoint_openapi_samples_" + std::to_string(s.port()) + ".json";
+  const std::string script_file = dir + "/footpoint_openapi_check_" + std::to_string(s.port()) + ".py";
+  std::ofstream(samples_file) << out.dump();
+  std::ofstream(script_file) << kValidator;
+  const std::string command = "/usr/bin/python3 " + script_file + " " FOOTPOINT_SOURCE_DIR "/openapi.yaml " +
+                              samples_file + " 2>&1";
+  std::string output;
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe);
+  char buf[512];
+  while (std::fgets(buf, sizeof buf, pipe)) output += buf;
+  const int status = pclose(pipe);
+  INFO(output);
+  CHECK(status == 0);
+  CHECK(output.find(std::to_string(samples.size()) + " samples, 0 failures") != std::string::npos);
+  std::remove(samples_file.c_str());
+  std::remove(script_file.c_str());
+}
