@@ -12,6 +12,7 @@ const char* to_string(Status s) {
     case Status::non_finite: return "non_finite";
     case Status::degenerate: return "degenerate";
     case Status::outside_domain: return "outside_domain";
+    case Status::not_orthogonal: return "not_orthogonal";
     case Status::beyond_max_distance: return "beyond_max_distance";
     case Status::deadline_exceeded: return "deadline_exceeded";
   }

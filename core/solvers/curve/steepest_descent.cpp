@@ -95,10 +95,13 @@ ProjectionResult paper_result(const ImplicitEquations& equations, const Box3& bo
   r.summary.step_norm = step;
   r.summary.starts = 1;
   if (status == Status::converged) {
-    // The iterates stopped moving at a point whose residuals are not small: a stall, reported as
-    // degenerate (the method cannot make progress there).
+    // `converged` only when the foot-point conditions hold: on the curve and orthogonal. A method
+    // that only lands on the curve (Algorithm 1) reports not_orthogonal there; iterates that stopped
+    // moving where the residuals are not small are a stall, reported as degenerate.
     if (!implicit_residuals_met(r.summary, x, control, with_orthogonality))
       status = Status::degenerate;
+    else if (!with_orthogonality && !implicit_residuals_met(r.summary, x, control, true))
+      status = Status::not_orthogonal;
     else if (!box.contains(x, 1e-12 * std::max(1.0, norm(x))))
       status = Status::outside_domain;
   }
