@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -54,4 +55,23 @@ TEST_CASE("several callers can submit at once") {
   for (auto& t : callers) t.join();
   CHECK(total == 6L * 20 * 500);
   CHECK(pool.queued() == 0);
+}
+
+TEST_CASE("a small job is not stuck behind a large one: jobs share the workers round-robin") {
+  ThreadPool pool(1);
+  std::atomic<bool> small_done{false};
+  std::atomic<int> big_chunks_after_small{0};
+  std::atomic<bool> big_started{false};
+  std::thread big([&] {
+    pool.parallel_for(200, 1, [&](std::size_t, std::size_t) {
+      big_started = true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      if (small_done) big_chunks_after_small++;
+    });
+  });
+  while (!big_started) std::this_thread::yield();
+  pool.parallel_for(1, 1, [&](std::size_t, std::size_t) { small_done = true; });
+  big.join();
+  // With first-in-first-out scheduling every chunk of the big job would run before the small one.
+  CHECK(big_chunks_after_small > 150);
 }

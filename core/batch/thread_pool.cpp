@@ -1,9 +1,18 @@
 #include "batch/thread_pool.hpp"
 
-#include <atomic>
-#include <exception>
-
 namespace footpoint {
+
+// One parallel_for call. Chunks are claimed under the pool's mutex; completion is counted under the
+// job's own mutex, which the submitting thread waits on.
+struct ThreadPool::Job {
+  const std::function<void(std::size_t, std::size_t)>* body = nullptr;
+  std::size_t n = 0, chunk = 1, chunks = 0;
+  std::size_t next = 0;  // next chunk to start (pool mutex)
+  std::mutex mutex;
+  std::condition_variable done;
+  std::size_t remaining = 0;  // chunks not finished (job mutex)
+  std::exception_ptr error;
+};
 
 ThreadPool::ThreadPool(unsigned threads) {
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
@@ -22,57 +31,53 @@ ThreadPool::~ThreadPool() {
 
 std::size_t ThreadPool::queued() const {
   std::lock_guard lock(mutex_);
-  return tasks_.size();
+  return jobs_.size();
 }
 
 void ThreadPool::worker_loop() {
   for (;;) {
-    std::function<void()> task;
+    std::shared_ptr<Job> job;
+    std::size_t c = 0;
     {
       std::unique_lock lock(mutex_);
-      cv_.wait(lock, [this] { return stopping_ || !tasks_.empty(); });
-      if (tasks_.empty()) return;  // stopping and drained
-      task = std::move(tasks_.front());
-      tasks_.pop_front();
+      cv_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
+      if (jobs_.empty()) return;  // stopping and drained
+      job = jobs_.front();
+      jobs_.pop_front();
+      c = job->next++;
+      if (job->next < job->chunks) jobs_.push_back(job);  // round-robin between jobs
     }
-    task();
+    const std::size_t begin = c * job->chunk, end = std::min(job->n, begin + job->chunk);
+    std::exception_ptr error;
+    try {
+      (*job->body)(begin, end);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    std::lock_guard lock(job->mutex);
+    if (error && !job->error) job->error = error;
+    if (--job->remaining == 0) job->done.notify_all();
   }
 }
 
 void ThreadPool::parallel_for(std::size_t n, std::size_t chunk,
                               const std::function<void(std::size_t, std::size_t)>& body) {
   if (n == 0) return;
-  if (chunk == 0) chunk = 1;
-  const std::size_t chunks = (n + chunk - 1) / chunk;
-  // Completion state shared by this call's chunks only.
-  struct Join {
-    std::mutex mutex;
-    std::condition_variable done;
-    std::size_t remaining;
-    std::exception_ptr error;
-  } join;
-  join.remaining = chunks;
+  auto job = std::make_shared<Job>();
+  job->body = &body;
+  job->n = n;
+  job->chunk = chunk == 0 ? 1 : chunk;
+  job->chunks = (n + job->chunk - 1) / job->chunk;
+  job->remaining = job->chunks;
   {
     std::lock_guard lock(mutex_);
-    for (std::size_t c = 0; c < chunks; ++c) {
-      const std::size_t begin = c * chunk, end = std::min(n, begin + chunk);
-      tasks_.emplace_back([&join, &body, begin, end] {
-        std::exception_ptr error;
-        try {
-          body(begin, end);
-        } catch (...) {
-          error = std::current_exception();
-        }
-        std::lock_guard lock(join.mutex);
-        if (error && !join.error) join.error = error;
-        if (--join.remaining == 0) join.done.notify_all();
-      });
-    }
+    jobs_.push_back(job);
   }
-  cv_.notify_all();
-  std::unique_lock lock(join.mutex);
-  join.done.wait(lock, [&] { return join.remaining == 0; });
-  if (join.error) std::rethrow_exception(join.error);
+  if (job->chunks == 1) cv_.notify_one();
+  else cv_.notify_all();
+  std::unique_lock lock(job->mutex);
+  job->done.wait(lock, [&] { return job->remaining == 0; });
+  if (job->error) std::rethrow_exception(job->error);
 }
 
 }  // namespace footpoint

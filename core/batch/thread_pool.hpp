@@ -1,10 +1,15 @@
-// A fixed pool of worker threads that runs the numerical work of every request. Batches are split
-// into chunks (tasks); the submitting thread waits for its own chunks only.
+// A fixed pool of worker threads that runs the numerical work of every request. Each call of
+// parallel_for is a job split into chunks; workers take one chunk at a time from the job at the front
+// of the queue and put the job back at the end, so concurrent jobs share the workers round-robin
+// (a single point is not stuck behind a 100,000-point batch that arrived first). The submitting
+// thread waits for its own job only.
 #pragma once
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
+#include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -19,7 +24,7 @@ class ThreadPool {
   ThreadPool& operator=(const ThreadPool&) = delete;
 
   unsigned size() const { return static_cast<unsigned>(workers_.size()); }
-  std::size_t queued() const;
+  std::size_t queued() const;  // jobs with chunks not yet started
 
   // Runs body(begin, end) over [0, n) in chunks of at most `chunk` items on the pool and returns
   // when all chunks are done. Exceptions thrown by body are rethrown here (the first one).
@@ -27,10 +32,11 @@ class ThreadPool {
                     const std::function<void(std::size_t, std::size_t)>& body);
 
  private:
+  struct Job;
   void worker_loop();
   mutable std::mutex mutex_;
   std::condition_variable cv_;
-  std::deque<std::function<void()>> tasks_;
+  std::deque<std::shared_ptr<Job>> jobs_;
   std::vector<std::thread> workers_;
   bool stopping_ = false;
 };
