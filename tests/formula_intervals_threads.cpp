@@ -81,3 +81,31 @@ TEST_CASE("many threads evaluating one compiled program get bit-identical result
     CHECK(std::memcmp(r.data(), reference.data(), r.size() * sizeof(double)) == 0);
   }
 }
+
+TEST_CASE("interval enclosures hold for huge integral exponents and where subexpressions are NaN") {
+  // Found by fuzzing: integral exponents above pow_int's old limit were treated as real powers
+  // (argument clipped to x >= 0), and NaN-producing points were ignored by comparisons.
+  struct Case {
+    const char* text;
+    double lo, hi, at, value;
+  } cases[] = {
+      {"(u-1)^2302", 0.0, 1.0, 0.0, 1.0},
+      {"9+u^-1261/-1", -1.0, -0.5, -1.0, 10.0},
+      {"0>=u^1.0241-24", -3.0, 3.0, -2.75, 0.0},
+      {"sign(sqrt(u))", -1.0, 1.0, -0.5, 0.0},
+      {"min(sqrt(u), 5)", -1.0, 1.0, -0.5, 5.0},
+      {"sqrt(u) ? 1 : 2", -1.0, 1.0, -0.5, 1.0},
+  };
+  for (const auto& c : cases) {
+    INFO(c.text);
+    const Program p = Program::compile({{"f", c.text}}, {"u"}, {});
+    double v;
+    p.values(&c.at, &v);
+    CHECK(v == c.value);
+    const Interval box{c.lo, c.hi};
+    Interval out;
+    p.intervals(&box, &out);
+    CHECK(out.lo <= v);
+    CHECK(v <= out.hi);
+  }
+}

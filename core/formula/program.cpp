@@ -200,20 +200,25 @@ struct IntervalArith {
   static T variable(const T* x, int i) { return x[i]; }
   static T hull(const T& a, const T& b) {
     if (bad(a) || bad(b)) return empty();
-    return {std::min(a.lo, b.lo), std::max(a.hi, b.hi)};
+    return {std::min(a.lo, b.lo), std::max(a.hi, b.hi), a.partial || b.partial};
   }
-  // f increasing on [dlo, dhi]: clip the argument to the domain, map the ends.
+  // f increasing on [dlo, dhi]: clip the argument to the domain, map the ends; a clipped argument
+  // means f is undefined (NaN) at some points of the box.
   template <class F>
   static T increasing(const T& a, F f, double dlo = -kInf, double dhi = kInf) {
     const double lo = std::max(a.lo, dlo), hi = std::min(a.hi, dhi);
     if (lo > hi) return empty();
-    return widen(f(lo), f(hi));
+    T r = widen(f(lo), f(hi));
+    r.partial = a.lo < dlo || a.hi > dhi;
+    return r;
   }
   template <class F>
   static T decreasing(const T& a, F f, double dlo = -kInf, double dhi = kInf) {
     const double lo = std::max(a.lo, dlo), hi = std::min(a.hi, dhi);
     if (lo > hi) return empty();
-    return widen(f(hi), f(lo));
+    T r = widen(f(hi), f(lo));
+    r.partial = a.lo < dlo || a.hi > dhi;
+    return r;
   }
   // f even, increasing in |x| (x^2k, cosh, abs).
   template <class F>
@@ -238,15 +243,25 @@ struct IntervalArith {
   static T mul(const T& a, const T& b) {
     const double p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
     double lo = kInf, hi = -kInf;
+    bool zero_times_inf = false;
     for (double x : p) {
-      if (std::isnan(x)) x = 0.0;  // 0 * inf: the bound of a product with an exact zero factor
+      if (std::isnan(x)) {  // 0 * inf: the bound of a product with an exact zero factor
+        x = 0.0;
+        zero_times_inf = true;
+      }
       lo = std::min(lo, x);
       hi = std::max(hi, x);
     }
-    return widen(lo, hi);
+    T r = widen(lo, hi);
+    r.partial = zero_times_inf;
+    return r;
   }
   static T div(const T& a, const T& b) {
-    if (b.lo <= 0.0 && b.hi >= 0.0) return {-kInf, kInf};
+    if (b.lo <= 0.0 && b.hi >= 0.0) {  // a/0 is infinite, 0/0 undefined
+      T r{-kInf, kInf};
+      r.partial = a.lo <= 0.0 && a.hi >= 0.0;
+      return r;
+    }
     return mul(a, widen(1.0 / b.hi, 1.0 / b.lo));
   }
   static T pow_int(const T& a, int k) {
@@ -254,7 +269,12 @@ struct IntervalArith {
     auto f = [k](double x) { return formula::pow_int(x, k); };
     return (k % 2 == 0) ? even(a, f) : increasing(a, f);
   }
-  [[gnu::always_inline]] static T unary(Op op, const T& a, double k) {
+  static T unary(Op op, const T& a, double k) {
+    T r = unary_defined(op, a, k);
+    r.partial = r.partial || a.partial;
+    return r;
+  }
+  static T unary_defined(Op op, const T& a, double k) {
     if (bad(a)) return empty();
     switch (op) {
       case Op::neg: return {-a.hi, -a.lo};
@@ -265,6 +285,11 @@ struct IntervalArith {
       case Op::rdiv_k: return div(constant(k), a);
       case Op::pow_int: return pow_int(a, static_cast<int>(k));
       case Op::pow_real:
+        if (k == std::floor(k)) {  // integral exponents beyond pow_int's range: the power rule's parity
+          auto f = [k](double x) { return std::pow(x, k); };
+          if (k < 0) return div(constant(1.0), unary(Op::pow_real, a, -k));
+          return std::fmod(k, 2.0) == 0.0 ? even(a, f) : increasing(a, f);
+        }
         if (k > 0) return increasing(a, [k](double x) { return std::pow(x, k); }, 0.0);
         return decreasing(a, [k](double x) { return std::pow(x, k); }, 0.0);
       case Op::sqrt: return increasing(a, [](double x) { return std::sqrt(x); }, 0.0);
@@ -293,7 +318,9 @@ struct IntervalArith {
       case Op::acosh: return increasing(a, [](double x) { return std::acosh(x); }, 1.0);
       case Op::atanh: return increasing(a, [](double x) { return std::atanh(x); }, -1.0, 1.0);
       case Op::abs: return even(a, [](double x) { return std::fabs(x); });
-      case Op::sign: return {sign_of(a.lo), sign_of(a.hi)};
+      case Op::sign:  // sign(NaN) is 0
+        return {a.partial ? std::min(0.0, sign_of(a.lo)) : sign_of(a.lo),
+                a.partial ? std::max(0.0, sign_of(a.hi)) : sign_of(a.hi), a.partial};
       default: return empty();
     }
   }
@@ -302,8 +329,18 @@ struct IntervalArith {
   static T truth(bool surely_true, bool surely_false) {
     return surely_true ? T{1.0, 1.0} : (surely_false ? T{0.0, 0.0} : T{0.0, 1.0});
   }
-  [[gnu::always_inline]] static T binary(Op op, const T& a, const T& b) {
+  // Where an operand is NaN, comparisons and logic give 0 or 1 (NaN compares false and is
+  // "nonzero"), min/max give either operand: the result's range must cover those values too.
+  static T binary(Op op, const T& a, const T& b) {
     if (bad(a) || bad(b)) return empty();
+    T r = binary_defined(op, a, b);
+    if (!(a.partial || b.partial)) return r;
+    if (is_comparison(op)) return {0.0, 1.0, false};
+    if (op == Op::min || op == Op::max) r = hull(r, hull(a, b));
+    r.partial = true;
+    return r;
+  }
+  static T binary_defined(Op op, const T& a, const T& b) {
     switch (op) {
       case Op::add: return widen(a.lo + b.lo, a.hi + b.hi);
       case Op::sub: return widen(a.lo - b.hi, a.hi - b.lo);
@@ -324,9 +361,9 @@ struct IntervalArith {
       default: return empty();
     }
   }
-  static T select(const T& c, const T& a, const T& b) {
+  static T select(const T& c, const T& a, const T& b) {  // c ? a : b, and NaN ? a : b is a
     if (surely_nonzero(c)) return a;
-    if (surely_zero(c)) return b;
+    if (surely_zero(c) && !c.partial) return b;
     return hull(a, b);
   }
 };

@@ -137,7 +137,8 @@ class TapeBuilder {
       const double k = value(b);
       if (k == 1.0) return a;
       if (k == 0.0) return constant(1.0);
-      if (k == std::floor(k) && std::fabs(k) <= 1024.0) return unary(Op::pow_int, a, k);
+      // Any integral exponent uses the power rule (binary powering: O(log k) products).
+      if (k == std::floor(k) && std::fabs(k) <= 1073741824.0) return unary(Op::pow_int, a, k);
       return unary(Op::pow_real, a, k);
     }
     return unary(Op::exp, binary(Op::mul, b, unary(Op::ln, a)));
