@@ -143,6 +143,12 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     std::size_t length = 0;
     if (has_length && !parse_length(req.get_header_value("Content-Length"), length))
       return reject(res, ApiError(400, "bad_request", "invalid Content-Length"), true);
+    // Several Content-Length headers that disagree make the body's end ambiguous (request smuggling).
+    for (std::size_t i = 1; has_length && i < req.get_header_value_count("Content-Length"); ++i) {
+      std::size_t other = 0;
+      if (!parse_length(req.get_header_value("Content-Length", i), other) || other != length)
+        return reject(res, ApiError(400, "bad_request", "conflicting Content-Length headers"), true);
+    }
     const bool has_body = chunked || length > 0;
 
     if (api_.shutting_down())
