@@ -4,6 +4,7 @@
 // jets, or intervals. A Program is immutable after compile() and safe to evaluate from many
 // threads at once without locks (scratch space is thread-local).
 #pragma once
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -36,6 +37,8 @@ struct NamedFormula {
 struct CompileLimits {
   std::size_t max_formula_length = 4096;  // characters per formula
   std::size_t max_nodes = 20000;          // tape length over all formulas
+  // When compiling the whole geometry (with what `auto` precomputes) must be done.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
 };
 
 class Program {

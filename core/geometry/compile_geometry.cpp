@@ -1,9 +1,11 @@
+#include "geometry/compile_budget.hpp"
 #include "geometry/geometry.hpp"
 
 namespace footpoint {
 
 std::shared_ptr<const CompiledGeometry> compile_geometry(const GeometryDefinition& def,
                                                          const formula::CompileLimits& limits) {
+  const CompileBudget budget(limits.deadline);
   switch (def.type) {
     case GeometryType::parametric_surface: return compile_parametric_surface(def, limits);
     case GeometryType::parametric_curve: return compile_parametric_curve(def, limits);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "geometry/compile_budget.hpp"
 #include "geometry/implicit_curve.hpp"
 #include "seeding/curve_enclosure.hpp"
 #include "seeding/curve_tracing.hpp"
@@ -54,6 +55,7 @@ class Discovery {
   // A cell of `grid` (the enclosure's grid or a finer one): seed it unless samples already pass
   // through it; bisect it when its seed fails.
   void examine(const CellGrid& grid, const CellIndex& c, int extra) {
+    CompileBudget::check();
     const Box3 cell = grid.cell(c);
     if (extra == 0 && occupancy_->occupied(c)) return;
     if (extra > 0 && occupancy_->near(samples().points, cell.center(), 0.5 * grid_.max_edge())) return;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/compile_budget.hpp"
+
 namespace footpoint {
 
 Box3 CellGrid::cell(const CellIndex& c) const {
@@ -66,6 +68,7 @@ void refine_cell(const ImplicitEquations& equations, const CellGrid& grid, const
     }
     if (!valid) continue;
     ++tests;
+    CompileBudget::check();
     if (equations.may_vanish(fine.cell(c))) children.push_back(c);
   }
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "geometry/compile_budget.hpp"
 #include "geometry/parametric_curve.hpp"
 
 namespace footpoint {
@@ -46,6 +47,7 @@ CurveSamples sample_parametric_curve(const CurveFormulas& formulas, const ParamI
   for (int i = 0; i < n0; ++i) {
     stack.push_back({coarse[static_cast<std::size_t>(i)], coarse[static_cast<std::size_t>(i) + 1]});
     while (!stack.empty()) {
+      CompileBudget::check();
       auto [a, b] = stack.back();
       stack.pop_back();
       const double tm = 0.5 * (a.t + b.t);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "geometry/compile_budget.hpp"
 #include "solvers/curve/curve_correction.hpp"
 #include "solvers/curve/implicit_curve_differentials.hpp"
 #include "solvers/curve/singular_point.hpp"
@@ -76,6 +77,7 @@ TraceOutcome trace_curve(const ImplicitEquations& equations, const Box3& box, Ve
   const double same_point = 1e-9 * std::max(1.0, norm(start));
   double largest_tangent = norm(equations.jet(start).tangent());
   while (out.points.size() < settings.max_points) {
+    CompileBudget::check();
     if (h < settings.min_step) {
       // Stalled: most likely at a singular point (T -> 0 makes the corrector fail).
       Vec3 s = x;
