@@ -227,7 +227,8 @@ GeometryCache::Lookup Api::compile(const GeometryDefinition& def, const std::str
   try {
     formula::CompileLimits limits;
     limits.max_formula_length = config_.max_formula_length;
-    limits.deadline = std::chrono::steady_clock::now() + config_.deadline;
+    limits.deadline = std::chrono::steady_clock::now() +
+                      (config_.compile_deadline.count() > 0 ? config_.compile_deadline : config_.deadline);
     auto lookup = cache_.get_or_compile(def, limits);
     if (lookup.compiled) metrics_.observe_compile(lookup.compile_time.count());
     return lookup;

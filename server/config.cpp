@@ -75,6 +75,12 @@ const std::vector<Setting>& settings() {
          c.deadline = std::chrono::milliseconds(parse_integer<long>(n, v, 1, 86400000));
        },
        [](const ServerConfig& c) { return std::to_string(c.deadline.count()); }},
+      {"compile-deadline-ms", "FOOTPOINT_COMPILE_DEADLINE_MS",
+       "time a geometry's compilation may take in milliseconds (0 = the request deadline)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.compile_deadline = std::chrono::milliseconds(parse_integer<long>(n, v, 0, 86400000));
+       },
+       [](const ServerConfig& c) { return std::to_string(c.compile_deadline.count()); }},
       {"cache-entries", "FOOTPOINT_CACHE_ENTRIES", "compiled geometries kept (LRU)",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
          c.cache_entries = parse_integer<std::size_t>(n, v, 1, std::size_t{1} << 24);

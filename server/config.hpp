@@ -41,6 +41,9 @@ struct ServerConfig {
   // --deadline-ms / FOOTPOINT_DEADLINE_MS: per-request deadline; points not started by then
   // get the status deadline_exceeded.
   std::chrono::milliseconds deadline{30000};
+  // --compile-deadline-ms / FOOTPOINT_COMPILE_DEADLINE_MS: how long compiling a geometry (with what
+  // `auto` precomputes) may take before the request gets 422 compile_timeout; 0 = the request deadline.
+  std::chrono::milliseconds compile_deadline{0};
   // --cache-entries / FOOTPOINT_CACHE_ENTRIES: compiled geometries kept (LRU).
   std::size_t cache_entries = 1024;
   // --cache-bytes / FOOTPOINT_CACHE_BYTES: memory the kept geometries may hold (LRU): 256 MiB.
