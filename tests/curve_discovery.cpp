@@ -130,3 +130,55 @@ TEST_CASE("discovery: no curve in the box") {
     CHECK(e.code == "empty_curve");
   }
 }
+
+// A curve too intricate for its box (a reliability finding): f = sum_{k=1..119} sin(k x + (k mod 7) y)
+// over [-300, 300]^2 has a piece through nearly every point of the plane (wavelengths down to
+// 2 pi / 119). Discovery must not answer a far curve point as the nearest: either `auto` finds a
+// point at least as near as a curve point proved to exist by a sign change of f, or compiling
+// says the box is too large (geometry_too_complex, HTTP 422).
+TEST_CASE("discovery: a curve too intricate for its box is refused, never answered wrongly") {
+  std::string f;
+  for (int k = 1; k < 120; ++k) {
+    if (k > 1) f += '+';
+    f += "sin(" + std::to_string(k) + "*x+" + std::to_string(k % 7) + "*y)";
+  }
+  GeometryDefinition def;
+  def.type = GeometryType::implicit_curve;
+  def.formulas = {{"equations[0]", f}};
+  def.domain = {{"x", {-300.0, 300.0}}, {"y", {-300.0, 300.0}}};
+  const double p[2] = {1.0, 2.0};
+
+  // f changes sign between (1, 2) and (1.0019, 2): bisection to rounding gives a curve point at
+  // distance `bound` from p, so the nearest curve point is at most that far.
+  auto value = [&](double x) {
+    double s = 0.0;
+    for (int k = 1; k < 120; ++k) s += std::sin(k * x + (k % 7) * 2.0);
+    return s;
+  };
+  double a = 1.0, b = 1.0019;
+  REQUIRE(value(a) * value(b) < 0.0);
+  for (int i = 0; i < 200 && b - a > 1e-15; ++i) {
+    const double m = 0.5 * (a + b);
+    (value(a) * value(m) <= 0.0 ? b : a) = m;
+  }
+  const double bound = b - 1.0;
+  CHECK(bound < 1e-3);
+
+  // In a small box the same curve is resolved (cells bisected until f is nearly flat across each):
+  // `auto` finds a point at least as near as that one.
+  def.domain = {{"x", {0.9, 1.1}}, {"y", {1.9, 2.1}}};
+  const ProjectionResult small = compile_implicit_curve(def, {})->project(p, "auto", {});
+  CHECK(small.distance <= bound * (1.0 + 1e-9));
+
+  def.domain = {{"x", {-300.0, 300.0}}, {"y", {-300.0, 300.0}}};
+  std::shared_ptr<const CompiledGeometry> g;
+  try {
+    g = compile_implicit_curve(def, {});
+  } catch (const GeometryError& e) {
+    CHECK(e.code == "geometry_too_complex");
+    CHECK(e.field == "domain");
+    return;
+  }
+  const ProjectionResult r = g->project(p, "auto", {});
+  CHECK(r.distance <= bound * (1.0 + 1e-9));
+}

@@ -20,6 +20,19 @@ constexpr int kExtraLevels = 4;
 // The walk's largest step is this fraction of the enclosure's cell edge: every cell the curve
 // crosses for more than a step holds a sample.
 constexpr double kStepPerCell = 0.5;
+// Certification of the kept cells (after tracing). A cell is trusted when, by the jets at its
+// centre c, each surface f_i = 0 is nearly flat across it: |H_i(c)|_F * diam <= kBend * |grad f_i(c)|
+// * sin(angle(grad f1, grad f2)), i.e. the gradients turn by at most ~kBend rad over the cell and
+// the curve inside it is one nearly straight arc (for planar curves f2 = z is flat and the sine is 1).
+// Cells that fail are bisected (with the interval exclusion) at most kCertifyLevels times; the
+// pieces in the certified sub-cells that no walk passed near are seeded and traced. This is a
+// second-order test at one point, not an interval proof: formula::Program offers interval values
+// only, no interval gradients, so monotonicity cannot be proved rigorously here.
+constexpr double kBend = 0.5;
+constexpr int kCertifyLevels = 6;
+constexpr double kModelMargin = 4.0;
+// Jets evaluated for certification before the curve is declared too intricate for its box.
+constexpr std::size_t kCertifyBudget = 100000;
 
 class Discovery {
  public:
@@ -38,6 +51,7 @@ class Discovery {
     occupancy_ = std::make_unique<SampleGrid>(grid_);
 
     for (const CellIndex& c : enclosure.cells) examine(grid_, c, 0);
+    for (const CellIndex& c : enclosure.cells) certify(grid_, c, 0, near_singular_point(grid_.cell(c)));
     finish();
     out_.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return std::move(out_);
@@ -59,6 +73,9 @@ class Discovery {
     const Box3 cell = grid.cell(c);
     if (extra == 0 && occupancy_->occupied(c)) return;
     if (extra > 0 && occupancy_->near(samples().points, cell.center(), 0.5 * grid_.max_edge())) return;
+    bool empty = false;
+    nearly_flat(cell, empty);
+    if (empty) return;  // the second-order model keeps f1 or f2 away from 0 (see nearly_flat)
     Vec3 x = cell.center();
     const double reach = cell.diagonal();
     if (curve::newton_onto_curve(eq_, x) && norm(x - cell.center()) <= reach &&
@@ -74,6 +91,81 @@ class Discovery {
     refine_cell(eq_, grid, c, children, out_.stats.interval_tests);
     const CellGrid fine = grid.refined();
     for (const CellIndex& child : children) examine(fine, child, extra + 1);
+  }
+
+  // Singular points are the one place where grad f1 x grad f2 = 0 on the curve, so no cell around
+  // them can pass the flatness test at any size. An enclosure cell holding a singular point found
+  // by discovery (with a margin of one cell edge) is accepted as is: the point was refined and
+  // added explicitly, and the branches through it were traced to it (walks stop there) or seeded
+  // from the neighbouring cells.
+  bool near_singular_point(const Box3& cell) const {
+    const double margin = grid_.max_edge();
+    for (std::int32_t i : singular_)
+      if (cell.contains(out_.samples.points[static_cast<std::size_t>(i)], margin)) return true;
+    return false;
+  }
+
+  // The flatness test above, at the cell's centre. `empty` is set when the same second-order model
+  // keeps f_i away from 0 over the cell with a wide margin, |f_i(c)| > kModelMargin * (|grad f_i| r +
+  // |H_i|_F r^2 / 2), r = diam / 2 (Taylor to second order): interval ranges of long sums
+  // overestimate so much that cells next to a near-zero extremum of f are never excluded otherwise.
+  bool nearly_flat(const Box3& cell, bool& empty) const {
+    const ImplicitJet j = eq_.jet(cell.center());
+    const double r = 0.5 * cell.diagonal();
+    empty = false;
+    for (int i = 0; i < 2; ++i) {
+      double h2 = 0.0;
+      for (const Vec3& row : j.hess[i]) h2 += norm2(row);
+      if (std::fabs(j.f[i]) > kModelMargin * (norm(j.grad[i]) * r + 0.5 * std::sqrt(h2) * r * r)) empty = true;
+    }
+    if (empty) return false;
+    const double g0 = norm(j.grad[0]), g1 = norm(j.grad[1]);
+    if (!(g0 > 0.0 && g1 > 0.0)) return false;
+    const double sine = norm(j.tangent()) / (g0 * g1);
+    const double diameter = cell.diagonal();
+    for (int i = 0; i < 2; ++i) {
+      double h2 = 0.0;
+      for (const Vec3& row : j.hess[i]) h2 += norm2(row);
+      if (!(std::sqrt(h2) * diameter <= kBend * norm(j.grad[i]) * sine)) return false;
+    }
+    return true;
+  }
+
+  // Certifies a kept cell of `grid` (`level` bisections below the enclosure), bisecting it while
+  // it fails; certified sub-cells are examined (seeded when no walk passed near). Throws
+  // geometry_too_complex when a cell stays uncertified at the finest level or the budget is spent.
+  void certify(const CellGrid& grid, const CellIndex& c, int level, bool singular_nearby) {
+    CompileBudget::check();
+    const Box3 cell = grid.cell(c);
+    if (++out_.stats.certification_tests > kCertifyBudget) too_complex();
+    bool empty = false;
+    if (nearly_flat(cell, empty)) {
+      if (level > 0) seed_flat_cell(cell);
+      return;
+    }
+    if (empty) return;
+    if (singular_nearby) return;
+    if (level >= kCertifyLevels) too_complex();
+    std::vector<CellIndex> children;
+    refine_cell(eq_, grid, c, children, out_.stats.interval_tests);
+    const CellGrid fine = grid.refined();
+    for (const CellIndex& child : children) certify(fine, child, level + 1, false);
+  }
+
+  // A certified sub-cell: the linear model of f1, f2 is good across it, so Newton from its centre
+  // finds the arc inside it when there is one; a cell where it fails holds none.
+  void seed_flat_cell(const Box3& cell) {
+    if (occupancy_->near(samples().points, cell.center(), 0.5 * grid_.max_edge())) return;
+    Vec3 x = cell.center();
+    if (curve::newton_onto_curve(eq_, x) && norm(x - cell.center()) <= cell.diagonal() &&
+        box_.contains(x, 1e-12 * std::max(1.0, norm(x))) && !occupancy_->near(samples().points, x, 0.5 * settings_.max_step))
+      seed(x);
+  }
+
+  [[noreturn]] void too_complex() const {
+    throw GeometryError("geometry_too_complex", "domain", -1,
+                        "the curve is too intricate to resolve in this box (its pieces bend or crowd within "
+                        "cells the subdivision budget cannot split further); shrink the box");
   }
 
   void add_singular_point(Vec3 s) {

@@ -6,7 +6,10 @@
 //  3. tracing: from each seed not already covered, the curve is followed in both directions with
 //     a predictor-corrector walk of bounded step and turning angle, until it closes, leaves the box
 //     (the exact face crossing is added) or reaches a singular point (refined and added);
-//  4. coverage: cells holding no sample are examined again, subdivided when their seed fails.
+//  4. coverage: cells holding no sample are examined again, subdivided when their seed fails;
+//  5. certification: each kept cell must be small enough that f1 = 0 and f2 = 0 are nearly flat
+//     across it (one nearly straight arc per cell), else it is bisected and its sub-cells seeded;
+//     past the budget, GeometryError "geometry_too_complex".
 // The result is the linked samples of curve_samples.hpp with their spacing h.
 #pragma once
 #include <cstddef>
@@ -25,6 +28,7 @@ struct DiscoveryStats {
   int traces = 0;                  // traced pieces (one or more per connected component)
   int face_crossings = 0;
   int singular_points = 0;
+  std::size_t certification_tests = 0;  // jets evaluated to certify kept cells as nearly flat
   int unresolved_cells = 0;        // cells kept by the enclosure where no curve point was found
   bool enclosure_truncated = false;  // the enclosure stopped at its cell budget (coarser cells)
   double seconds = 0.0;
