@@ -1,17 +1,38 @@
-// Surface projection timings (single thread unless stated), medians over points and runs:
-//  1. `auto` per point on S1, S2, S3 (shared/peers/surfaces.txt): box points uniform in the box
-//     centred on the surface's bounding box with twice its extent, and points within 1% of it;
+// Surface projection timings, single thread unless stated. Per point: the thread's CPU time
+// (the machine is shared: wall time would include descheduling), less the timer's own overhead,
+// median over the runs; over points: median, mean, 90th and 99th percentile of those; and the
+// batch mean: one timer around all the points, the mean per point (median over the runs).
+//  1. `auto` on S1, S2, S3 (shared/peers/surfaces.txt) and on the GSA paper's Example 1 surface
+//     over [-25,25]^2 (8 periods each way: it covers itself ~16 times): box points uniform in the
+//     box centred on the surface's bounding box with twice its extent, and points within 1% of it;
+//     the slowest 5% of the points, described (local solves, distance, where the answer lies);
 //  2. `newton` and `gsa` per point from a given start (the auto answer's parameters moved by 1% of
 //     the domain) on the near points;
 //  3. the papers' methods and `auto` side by side from the papers' starting values;
-//  4. project_batch over the thread pool, 100,000 points, 2 threads against 1.
-// Usage: surface_bench [points per set, default 2000] [runs, default 5]
+//  4. project_batch over the thread pool, 100,000 points, 2 threads against 1 (wall time).
+// The load average (/proc/loadavg) is printed with every section.
+//
+// Usage: surface_bench [points per set, default 2000] [runs, default 5] [--sections 1234]
+//        surface_bench --peer DIR [--reps R] [KEY ...]
+// --peer: the Open CASCADE peer's point sets (shared/peers/README.md; DIR is the peer's copy, with
+// surfaces.txt and build/data/points_<KEY>.txt, KEY in S1 S2 S3 S1n S2n S3n by default), projected
+// by `auto`; writes build/data/res_footpoint-auto_<KEY>.txt in the peer's format
+// (idx ok time_ns d u v wall_ns; time_ns the median over R runs, default 5, of the thread CPU
+// time) and batch_footpoint-auto_<KEY>.txt (mean per point of a timed pass over all points:
+// median min max over the runs), for the peer's py/summarize.py.
+#include <time.h>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
 #include <random>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,60 +47,113 @@ using Clock = std::chrono::steady_clock;
 namespace {
 
 struct SurfaceSpec {
-  const char* name;
-  const char *x, *y, *z;
+  std::string name;
+  std::string x, y, z;
   std::array<double, 2> u, v;
 };
+
+const char* const kS3x = "u^6+u^5*v+v^6-u^2*v^3+u*v^4-v^5+u^4+u^3*v+v^4+u^3-u*v^2+v^3+u*v+v^2+1";
+const char* const kS3y = "u^6+2*u^4*v^2-v^6+u^5+u^2*v^3+v^5+u^4-u*v^3+u^3-2*u*v^2+v^3+4*u*v+2*v^2+2*u+2*v+1";
+const char* const kS3z = "u^6+u*v^5+u^4*v+u^2*v^3+u^3*v+2*u^2*v^2+v^4+u^3+2*u*v+u";
 
 const SurfaceSpec kSurfaces[] = {
     {"S1", "u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-3, 3}, {-3, 3}},
     {"S2", "u^4*v^3+u*v+u", "u^3+v^3", "u+v", {-2, 2}, {-2, 2}},
-    {"S3", "u^6+u^5*v+v^6-u^2*v^3+u*v^4-v^5+u^4+u^3*v+v^4+u^3-u*v^2+v^3+u*v+v^2+1",
-     "u^6+2*u^4*v^2-v^6+u^5+u^2*v^3+v^5+u^4-u*v^3+u^3-2*u*v^2+v^3+4*u*v+2*v^2+2*u+2*v+1",
-     "u^6+u*v^5+u^4*v+u^2*v^3+u^3*v+2*u^2*v^2+v^4+u^3+2*u*v+u", {0, 2}, {0, 2}},
+    {"S3", kS3x, kS3y, kS3z, {0, 2}, {0, 2}},
+    {"A1", "u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-25, 25}, {-25, 25}},
 };
 
-std::shared_ptr<const ParametricSurface> compile(const char* x, const char* y, const char* z, std::array<double, 2> u,
-                                                 std::array<double, 2> v) {
+std::shared_ptr<const ParametricSurface> compile(const SurfaceSpec& s) {
   GeometryDefinition def;
   def.type = GeometryType::parametric_surface;
-  def.formulas = {{"x", x}, {"y", y}, {"z", z}};
-  def.domain = {{"u", u}, {"v", v}};
+  def.formulas = {{"x", s.x}, {"y", s.y}, {"z", s.z}};
+  def.domain = {{"u", s.u}, {"v", s.v}};
   return std::dynamic_pointer_cast<const ParametricSurface>(compile_parametric_surface(def, {}));
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-  return v[v.size() / 2];
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string a, b, c;
+  in >> a >> b >> c;
+  return "load average " + a + " " + b + " " + c;
 }
 
-// Per-point times (ns) of `method` over the points, `runs` times; returns the median per point
-// (of each point's median over runs) and fills the mean.
-double time_points(const ParametricSurface& g, const std::vector<Vec3>& points, const char* method,
-                   const std::vector<Options>& options, int runs, double* mean_ns) {
-  std::vector<std::vector<double>> per_point(points.size());
-  double total = 0.0;
-  for (int r = 0; r < runs; ++r) {
+double cpu_ns() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e9 + static_cast<double>(ts.tv_nsec);
+}
+
+// Median back-to-back delta of the CPU clock, subtracted from every per-point time.
+double timer_overhead() {
+  std::vector<double> d;
+  for (int i = 0; i < 2001; ++i) {
+    const double a = cpu_ns(), b = cpu_ns();
+    d.push_back(b - a);
+  }
+  std::nth_element(d.begin(), d.begin() + 1000, d.end());
+  return d[1000];
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+  return v[k];
+}
+double median(std::vector<double> v) { return percentile(std::move(v), 0.5); }
+double mean(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
+struct Timed {
+  std::vector<double> ns;                 // per point: median over runs of the CPU time
+  std::vector<double> wall_ns;            // the same, wall time
+  std::vector<ProjectionResult> results;  // of the last run
+  double batch_ns = 0.0;                  // one timer around all points: mean per point, median over runs
+};
+
+Timed time_points(const ParametricSurface& g, const std::vector<Vec3>& points, const char* method,
+                  const std::vector<Options>& options, int runs, double overhead) {
+  std::vector<std::vector<double>> cpu(points.size()), wall(points.size());
+  Timed t;
+  t.results.resize(points.size());
+  for (int r = 0; r < runs; ++r)
     for (std::size_t i = 0; i < points.size(); ++i) {
       const double p[3] = {points[i].x, points[i].y, points[i].z};
-      const auto t0 = Clock::now();
-      const ProjectionResult res = g.project(p, method, options.empty() ? Options{} : options[i]);
-      const auto t1 = Clock::now();
-      const double ns = std::chrono::duration<double, std::nano>(t1 - t0).count();
-      per_point[i].push_back(ns);
-      total += ns;
-      if (res.distance < 0) std::abort();  // keeps the call
+      const auto w0 = Clock::now();
+      const double c0 = cpu_ns();
+      t.results[i] = g.project(p, method, options.empty() ? Options{} : options[i]);
+      const double c1 = cpu_ns();
+      const auto w1 = Clock::now();
+      cpu[i].push_back(std::max(0.0, c1 - c0 - overhead));
+      wall[i].push_back(std::chrono::duration<double, std::nano>(w1 - w0).count());
     }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    t.ns.push_back(median(cpu[i]));
+    t.wall_ns.push_back(median(wall[i]));
   }
-  std::vector<double> medians;
-  for (auto& v : per_point) medians.push_back(median(v));
-  *mean_ns = total / (static_cast<double>(runs) * static_cast<double>(points.size()));
-  return median(medians);
+  // the mean without the per-point timer's noise (a syscall of a few hundred ns here)
+  std::vector<double> batch;
+  for (int r = 0; r < runs; ++r) {
+    double sink = 0.0;
+    const double c0 = cpu_ns();
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double p[3] = {points[i].x, points[i].y, points[i].z};
+      sink += g.project(p, method, options.empty() ? Options{} : options[i]).distance;
+    }
+    batch.push_back((cpu_ns() - c0) / static_cast<double>(points.size()));
+    if (sink == -1.0) std::printf(" ");
+  }
+  t.batch_ns = median(batch);
+  return t;
 }
 
 struct PointSets {
   std::vector<Vec3> box, near;
+  double size = 0.0;  // diagonal of the surface's bounding box
 };
 
 PointSets make_points(const ParametricSurface& g, int n, unsigned seed) {
@@ -98,14 +172,46 @@ PointSets make_points(const ParametricSurface& g, int n, unsigned seed) {
     for (int k = 0; k < 3; ++k) p[k] = lo[k] + (hi[k] - lo[k]) * (2.0 * U(rng) - 0.5);
     ps.box.push_back(p);
   }
-  const double size = norm(hi - lo);
+  ps.size = norm(hi - lo);
   std::normal_distribution<double> N(0.0, 1.0);
   for (int i = 0; i < n / 2; ++i) {
     const Vec3 s = g.formulas().point(b.umin + (b.umax - b.umin) * U(rng), b.vmin + (b.vmax - b.vmin) * U(rng));
     Vec3 d{N(rng), N(rng), N(rng)};
-    ps.near.push_back(s + d * (0.01 * size * U(rng) / norm(d)));
+    ps.near.push_back(s + d * (0.01 * ps.size * U(rng) / norm(d)));
   }
   return ps;
+}
+
+void print_row(const char* label, const Timed& t) {
+  std::printf("   %-28s %7.2f %7.2f %7.2f %7.2f %7.2f µs", label, median(t.ns) / 1e3, mean(t.ns) / 1e3,
+              t.batch_ns / 1e3, percentile(t.ns, 0.9) / 1e3, percentile(t.ns, 0.99) / 1e3);
+}
+
+// The slowest 5% of the points: how many local solves they started, how far they are (relative
+// to the surface's size) and where their answers lie, against the other 95%.
+void print_tail(const char* label, const Timed& t, double size) {
+  const double cut = percentile(t.ns, 0.95);
+  struct Acc {
+    int n = 0;
+    double starts = 0, dist = 0;
+    int where[3] = {0, 0, 0};
+  } slow, rest;
+  for (std::size_t i = 0; i < t.ns.size(); ++i) {
+    Acc& a = t.ns[i] >= cut ? slow : rest;
+    const ProjectionResult& r = t.results[i];
+    ++a.n;
+    a.starts += r.summary.starts;
+    a.dist += r.distance / size;
+    a.where[r.summary.location == Location::corner ? 2 : (r.summary.location == Location::edge ? 1 : 0)]++;
+  }
+  auto show = [](const char* name, const Acc& a) {
+    std::printf("%s %5.1f starts, d/size %.2f, interior/edge/corner %3.0f/%3.0f/%3.0f%%", name, a.starts / a.n,
+                a.dist / a.n, 100.0 * a.where[0] / a.n, 100.0 * a.where[1] / a.n, 100.0 * a.where[2] / a.n);
+  };
+  std::printf("     %-26s", label);
+  show("slowest 5%:", slow);
+  show(" | rest:", rest);
+  std::printf("\n");
 }
 
 struct PaperCase {
@@ -120,7 +226,7 @@ const PaperCase kPaperCases[] = {
     {"A ex1 (1,2)", "u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-25, 25}, {-25, 25}, {1, 2, 2}, {1, 2}},
     {"A ex2 (2,-2)", "u^4*v^3+u*v+u", "u^3+v^3", "u+v", {-5, 5}, {-5, 5}, {3, 4, 5}, {2, -2}},
     {"B ex1 (1,-2)", "u+2*v", "cos(u+v)", "sin(u+v)", {-2, 2}, {-2, 2}, {0.3, 0.5, 1}, {1, -2}},
-    {"B ex2 (1,1)", kSurfaces[2].x, kSurfaces[2].y, kSurfaces[2].z, {0, 2}, {0, 2}, {15, 20, 25}, {1, 1}},
+    {"B ex2 (1,1)", kS3x, kS3y, kS3z, {0, 2}, {0, 2}, {15, 20, 25}, {1, 1}},
     {"B C1 (1,1)", "u", "v", "1+u^2+v^2", {-2, 2}, {-2, 2}, {0, 0, 0}, {1, 1}},
     {"B C2 (1,1)", "u", "v", "sin(u+v)", {0, 2}, {0, 2}, {3, 4, 5}, {1, 1}},
     {"B C3 (1,1)", "u", "v", "cos(u+v)", {0, 2}, {0, 2}, {4, 5, 6}, {1, 1}},
@@ -128,32 +234,30 @@ const PaperCase kPaperCases[] = {
     {"B C5 (1,1)", "u", "v", "cos(u^2+v^2)", {0, 2}, {0, 2}, {4, 5, 6}, {1, 1}},
 };
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const int n = argc > 1 ? std::atoi(argv[1]) : 2000;
-  const int runs = argc > 2 ? std::atoi(argv[2]) : 5;
-  std::printf("surface_bench: %d box points + %d near points per surface, %d runs, single thread\n\n", n, n / 2, runs);
-
-  std::printf("1. auto (global), per point        median    mean    cells  compile\n");
-  std::vector<std::shared_ptr<const ParametricSurface>> surfaces;
-  std::vector<PointSets> sets;
-  for (const SurfaceSpec& s : kSurfaces) {
-    const auto t0 = Clock::now();
-    auto g = compile(s.x, s.y, s.z, s.u, s.v);
-    const double compile_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-    surfaces.push_back(g);
-    sets.push_back(make_points(*g, n, 12345));
-    double mean_box, mean_near;
-    const double box = time_points(*g, sets.back().box, "auto", {}, runs, &mean_box);
-    const double near = time_points(*g, sets.back().near, "auto", {}, runs, &mean_near);
-    std::printf("   %s box  (2x bounding box)      %7.2f µs %6.2f µs  %5zu  %6.1f ms\n", s.name, box / 1e3,
-                mean_box / 1e3, g->cells().cells().size(), compile_ms);
-    std::printf("   %s near (within 1%%)            %7.2f µs %6.2f µs\n", s.name, near / 1e3, mean_near / 1e3);
-  }
-
-  std::printf("\n2. from a given start (auto's answer + 1%% of the domain), near points\n");
+void section_auto(const std::vector<std::shared_ptr<const ParametricSurface>>& surfaces,
+                  const std::vector<PointSets>& sets, const std::vector<double>& compile_ms, int runs,
+                  double overhead) {
+  std::printf("1. auto (global), CPU time per point     median    mean   batch     p90     p99"
+              "    cells  memory  compile\n");
+  std::vector<std::string> tails;
   for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    const ParametricSurface& g = *surfaces[k];
+    const std::string name = kSurfaces[k].name;
+    const Timed box = time_points(g, sets[k].box, "auto", {}, runs, overhead);
+    const Timed near = time_points(g, sets[k].near, "auto", {}, runs, overhead);
+    print_row((name + " box  (2x bounding box)").c_str(), box);
+    std::printf("  %6zu %5zu KB %5.1f ms\n", g.cells().cells().size(), g.memory_bytes() / 1024, compile_ms[k]);
+    print_row((name + " near (within 1%)").c_str(), near);
+    std::printf("\n");
+    print_tail((name + " box").c_str(), box, sets[k].size);
+    print_tail((name + " near").c_str(), near, sets[k].size);
+  }
+}
+
+void section_from_start(const std::vector<std::shared_ptr<const ParametricSurface>>& surfaces,
+                        const std::vector<PointSets>& sets, int runs, double overhead) {
+  std::printf("2. from a given start (auto's answer + 1%% of the domain), near points, CPU time\n");
+  for (std::size_t k = 0; k < 3; ++k) {  // S1, S2, S3
     const ParametricSurface& g = *surfaces[k];
     const ParamBox& b = g.domain();
     std::vector<Options> starts;
@@ -165,66 +269,228 @@ int main(int argc, char** argv) {
       starts.push_back(o);
     }
     for (const char* m : {"newton", "gsa"}) {
-      double mean;
-      const double med = time_points(g, sets[k].near, m, starts, runs, &mean);
-      std::printf("   %s %-7s median %6.2f µs  mean %6.2f µs\n", kSurfaces[k].name, m, med / 1e3, mean / 1e3);
+      const Timed t = time_points(g, sets[k].near, m, starts, runs, overhead);
+      std::vector<double> its;
+      for (const ProjectionResult& r : t.results) its.push_back(r.summary.iterations);
+      std::printf("   %s %-7s median %6.2f µs  mean %6.2f µs  batch mean %6.2f µs  iterations median %2.0f mean %5.1f\n",
+                  kSurfaces[k].name.c_str(), m, median(t.ns) / 1e3, mean(t.ns) / 1e3, t.batch_ns / 1e3, median(its),
+                  mean(its));
     }
   }
+}
 
-  std::printf("\n3. the papers' cases from their starting values: iterations / status / median µs\n");
+void section_papers(int runs, double overhead) {
+  std::printf("3. the papers' cases from their starting values: iterations / status / median CPU µs\n");
   std::printf("   %-14s", "case");
   const char* methods[] = {"gsa", "first_order", "hybrid", "newton", "auto"};
   for (const char* m : methods) std::printf(" | %-26s", m);
   std::printf("\n");
   for (const PaperCase& c : kPaperCases) {
-    auto g = compile(c.x, c.y, c.z, c.u, c.v);
+    const auto g = compile({c.name, c.x, c.y, c.z, c.u, c.v});
     std::printf("   %-14s", c.name);
     for (const char* m : methods) {
       Options o;
       o.initial = std::array<double, 3>{c.start[0], c.start[1], 0};
-      std::vector<double> times;
-      ProjectionResult r;
-      for (int k = 0; k < std::max(runs, 5); ++k) {
-        const auto t0 = Clock::now();
-        r = g->project(c.p.data(), m, o);
-        times.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
-      }
+      const Timed t = time_points(*g, {Vec3{c.p[0], c.p[1], c.p[2]}}, m, {o}, std::max(runs, 5), overhead);
+      const ProjectionResult& r = t.results[0];
       char cell[64];
       std::snprintf(cell, sizeof cell, "%4d %-14s %6.2f", std::string(m) == "auto" ? r.summary.starts : r.summary.iterations,
-                    to_string(r.summary.status), median(times));
+                    to_string(r.summary.status), t.ns[0] / 1e3);
       std::printf(" | %-26s", cell);
     }
     std::printf("\n");
   }
   std::printf("   (auto: local solves started instead of iterations)\n");
+}
 
-  std::printf("\n4. project_batch, auto, 100,000 points of S3 (box and near mixed), wall time\n");
-  {
-    const ParametricSurface& g = *surfaces[2];
-    PointSets ps = make_points(g, 66667, 777);
-    std::vector<double> coords;
-    for (const auto* set : {&ps.box, &ps.near})
-      for (const Vec3& p : *set) coords.insert(coords.end(), {p.x, p.y, p.z});
-    const std::size_t count = coords.size() / 3;
-    double rate[3] = {0, 0, 0};
-    for (unsigned threads : {1u, 2u}) {
-      ThreadPool pool(threads);
-      BatchRequest req;
-      req.geometry = &g;
-      req.points = coords.data();
-      req.count = count;
-      std::vector<double> walls;
-      for (int r = 0; r < 3; ++r) {
-        const auto t0 = Clock::now();
-        const auto results = project_batch(pool, req);
-        walls.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
-        if (results.size() != count) std::abort();
-      }
-      rate[threads] = static_cast<double>(count) / median(walls);
-      std::printf("   %u thread%s: %8.0f points/s (%.2f µs/point)\n", threads, threads > 1 ? "s" : " ", rate[threads],
-                  1e6 / rate[threads]);
+void section_batch(const ParametricSurface& g) {
+  std::printf("4. project_batch, auto, 100,000 points of S3 (box and near mixed), wall time\n");
+  PointSets ps = make_points(g, 66667, 777);
+  std::vector<double> coords;
+  for (const auto* set : {&ps.box, &ps.near})
+    for (const Vec3& p : *set) coords.insert(coords.end(), {p.x, p.y, p.z});
+  const std::size_t count = coords.size() / 3;
+  double rate[3] = {0, 0, 0};
+  for (unsigned threads : {1u, 2u}) {
+    ThreadPool pool(threads);
+    BatchRequest req;
+    req.geometry = &g;
+    req.points = coords.data();
+    req.count = count;
+    std::vector<double> walls;
+    for (int r = 0; r < 3; ++r) {
+      const auto t0 = Clock::now();
+      const auto results = project_batch(pool, req);
+      walls.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+      if (results.size() != count) std::abort();
     }
-    std::printf("   speed-up 2 threads / 1 thread: %.2fx\n", rate[2] / rate[1]);
+    rate[threads] = static_cast<double>(count) / median(walls);
+    std::printf("   %u thread%s: %8.0f points/s (%.2f µs/point)\n", threads, threads > 1 ? "s" : " ", rate[threads],
+                1e6 / rate[threads]);
   }
+  std::printf("   speed-up 2 threads / 1 thread: %.2fx\n", rate[2] / rate[1]);
+}
+
+// ---- the Open CASCADE peer's point sets ----
+
+std::map<std::string, SurfaceSpec> read_peer_surfaces(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  std::map<std::string, SurfaceSpec> out;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string part; std::getline(ss, part, '|');) f.push_back(part);
+    if (f.size() != 5) continue;
+    auto trim = [](std::string s) {
+      s.erase(0, s.find_first_not_of(" \t"));
+      s.erase(s.find_last_not_of(" \t\r") + 1);
+      return s;
+    };
+    SurfaceSpec s;
+    s.name = trim(f[0]);
+    std::stringstream dom(f[1]);
+    dom >> s.u[0] >> s.u[1] >> s.v[0] >> s.v[1];
+    s.x = trim(f[2]);
+    s.y = trim(f[3]);
+    s.z = trim(f[4]);
+    out[s.name] = s;
+  }
+  return out;
+}
+
+std::vector<Vec3> read_peer_points(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  std::vector<Vec3> points;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::stringstream ss(line);
+    Vec3 p;
+    ss >> p.x >> p.y >> p.z;
+    points.push_back(p);
+  }
+  return points;
+}
+
+int peer_mode(const std::string& dir, int reps, std::vector<std::string> keys) {
+  if (keys.empty()) keys = {"S1", "S2", "S3", "S1n", "S2n", "S3n"};
+  const auto surfaces = read_peer_surfaces(dir + "/surfaces.txt");
+  const std::string data = dir + "/build/data";
+  const double overhead = timer_overhead();
+  std::printf("footpoint auto on the peer's point sets (%s), %d runs; CPU-timer overhead %.0f ns (subtracted); %s\n",
+              data.c_str(), reps, overhead, load_average().c_str());
+  for (const std::string& key : keys) {
+    // "S3n" is the near set of S3
+    const std::string base = key.size() > 1 && key.back() == 'n' && surfaces.count(key.substr(0, key.size() - 1))
+                                 ? key.substr(0, key.size() - 1)
+                                 : key;
+    if (!surfaces.count(base)) {
+      std::fprintf(stderr, "no surface %s in surfaces.txt\n", base.c_str());
+      return 1;
+    }
+    const auto t0 = Clock::now();
+    const auto g = compile(surfaces.at(base));
+    const double compile_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    const std::vector<Vec3> points = read_peer_points(data + "/points_" + key + ".txt");
+    const Timed t = time_points(*g, points, "auto", {}, reps, overhead);
+    // a timed pass over all points: the mean per point without per-point timer noise
+    std::vector<double> batch;
+    for (int r = 0; r < reps; ++r) {
+      const double c0 = cpu_ns();
+      double sink = 0.0;
+      for (const Vec3& v : points) {
+        const double p[3] = {v.x, v.y, v.z};
+        sink += g->project(p, "auto", Options{}).distance;
+      }
+      batch.push_back((cpu_ns() - c0) / static_cast<double>(points.size()));
+      if (sink == -1.0) std::printf(" ");
+    }
+    std::sort(batch.begin(), batch.end());
+    const std::string res = data + "/res_footpoint-auto_" + key + ".txt";
+    FILE* f = std::fopen(res.c_str(), "w");
+    if (!f) throw std::runtime_error("cannot write " + res);
+    std::fprintf(f,
+                 "# footpoint auto on %s (%zu cells, compiled in %.1f ms); per-point time = median of %d repetitions "
+                 "(thread CPU time; wall in last column)\n# idx ok time_ns d u v wall_ns\n",
+                 key.c_str(), g->cells().cells().size(), compile_ms, reps);
+    int failed = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const ProjectionResult& r = t.results[i];
+      const bool ok = r.summary.status == Status::converged;
+      failed += ok ? 0 : 1;
+      std::fprintf(f, "%zu %d %.1f %.17g %.17g %.17g %.1f\n", i, ok ? 1 : 0, t.ns[i], r.distance, r.params[0],
+                   r.params[1], t.wall_ns[i]);
+    }
+    std::fclose(f);
+    FILE* fb = std::fopen((data + "/batch_footpoint-auto_" + key + ".txt").c_str(), "w");
+    if (fb) {
+      std::fprintf(fb, "%.1f %.1f %.1f\n", batch[batch.size() / 2], batch.front(), batch.back());
+      std::fclose(fb);
+    }
+    std::printf("   %-4s %5zu points: median %6.2f µs, mean %6.2f µs, batch mean %6.2f µs, not converged %d -> %s\n",
+                key.c_str(), points.size(), median(t.ns) / 1e3, mean(t.ns) / 1e3, batch[batch.size() / 2] / 1e3, failed,
+                res.c_str());
+  }
+  std::printf("   %s\n", load_average().c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> positional;
+  std::string peer, sections = "1234";
+  int reps = 5;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--peer") && i + 1 < argc) {
+      peer = argv[++i];
+    } else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) {
+      reps = std::atoi(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--sections") && i + 1 < argc) {
+      sections = argv[++i];
+    } else {
+      positional.push_back(argv[i]);
+    }
+  }
+  if (!peer.empty()) return peer_mode(peer, reps, positional);
+
+  const int n = positional.size() > 0 ? std::atoi(positional[0].c_str()) : 2000;
+  const int runs = positional.size() > 1 ? std::atoi(positional[1].c_str()) : 5;
+  const double overhead = timer_overhead();
+  std::printf("surface_bench: %d box points + %d near points per surface, %d runs, single thread; "
+              "CPU-timer overhead %.0f ns (subtracted)\n",
+              n, n / 2, runs, overhead);
+
+  std::vector<std::shared_ptr<const ParametricSurface>> surfaces;
+  std::vector<PointSets> sets;
+  std::vector<double> compile_ms;
+  for (const SurfaceSpec& s : kSurfaces) {
+    const auto t0 = Clock::now();
+    surfaces.push_back(compile(s));
+    compile_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    sets.push_back(make_points(*surfaces.back(), n, 12345));
+  }
+  const auto has = [&](char c) { return sections.find(c) != std::string::npos; };
+  if (has('1')) {
+    std::printf("\n[%s]\n", load_average().c_str());
+    section_auto(surfaces, sets, compile_ms, runs, overhead);
+  }
+  if (has('2')) {
+    std::printf("\n[%s]\n", load_average().c_str());
+    section_from_start(surfaces, sets, runs, overhead);
+  }
+  if (has('3')) {
+    std::printf("\n[%s]\n", load_average().c_str());
+    section_papers(runs, overhead);
+  }
+  if (has('4')) {
+    std::printf("\n[%s]\n", load_average().c_str());
+    section_batch(*surfaces[2]);
+  }
+  std::printf("\n[%s]\n", load_average().c_str());
   return 0;
 }

@@ -533,6 +533,7 @@ TEST_CASE("the cache evicts by count, keeps serving, and 404s tell the client to
 TEST_CASE("points not done by the deadline get deadline_exceeded, with null answers") {
   ServerConfig config;
   config.deadline = std::chrono::milliseconds(1);
+  config.compile_deadline = std::chrono::milliseconds(60000);  // compile fully, project against 1 ms
   config.threads = 1;
   TestServer s(config);
   auto c = s.client();

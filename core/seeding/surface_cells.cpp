@@ -6,6 +6,7 @@
 #include <queue>
 
 #include "formula/interval.hpp"
+#include "geometry/compile_budget.hpp"
 
 namespace footpoint {
 
@@ -89,6 +90,13 @@ Evaluated evaluate(const SurfaceFormulas& f, const Rect& r) {
 }  // namespace
 
 SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box, const SurfaceSeedingOptions& options) {
+  for (int k = 0; k < 4; ++k) {
+    SurfaceCorner& c = corners_[static_cast<std::size_t>(k)];
+    c.u = k % 2 == 0 ? box.umin : box.umax;
+    c.v = k < 2 ? box.vmin : box.vmax;
+    c.s = formulas.point(c.u, c.v);
+    c.finite = is_finite(c.s);
+  }
   std::vector<Rect> rects;
   std::vector<Evaluated> evals;
   std::vector<int> depths;
@@ -116,8 +124,9 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     return std::pair{ia, ib};
   };
 
-  const int max_cells = std::max(1, options.max_cells);
+  const int max_cells = static_cast<int>(std::clamp<std::size_t>(options.max_bytes / bytes_per_cell(), 1, 1 << 24));
   const int min_cells = std::clamp(options.min_cells, 1, max_cells);
+  const int target_cells = std::clamp(options.target_cells, min_cells, max_cells);
   // deeper than this (2^-24 of the domain in both directions) a cell is not split
   constexpr int max_depth = 48;
   std::vector<std::int32_t> open{add_node({box.umin, box.umax, box.vmin, box.vmax}, 0)};
@@ -126,21 +135,27 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     std::vector<std::int32_t> next;
     next.reserve(open.size() * 2);
     for (std::int32_t i : open) {
+      CompileBudget::check();
       const auto [a, b] = split(i);
       next.push_back(a);
       next.push_back(b);
     }
     open.swap(next);
   }
-  // adaptive refinement, worst cell first
+  // adaptive refinement, worst cell first: to the target flatness within target_cells, and on
+  // to the resolved flatness within the memory cap
   auto worse = [&](std::int32_t a, std::int32_t b) {
     return evals[static_cast<std::size_t>(a)].score < evals[static_cast<std::size_t>(b)].score;
   };
   std::priority_queue<std::int32_t, std::vector<std::int32_t>, decltype(worse)> queue(worse, open);
   int leaves = static_cast<int>(open.size());
   while (!queue.empty()) {
+    CompileBudget::check();
     const std::int32_t i = queue.top();
-    if (leaves >= max_cells || !(evals[static_cast<std::size_t>(i)].score > options.flatness)) break;
+    const double score = evals[static_cast<std::size_t>(i)].score;
+    const bool refine = (score > options.flatness && leaves < target_cells) ||
+                        (score > options.resolved_flatness && leaves < max_cells);
+    if (!refine) break;
     queue.pop();
     if (depths[static_cast<std::size_t>(i)] >= max_depth) continue;
     const auto [a, b] = split(i);
@@ -149,6 +164,8 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     ++leaves;
   }
   // the leaves: cells with their rigorous boxes
+  nodes_.shrink_to_fit();
+  cells_.reserve(static_cast<std::size_t>(leaves));
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     SurfaceCellNode& node = nodes_[i];
     if (node.child[0] >= 0) continue;
@@ -164,7 +181,8 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     cell.rho2 = e.rho2;
     cell.extent = e.extent;
     cell.finite = e.finite;
-    cell.resolved = e.score <= options.flatness;
+    cell.resolved = e.score <= options.resolved_flatness;
+    cell.fine = e.score <= options.flatness;
     const formula::Interval x[2] = {{r.u0, r.u1}, {r.v0, r.v1}};
     formula::Interval out[3];
     formulas.program().intervals(x, out);

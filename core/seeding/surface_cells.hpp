@@ -9,10 +9,32 @@
 //    formula engine's interval enclosure (rigorous, outward rounded); a parent's box is the union
 //    of its children's. dist(p, box) is a lower bound on the distance from p to that part of the
 //    surface.
-// Cells are split (in the direction where the surface is longer) until the tangent-plane model is
-// good to `flatness` of the cell's size, so that the Newton model of a cell predicts where the
-// distance is least, and most points need a single local solve.
+// Cells are split (where the tangent-plane model is worse), worst cell first, until the
+// tangent-plane model is good to `flatness` of the cell's size, so that the Newton model of a
+// cell predicts where the distance is least, and most points need a single local solve.
+//
+// The budget adapts to the surface: the cells a surface needs grow with how much it bends and
+// with the domain's extent relative to its features (S1 on [-3,3]^2: 728 cells for flatness
+// 0.05; the same formulas on [-25,25]^2, 8 periods each way: ~50,000). Three tiers of cells:
+//  - fine (ρ <= flatness x extent): the search trusts the cell's models: the tangent-plane lower
+//    bound, the Newton model's claim that the minimum lies in a neighbour, and merging a
+//    candidate with a minimum found within a cell of its model's minimiser;
+//  - coarse (ρ <= resolved_flatness x extent): the same, except that a candidate is merged only
+//    with a minimum found inside the cell (a coarse model can put the minimum a cell off, and two
+//    minima can lie a cell apart, as near folds where s_u x s_v -> 0);
+//  - unresolved: no model bound, no claim, no merging: solved from its model's minimiser.
+// Fine and coarse cells are "resolved". Refinement, worst cell first, pursues `flatness` up to
+// `target_cells` cells, then `resolved_flatness` up to the memory cap `max_bytes`.
+// The trade-off: finer cells give tighter bounds, better starts and fewer local solves, but a
+// longer compile (~1.5 µs per node, two nodes per cell), more memory (memory_bytes(), ~340 bytes
+// per cell) and, for points near a surface that covers itself many times, more cells to visit.
+// On the [-25,25]^2 surface (bench/surface_bench.cpp, A1): all fine at flatness 0.05 would take
+// ~50,000 cells, 17 MB and ~0.2 s to compile; the former fixed budget of 4096 cells left every
+// cell unresolved (~30 local solves per point); the defaults give ~4,300 cells (target 4096, then
+// on to 0.25), 1.4 MB, ~15 ms, and per point about a third of the local solves and time of the
+// fixed budget. S1-S3 reach flatness 0.05 within the target (394-2306 cells), as before.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -25,10 +47,16 @@ struct SurfaceSeedingOptions {
   // Uniform subdivision first, to at least this many cells: no feature narrower than a cell of
   // this grid is missed by the error estimate.
   int min_cells = 256;
-  // Refinement stops here whatever the flatness (memory: about 250 bytes per cell).
-  int max_cells = 4096;
-  // Refine while ρ > flatness x the cell's extent on the surface (chord length).
+  // The target: refine while ρ > flatness x the cell's extent on the surface (chord length) and
+  // the tree has fewer than target_cells cells.
   double flatness = 0.05;
+  int target_cells = 4096;
+  // The requirement: refine while ρ > resolved_flatness x extent, up to max_bytes; a cell within
+  // it is resolved.
+  double resolved_flatness = 0.25;
+  // Memory cap of the cells and the tree (memory_bytes()): about 12,000 cells, a compile of
+  // ~40 ms. Refinement stops there whatever the flatness.
+  std::size_t max_bytes = std::size_t{4} << 20;
 };
 
 struct SurfaceCell {
@@ -38,9 +66,17 @@ struct SurfaceCell {
   double rho2 = 0.0;                              // the same for the quadratic (Taylor) model
   double extent = 0.0;                            // largest chord of the cell on the surface
   bool finite = true;                             // the centre jet is finite
-  bool resolved = true;                           // ρ <= flatness x extent (refinement succeeded)
+  bool resolved = true;                           // ρ <= resolved_flatness x extent
+  bool fine = true;                               // ρ <= flatness x extent
   double uc() const { return 0.5 * (u0 + u1); }
   double vc() const { return 0.5 * (v0 + v1); }
+};
+
+// A corner of the parameter domain and its point of the surface.
+struct SurfaceCorner {
+  double u = 0.0, v = 0.0;
+  Vec3 s;
+  bool finite = false;
 };
 
 struct SurfaceCellNode {
@@ -56,8 +92,14 @@ class SurfaceCells {
 
   const std::vector<SurfaceCellNode>& nodes() const { return nodes_; }  // nodes()[0] is the root
   const std::vector<SurfaceCell>& cells() const { return cells_; }
+  // The domain's corners (umin, vmin), (umax, vmin), (umin, vmax), (umax, vmax): minima of their
+  // own, which `auto` compares with its answer (a cell's model cannot tell a corner from an edge
+  // minimum within the model's error of it).
+  const std::array<SurfaceCorner, 4>& corners() const { return corners_; }
   int depth() const { return depth_; }
   std::size_t memory_bytes() const;
+  // Memory per cell: the cell and the two tree nodes it adds.
+  static constexpr std::size_t bytes_per_cell() { return sizeof(SurfaceCell) + 2 * sizeof(SurfaceCellNode); }
 
   // Lower bound on |p - x| over the node's box (0 inside it).
   static double box_distance(const SurfaceCellNode& node, const Vec3& p);
@@ -65,6 +107,7 @@ class SurfaceCells {
  private:
   std::vector<SurfaceCellNode> nodes_;
   std::vector<SurfaceCell> cells_;
+  std::array<SurfaceCorner, 4> corners_;
   int depth_ = 0;
 };
 

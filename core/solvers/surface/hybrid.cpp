@@ -57,16 +57,15 @@ namespace {
 // iterate and either switches to Newton for good or goes back to Step 2.
 class Hybrid {
  public:
-  explicit Hybrid(const SurfaceFormulas& formulas) : formulas_(formulas) {}
-  PaperStep step(const Vec3& p, double u, double v, const SurfaceJet& jet) {
-    if (!newton_ && started_ && newton_map_contracts(newton_map_derivative(p, formulas_.jet3(u, v))))
-      newton_ = true;
+  // In the first-order phase every new iterate is tested: its jet comes with third partials.
+  bool needs_third() const { return started_ && !newton_; }
+  PaperStep step(const Vec3& p, double, double, const SurfaceJet3& jet) {
+    if (!newton_ && started_ && newton_map_contracts(newton_map_derivative(p, jet))) newton_ = true;
     started_ = true;
     return newton_ ? newton_step(p, jet) : first_order_step(p, jet);
   }
 
  private:
-  const SurfaceFormulas& formulas_;
   bool started_ = false;
   bool newton_ = false;
 };
@@ -74,7 +73,7 @@ class Hybrid {
 
 ProjectionResult project_hybrid(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p,
                                 const Options& options) {
-  Hybrid method(formulas);
+  Hybrid method;
   return run_paper_iteration("hybrid", method, formulas, box, p, options);
 }
 

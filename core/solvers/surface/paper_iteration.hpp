@@ -6,7 +6,9 @@
 // applied increment (Δu, Δv, 0) is recorded, which is what the papers' tables print.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "geometry/parametric_surface.hpp"
 #include "solvers/result.hpp"
@@ -32,8 +34,10 @@ inline bool is_finite(const SurfaceJet& j) {
          is_finite(j.svv);
 }
 
-// Method provides `PaperStep step(const Vec3& p, double u, double v, const SurfaceJet& jet)`;
-// it may keep state between calls (the hybrid method's phase).
+// Method provides `PaperStep step(const Vec3& p, double u, double v, const SurfaceJet3& jet)`
+// (or takes a SurfaceJet); it may keep state between calls (the hybrid method's phase). A method
+// that also provides `bool needs_third() const` gets the third partials of the next iterate when
+// it asks for them (one jet3 evaluation instead of a jet and a jet3); otherwise they are unset.
 template <class Method>
 ProjectionResult run_paper_iteration(const char* name, Method& method, const SurfaceFormulas& formulas,
                                      const ParamBox& box, const Vec3& p, const Options& options) {
@@ -41,13 +45,24 @@ ProjectionResult run_paper_iteration(const char* name, Method& method, const Sur
   double u = options.initial ? (*options.initial)[0] : 0.5 * (box.umin + box.umax);
   double v = options.initial ? (*options.initial)[1] : 0.5 * (box.vmin + box.vmax);
   const double divergence = kDivergenceScales * crit.scale;
+  const double norm_p = norm(p);
   ConvergenceTest test(crit);
   std::vector<std::array<double, 3>> trace;
 
-  SurfaceJet jet = formulas.jet(u, v);
+  auto evaluate = [&](double at_u, double at_v, SurfaceJet3& out) {
+    if constexpr (requires { method.needs_third(); }) {
+      if (method.needs_third()) {
+        out = formulas.jet3(at_u, at_v);
+        return;
+      }
+    }
+    static_cast<SurfaceJet&>(out) = formulas.jet(at_u, at_v);
+  };
+  SurfaceJet3 jet, next;
+  evaluate(u, v, jet);
   Status status = Status::max_iterations;
   int iterations = 0;
-  double step_norm = 0.0;
+  double last_du = 0.0, last_dv = 0.0;  // the norm is taken once, at the end
   if (!is_finite(jet)) status = Status::non_finite;
   while (status == Status::max_iterations && iterations < crit.max_iterations) {
     const PaperStep step = method.step(p, u, v, jet);
@@ -60,7 +75,7 @@ ProjectionResult run_paper_iteration(const char* name, Method& method, const Sur
       break;
     }
     const double un = u + step.du, vn = v + step.dv;
-    const SurfaceJet next = formulas.jet(un, vn);
+    evaluate(un, vn, next);
     if (!is_finite(next)) {
       status = Status::non_finite;
       break;
@@ -70,9 +85,10 @@ ProjectionResult run_paper_iteration(const char* name, Method& method, const Sur
     u = un;
     v = vn;
     jet = next;
-    step_norm = std::hypot(step.du, step.dv);
+    last_du = step.du;
+    last_dv = step.dv;
     const double step_inf = std::max(std::abs(step.du), std::abs(step.dv));
-    if (test.converged(step_inf, u, v, orthogonality(p, jet.s, jet.su, jet.sv))) {
+    if (test.converged(step_inf, u, v, orthogonality(p, norm_p, jet.s, jet.su, jet.sv))) {
       status = Status::converged;
     } else if (std::max(std::abs(u), std::abs(v)) > divergence) {
       status = Status::diverged;
@@ -83,7 +99,7 @@ ProjectionResult run_paper_iteration(const char* name, Method& method, const Sur
   ProjectionResult r = surface_result(name, p, u, v, jet.s, jet.su, jet.sv, box);
   r.summary.status = status;
   r.summary.iterations = iterations;
-  r.summary.step_norm = step_norm;
+  r.summary.step_norm = std::hypot(last_du, last_dv);
   r.summary.starts = 1;
   r.trace = std::move(trace);
   return r;

@@ -26,14 +26,19 @@ constexpr double kLocalStep = 1e-6;
 // stagnant; three in a row end the solve (the residual must still be below kStalledResidual).
 constexpr double kStagnantStep = 1e-9;
 constexpr double kShrink = 0.5;
+// The early stop (projected_newton.hpp): the Lipschitz constant of H is estimated from its change
+// over the last step, times this; ties within kTie (relative) of the cutoff count as not better.
+constexpr double kLipschitzSafety = 4.0;
+constexpr double kTie = 1e-13;
 
 }  // namespace
 
 LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, double u0,
                                double v0, const ConvergenceCriteria& criteria,
-                               std::vector<std::array<double, 3>>* trace) {
+                               std::vector<std::array<double, 3>>* trace, const EarlyStop* early) {
   const double lo[2] = {box.umin, box.vmin}, hi[2] = {box.umax, box.vmax};
   const double width[2] = {box.umax - box.umin, box.vmax - box.vmin};
+  const double norm_p = norm(p);
   double t[2] = {std::clamp(u0, lo[0], hi[0]), std::clamp(v0, lo[1], hi[1])};
 
   LocalSolution sol;
@@ -42,6 +47,15 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
   ConvergenceTest test(criteria);
   double last_step_inf = std::numeric_limits<double>::infinity();
   int stagnant_steps = 0;
+  // the previous iterate (first: the caller's reference point) and its H (upper triangle), for
+  // the early stop's Lipschitz estimate
+  double t_prev[2] = {0.0, 0.0}, H_prev[3] = {0.0, 0.0, 0.0};
+  bool have_prev = false;
+  if (early && !std::isnan(early->reference_H[0])) {
+    t_prev[0] = early->reference_t[0], t_prev[1] = early->reference_t[1];
+    H_prev[0] = early->reference_H[0], H_prev[1] = early->reference_H[1], H_prev[2] = early->reference_H[2];
+    have_prev = true;
+  }
   if (!is_finite(jet)) status = Status::non_finite;
 
   while (status == Status::max_iterations) {
@@ -60,12 +74,19 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     double d[2] = {0.0, 0.0};
     double neg_dir[2] = {0.0, 0.0};  // direction of negative curvature, if any
     bool convex = true;
-    if (free_[0] && free_[1]) {
+    const double a = H[0][0], b = H[0][1], c = H[1][1];
+    const double hs = std::max({std::abs(a), std::abs(b), std::abs(c)});
+    const double det = a * c - b * b;
+    // H positive definite with λ1 = det / λ2 >= det / (a + c) >= kSemidefinite hs: the Newton
+    // step itself (what the eigen-decomposition below gives there, without its square roots)
+    const bool definite = free_[0] && free_[1] && a > 0.0 && det >= kSemidefinite * hs * (a + c);
+    if (definite) {
+      d[0] = -(c * g[0] - b * g[1]) / det;
+      d[1] = -(a * g[1] - b * g[0]) / det;
+    } else if (free_[0] && free_[1]) {
       // H = λ1 e1 e1^T + λ2 e2 e2^T; the step uses |λ_i| (bounded away from 0): the Newton step
       // where H is positive definite, and a descent step of natural length along negative
       // curvature where it is not
-      const double a = H[0][0], b = H[0][1], c = H[1][1];
-      const double hs = std::max({std::abs(a), std::abs(b), std::abs(c)});
       const double mid = 0.5 * (a + c), rad = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
       const double l1 = mid - rad, l2 = mid + rad;  // l1 <= l2
       convex = l1 >= -kSemidefinite * hs;
@@ -102,12 +123,12 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     }
 
     const double step_inf = std::max(free_[0] ? std::abs(d[0]) : 0.0, free_[1] ? std::abs(d[1]) : 0.0);
-    const Orthogonality o = orthogonality(p, jet.s, jet.su, jet.sv);
+    const Orthogonality o = orthogonality(p, norm_p, jet.s, jet.su, jet.sv);
     bool done = test.converged(step_inf, t[0], t[1], o, {free_[0], free_[1]});
     // Newton's steps shrink quadratically; tiny steps that stop shrinking are rounding noise made
     // large by a nearly singular H (p near a centre of curvature): the parameters are as good as
     // the formulas' rounding lets them be.
-    const bool stagnant = step_inf <= kStagnantStep * criteria.step_bound(t[0], t[1]) / criteria.tolerance &&
+    const bool stagnant = step_inf <= kStagnantStep * criteria.step_scale(t[0], t[1]) &&
                           step_inf > kShrink * last_step_inf;
     stagnant_steps = stagnant ? stagnant_steps + 1 : 0;
     last_step_inf = step_inf;
@@ -118,6 +139,57 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
       break;
     }
     if (sol.iterations >= criteria.max_iterations) break;
+    if (early && have_prev && definite) {
+      const double lambda_min = det / (0.5 * (a + c) + std::sqrt(0.25 * (a - c) * (a - c) + b * b));  // det / λ2
+      // the ball around t (or the point t + d) inside the domain
+      auto within = [&](double c0, double c1, double radius) {
+        return c0 - radius > lo[0] && c0 + radius < hi[0] && c1 - radius > lo[1] && c1 + radius < hi[1];
+      };
+      // the early stop (projected_newton.hpp); d is the full Newton step here (H positive
+      // definite, not shortened: the Kantorovich condition fails for steps that long)
+      const double dt0 = t[0] - t_prev[0], dt1 = t[1] - t_prev[1];
+      const double dH0 = H[0][0] - H_prev[0], dH1 = H[0][1] - H_prev[1], dH2 = H[1][1] - H_prev[2];
+      const double dH2n = dH0 * dH0 + 2.0 * dH1 * dH1 + dH2 * dH2, dt2 = dt0 * dt0 + dt1 * dt1;
+      const double dn2 = d[0] * d[0] + d[1] * d[1];
+      // L |δ| <= λ/4 in squares, the square roots only when it holds
+      if (dt2 > 0.0 && kLipschitzSafety * kLipschitzSafety * dH2n * dn2 <= 0.0625 * lambda_min * lambda_min * dt2) {
+        const double L = kLipschitzSafety * std::sqrt(dH2n / dt2);
+        const double dn = std::sqrt(dn2);
+        const double R = 2.0 * dn;  // the ball holding the basin's only stationary point
+        if (within(t[0], t[1], R)) {
+          for (int i = 0; i < early->minimiser_count; ++i) {
+            const double e0 = early->minimisers[i][0] - t[0], e1 = early->minimisers[i][1] - t[1];
+            if (e0 * e0 + e1 * e1 <= R * R) {
+              sol.u = early->minimisers[i][0];
+              sol.v = early->minimisers[i][1];
+              sol.jet = jet;
+              sol.distance = std::numeric_limits<double>::infinity();
+              sol.abandoned = true;
+              return sol;
+            }
+          }
+        }
+        // the predicted minimiser inside the box: the box does not cut the basin off
+        const bool inside = within(t[0] + d[0], t[1] + d[1], 0.0);
+        if (inside && early->cutoff < std::numeric_limits<double>::infinity()) {
+          // 2 min f >= |r|^2 + <g, δ> - (8/3) L |δ|^3
+          const double low2 = dot(r, r) + (g[0] * d[0] + g[1] * d[1]) - (8.0 / 3.0) * L * dn * dn * dn;
+          const double tie = kTie * early->cutoff +
+                             32.0 * std::numeric_limits<double>::epsilon() * (norm_p + norm(jet.s));
+          if (low2 >= 0.0 && std::sqrt(low2) >= early->cutoff - tie) {
+            sol.u = t[0] + d[0];
+            sol.v = t[1] + d[1];
+            sol.jet = jet;
+            sol.distance = std::sqrt(low2);
+            sol.abandoned = true;
+            return sol;
+          }
+        }
+      }
+    }
+    t_prev[0] = t[0], t_prev[1] = t[1];
+    H_prev[0] = H[0][0], H_prev[1] = H[0][1], H_prev[2] = H[1][1];
+    have_prev = true;
     if (!convex && step_inf <= kNoiseSteps * criteria.step_bound(t[0], t[1])) {
       // a stationary point with negative curvature: leave it downhill along that direction
       const double len = kEscape * std::min(width[0], width[1]);
@@ -132,7 +204,7 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     SurfaceJet jn;
     double alpha = 1.0;
     const Vec3 r0 = jet.s - p;
-    const double local_step = kLocalStep * criteria.step_bound(t[0], t[1]) / criteria.tolerance;
+    const double local_step = kLocalStep * criteria.step_scale(t[0], t[1]);
     for (int ls = 0; ls < kMaxBacktracks && !accepted; ++ls, alpha *= 0.5) {
       for (int i = 0; i < 2; ++i) tn[i] = std::clamp(t[i] + alpha * d[i], lo[i], hi[i]);
       const double dt0 = tn[0] - t[0], dt1 = tn[1] - t[1];

@@ -25,9 +25,11 @@ constexpr double kDistinctFoot = 1e-8;
 constexpr int kRemembered = 16;
 constexpr int kStack = 128;
 // Claims of rule 3 remembered to find two cells that claim each other.
-constexpr int kClaims = 32;
-// Rule 4: a minimum found within this many cell widths of a candidate cell is its minimum (a
-// resolved cell's model has one minimum; a second, better one that near would show in it).
+constexpr int kClaims = 128;
+// Rule 4: a minimum found within this many cell widths of where a fine cell's model puts its
+// minimum is that minimum (a fine cell's model has one minimum; a second, better one that near
+// would show in it). Measured from the model's minimiser, not from the cell: a minimum one cell
+// away from one the model sees inside its own cell is another one.
 constexpr double kSameBasin = 1.0;
 // Cells waiting for a local solve (more are solved in batches of this size).
 constexpr int kCandidates = 64;
@@ -49,6 +51,8 @@ struct Found {
 };
 
 class Search {
+  struct Candidate;
+
  public:
   Search(const SurfaceCells& cells, const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p,
          const Options& options)
@@ -99,7 +103,15 @@ class Search {
       }
     }
     solve_candidates();
-    if (solves_ == 0 && nearest_cell_ >= 0) {
+    // Every point of the surface evaluated bounds the minimum from above. One nearer than the
+    // answer means its basin was lost to a model's error: a domain corner next to an edge
+    // minimum within the corner cell's model error, or a cell centre. It starts one more solve.
+    // (all_minima solves from every corner: each may be a minimum of its own.)
+    for (const SurfaceCorner& corner : cells_.corners()) {
+      const double answer = has_best_ ? best_.sol.distance : std::min(nearest_, options_.max_distance);
+      if (corner.finite && (options_.all_minima || norm(corner.s - p_) < answer)) solve(corner.u, corner.v);
+    }
+    if (nearest_cell_ >= 0 && (!has_best_ || nearest_ < best_.sol.distance)) {
       const SurfaceCell& c = cells_.cells()[static_cast<std::size_t>(nearest_cell_)];
       solve(c.uc(), c.vc());
     }
@@ -169,21 +181,30 @@ class Search {
     const double du = m.delta[0], dv = m.delta[1];
     const Face model_face{m.side[0] < 0 && glo[0] == box_.umin ? -1 : (m.side[0] > 0 && ghi[0] == box_.umax ? 1 : 0),
                           m.side[1] < 0 && glo[1] == box_.vmin ? -1 : (m.side[1] > 0 && ghi[1] == box_.vmax ? 1 : 0)};
-    // Rule 3. Next to the domain's boundary the claim is trusted only where the model falls from
-    // the cell into the neighbour by more than its own error in f = ½|s - p|^2, about |s - p| ρ2:
-    // there a model can miss an edge or corner minimum (far points see a flat landscape). Inside
-    // the domain the neighbour's model answers for it.
+    // Rule 3: the model's minimum on the grown cell's border, inside the domain, claims that the
+    // distance decreases into a neighbour, whose model answers for this cell. Next to the
+    // boundary a model can miss an edge or corner minimum (far points see a flat landscape).
     const bool on_border = (m.side[0] < 0 && glo[0] > box_.umin) || (m.side[0] > 0 && ghi[0] < box_.umax) ||
                            (m.side[1] < 0 && glo[1] > box_.vmin) || (m.side[1] > 0 && ghi[1] < box_.vmax);
     if (c.resolved && on_border) {
+      // Next to the domain's boundary the claim must beat the model's error in f = ½|s - p|^2,
+      // about |s - p| ρ2: the model must fall from the cell into the neighbour by more than that.
+      // Else the cell is a candidate itself, from its model's minimiser over the cell, and also
+      // from the model's best point on the boundary, on its edge or corner (rule 4 merges that one
+      // only with a minimum found on the same edge or corner, never with the interior minimum the
+      // claim points to; a coarse cell's are not merged at all).
       const bool touches_boundary =
           c.u0 == box_.umin || c.u1 == box_.umax || c.v0 == box_.vmin || c.v1 == box_.vmax;
       if (touches_boundary) {
-        const BoxMinimum own = minimize_on_box(q, {c.u0 - uc, c.v0 - vc}, {c.u1 - uc, c.v1 - vc});
-        if (!(own.value - m.value > 2.0 * (dc + c.extent) * c.rho2)) {
-          add_candidate(c, own.delta[0], own.delta[1], lb,
-                        {own.side[0] < 0 && c.u0 == box_.umin ? -1 : (own.side[0] > 0 && c.u1 == box_.umax ? 1 : 0),
-                         own.side[1] < 0 && c.v0 == box_.vmin ? -1 : (own.side[1] > 0 && c.v1 == box_.vmax ? 1 : 0)});
+        const double model_error = 2.0 * (dc + c.extent) * c.rho2;
+        const double lo0 = c.u0 - uc, hi0 = c.u1 - uc, lo1 = c.v0 - vc, hi1 = c.v1 - vc;
+        const BoxMinimum own = minimize_on_box(q, {lo0, lo1}, {hi0, hi1});
+        if (!(own.value - m.value > model_error)) {
+          const Face own_face{
+              own.side[0] < 0 && c.u0 == box_.umin ? -1 : (own.side[0] > 0 && c.u1 == box_.umax ? 1 : 0),
+              own.side[1] < 0 && c.v0 == box_.vmin ? -1 : (own.side[1] > 0 && c.v1 == box_.vmax ? 1 : 0)};
+          add_candidate(c, q, own.delta[0], own.delta[1], lb, own_face, c.fine);
+          add_boundary_candidates(c, q, lb, m.value + model_error, own_face);
           return;
         }
       }
@@ -193,24 +214,65 @@ class Search {
       for (int i = 0; i < claims_count_; ++i) {
         const Claim& other = claims_[i];
         if (other.grown_contains(mine.u, mine.v) && mine.grown_contains(other.u, other.v)) {
-          add_candidate(c, 0.5 * (mine.u + other.u) - uc, 0.5 * (mine.v + other.v) - vc, lb, Face{});
+          add_candidate(c, q, 0.5 * (mine.u + other.u) - uc, 0.5 * (mine.v + other.v) - vc, lb, Face{});
           return;
         }
       }
-      if (claims_count_ < kClaims) claims_[claims_count_++] = mine;
+      if (claims_count_ == kClaims) {  // no room to check it against later claims: a candidate
+        add_candidate(c, q, du, dv, lb, model_face);
+        return;
+      }
+      claims_[claims_count_++] = mine;
       return;
     }
-    add_candidate(c, du, dv, lb, model_face);
+    add_candidate(c, q, du, dv, lb, model_face);
+    // A cell on the boundary can hold minima on its sides (an edge minimum next to an interior
+    // one, an edge minimum and a corner, two edges of a corner cell) that its model cannot tell
+    // apart: every side whose model value is within the model's error of the model's minimum is a
+    // candidate too - every side of an unresolved cell, whose model error is not known.
+    if (c.u0 == box_.umin || c.u1 == box_.umax || c.v0 == box_.vmin || c.v1 == box_.vmax)
+      add_boundary_candidates(c, q, lb,
+                              c.resolved ? m.value + 2.0 * (dc + c.extent) * c.rho2
+                                         : std::numeric_limits<double>::infinity(),
+                              model_face);
   }
 
-  // A cell that may hold a better minimum, to be solved from its centre + (du, dv).
-  void add_candidate(const SurfaceCell& c, double du, double dv, double lb, Face face) {
+  // Candidates at the model's best point on each of the cell's sides on the domain's boundary
+  // whose model value is at most `threshold`, other than on `except` (a candidate already).
+  void add_boundary_candidates(const SurfaceCell& c, const BoxQuadratic& q, double lb, double threshold, Face except) {
+    const double uc = c.uc(), vc = c.vc();
+    const double lo0 = c.u0 - uc, hi0 = c.u1 - uc, lo1 = c.v0 - vc, hi1 = c.v1 - vc;
+    // a side's own face, and the corner where its minimiser is at the side's end on the boundary
+    auto side = [&](bool on_boundary, std::array<double, 2> lo, std::array<double, 2> hi, Face f) {
+      if (!on_boundary) return;
+      const BoxMinimum e = minimize_on_box(q, lo, hi);
+      if (!(e.value <= threshold)) return;
+      if (f.u == 0) f.u = e.side[0] < 0 && c.u0 == box_.umin ? -1 : (e.side[0] > 0 && c.u1 == box_.umax ? 1 : 0);
+      if (f.v == 0) f.v = e.side[1] < 0 && c.v0 == box_.vmin ? -1 : (e.side[1] > 0 && c.v1 == box_.vmax ? 1 : 0);
+      if (f == except) return;
+      add_candidate(c, q, e.delta[0], e.delta[1], lb, f, c.fine);
+    };
+    side(c.u0 == box_.umin, {lo0, lo1}, {lo0, hi1}, {-1, 0});
+    side(c.u1 == box_.umax, {hi0, lo1}, {hi0, hi1}, {1, 0});
+    side(c.v0 == box_.vmin, {lo0, lo1}, {hi0, lo1}, {0, -1});
+    side(c.v1 == box_.vmax, {lo0, hi1}, {hi0, hi1}, {0, 1});
+  }
+
+  // A cell that may hold a better minimum, to be solved from its centre + (du, dv); `model` is
+  // its Newton model (its Hessian at the centre starts the early stop's Lipschitz estimate).
+  // Rule 4 may merge it with a minimum found nearby if the cell is resolved and `mergeable`.
+  void add_candidate(const SurfaceCell& c, const BoxQuadratic& model, double du, double dv, double lb, Face face,
+                     bool mergeable = true) {
+    Candidate k;
+    k.reference_t = {c.uc(), c.vc()};
+    k.reference_H = {model.H[0][0], model.H[0][1], model.H[1][1]};
     if (!has_best_ && !options_.all_minima) {  // the first one at once: a tight bound for the walk
-      solve(std::clamp(c.uc() + du, box_.umin, box_.umax), std::clamp(c.vc() + dv, box_.vmin, box_.vmax));
+      k.u = std::clamp(c.uc() + du, box_.umin, box_.umax);
+      k.v = std::clamp(c.vc() + dv, box_.vmin, box_.vmax);
+      solve(k.u, k.v, &k);
       if (has_best_) return;
     }
     if (candidates_count_ == kCandidates) solve_candidates();  // rare: solve what we have first
-    Candidate& k = candidates_[candidates_count_++];
     const SurfaceJet& j = c.centre;
     const Vec3 foot = j.s + j.su * du + j.sv * dv + 0.5 * (j.suu * (du * du) + 2.0 * j.suv * (du * dv) + j.svv * (dv * dv));
     k.d_model = norm(foot - p_);
@@ -218,52 +280,84 @@ class Search {
     k.u = std::clamp(c.uc() + du, box_.umin, box_.umax);
     k.v = std::clamp(c.vc() + dv, box_.vmin, box_.vmax);
     k.face = face;
+    // rule 4's region: around the model's minimiser for a fine cell, the cell itself for a coarse
+    // one (its model can put the minimum a cell off, and two minima can lie a cell apart, as near
+    // folds where s_u x s_v -> 0)
     const double wu = kSameBasin * (c.u1 - c.u0), wv = kSameBasin * (c.v1 - c.v0);
-    k.basin = {c.u0 - wu, c.u1 + wu, c.v0 - wv, c.v1 + wv};
-    k.resolved = c.resolved;
+    k.basin = c.fine ? std::array<double, 4>{k.u - wu, k.u + wu, k.v - wv, k.v + wv}
+                     : std::array<double, 4>{c.u0, c.u1, c.v0, c.v1};
+    k.mergeable = c.resolved && mergeable;
+    k.fine = c.fine;
+    candidates_[candidates_count_++] = k;
   }
 
   // Nearest model foot first; each solve lowers the bound, which drops the candidates whose
-  // lower bound it passes, and a candidate next to a minimum already found is that
-  // minimum (rule 4: within kSameBasin cells of it).
+  // lower bound it passes, and a candidate next to a minimum already found is that minimum
+  // (rule 4: within kSameBasin cells of a fine cell's model minimiser, inside a coarse cell). The
+  // others are solved, and stop early once their basin is shown to be a known minimiser's
+  // (solvers/surface/projected_newton.hpp).
   void solve_candidates() {
     std::sort(candidates_, candidates_ + candidates_count_,
               [](const Candidate& a, const Candidate& b) { return a.d_model < b.d_model; });
     for (int i = 0; i < candidates_count_; ++i) {
       const Candidate& k = candidates_[i];
       if (!(k.lb < bound_)) continue;
-      if (k.resolved) {
-        auto same = [&](double u, double v) {
+      if (k.mergeable) {
+        // a coarse cell can hold two minima: merged only with one no farther than its model's
+        auto same = [&](double u, double v, double distance) {
           return u >= k.basin[0] && u <= k.basin[1] && v >= k.basin[2] && v <= k.basin[3] &&
-                 face_of(box_, u, v) == k.face;
+                 face_of(box_, u, v) == k.face && (k.fine || distance <= k.d_model);
         };
         bool found = false;
-        for (int f = 0; f < feet_count_ && !found; ++f) found = same(feet_[f].u, feet_[f].v);
-        for (std::size_t f = 0; f < all_.size() && !found; ++f) found = same(all_[f].sol.u, all_[f].sol.v);
+        for (int f = 0; f < feet_count_ && !found; ++f) found = same(feet_[f][0], feet_[f][1], feet_distance_[f]);
+        for (std::size_t f = 0; f < all_.size() && !found; ++f)
+          found = same(all_[f].sol.u, all_[f].sol.v, all_[f].sol.distance);
         if (found) continue;
       }
-      solve(k.u, k.v);
+      solve(k.u, k.v, &k);
     }
     candidates_count_ = 0;
   }
 
-  void solve(double u0, double v0) {
+  // A local solve from (u0, v0); `from` (a candidate) gives the early stop its reference point.
+  void solve(double u0, double v0, const Candidate* from = nullptr) {
     Found f;
     f.u_start = std::clamp(u0, box_.umin, box_.umax);
     f.v_start = std::clamp(v0, box_.vmin, box_.vmax);
-    f.sol = projected_newton(formulas_, box_, p_, f.u_start, f.v_start, criteria_);
+    // A solve stops early once its basin is shown to be a known minimiser's, or - a minimum being
+    // known - to hold nothing nearer (a copy of the best foot, or a worse local minimum);
+    // all_minima wants every minimum, so no cutoff there.
+    EarlyStop early;
+    early.cutoff = has_best_ && !options_.all_minima ? best_.sol.distance : std::numeric_limits<double>::infinity();
+    early.minimisers = feet_;
+    early.minimiser_count = feet_count_;
+    if (from) {
+      early.reference_t = from->reference_t;
+      early.reference_H = from->reference_H;
+    }
+    f.sol = projected_newton(formulas_, box_, p_, f.u_start, f.v_start, criteria_, nullptr, &early);
     ++solves_;
+    if (f.sol.abandoned) {  // its predicted minimiser still answers for its basin (rule 4)
+      if (std::isfinite(f.sol.distance)) remember(f.sol.u, f.sol.v, f.sol.distance);
+      return;
+    }
     if (!std::isfinite(f.sol.distance)) return;
+    remember(f.sol.u, f.sol.v, f.sol.distance);
     if (options_.all_minima) {
       all_.push_back(f);
     } else {
-      feet_[feet_count_ < kRemembered ? feet_count_++ : solves_ % kRemembered] = {f.sol.u, f.sol.v, f.sol.distance};
       bound_ = std::min(bound_, f.sol.distance);
     }
     if (!has_best_ || better(f.sol, best_.sol)) {
       best_ = f;
       has_best_ = true;
     }
+  }
+
+  void remember(double u, double v, double distance) {
+    const int i = feet_count_ < kRemembered ? feet_count_++ : solves_ % kRemembered;
+    feet_[i] = {u, v};
+    feet_distance_[i] = distance;
   }
 
   // Smaller distance wins; a converged solution wins a tie with an unconverged one.
@@ -333,15 +427,16 @@ class Search {
     double u, v;                // start of the local solve
     std::array<double, 4> basin;  // rule 4's region: u0, u1, v0, v1
     Face face;                    // the face the model's minimiser is on
-    bool resolved;
+    bool mergeable;               // rule 4 applies
+    bool fine;
+    std::array<double, 2> reference_t;  // the cell's centre and the Newton model's Hessian there
+    std::array<double, 3> reference_H;
   };
   Candidate candidates_[kCandidates];
   int candidates_count_ = 0;
   int claims_count_ = 0;
-  struct Foot {
-    double u, v, distance;
-  };
-  Foot feet_[kRemembered];  // minima found (all_minima: all_ has them)
+  std::array<double, 2> feet_[kRemembered];  // minimisers found (all_minima: all_ has all of them)
+  double feet_distance_[kRemembered];         // and their distances (abandoned: lower bounds)
   int feet_count_ = 0;
   std::vector<Found> all_;
 };

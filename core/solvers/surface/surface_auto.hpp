@@ -10,18 +10,26 @@
 //   3. the minimum of its Newton model (the second-order Taylor expansion of ½|s - p|^2 at the
 //      centre) over the cell grown by a margin lies on the grown cell's border inside the domain:
 //      the distance decreases into a neighbour, which answers for it (two cells claiming each
-//      other are solved from between their two predictions; next to the domain's boundary the
-//      claim must beat the model's error, else the cell is solved);
-//   4. a minimum already found lies within a cell's width of the cell, on the same face of the
-//      domain (interior, the same edge, the same corner) as the cell model's minimiser.
+//      other are solved from between their two predictions; next to the domain's boundary, and
+//      for a coarse cell (seeding/surface_cells.hpp), the claim must beat the model's error, else
+//      the cell is solved);
+//   4. a minimum already found lies within a cell's width of the cell model's minimiser, on the
+//      same face of the domain (interior, the same edge, the same corner) - not for the
+//      candidates of a coarse cell whose claim failed rule 3's error test.
 //      (Distinct minima are told apart by parameters here, not by 3-D foot points: a surface
 //      folding over itself has distinct minima with feet closer than any model can tell apart.
 //      Periodic and degenerate parametrisations, which reach one foot from many (u, v), cost a
-//      local solve per copy; the copies are merged by foot point in the result.)
+//      local solve per copy - cut short by the cutoff below; the copies are merged by foot
+//      point in the result.)
+// Any surface point evaluated (cell centres, the domain's corners) that is nearer than the
+// answer at the end starts one more solve: a safety net for a basin lost to a model's error.
 // The first cell that survives rules 1-3 is solved at once (a tight bound for the rest of the
 // walk); the later ones are candidates, solved after the walk nearest model foot first, each
 // solve lowering the bound for the rest (rules 1, 2 and 4 applied again), by a local solve
-// (solvers/surface/projected_newton.hpp) from the model's minimiser: 2-5 Newton steps.
+// (solvers/surface/projected_newton.hpp) from the model's minimiser: 2-5 Newton steps. The later
+// solves stop after 1-3 steps when Newton's model proves their basin to be that of a minimiser
+// already found, or - given the best distance so far - to hold nothing nearer (another copy of
+// the same foot point on a periodic or folded parametrisation, or a worse local minimum).
 #pragma once
 #include "geometry/parametric_surface.hpp"
 #include "seeding/surface_cells.hpp"

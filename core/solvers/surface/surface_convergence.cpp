@@ -11,9 +11,7 @@ double parameter_scale(const ParamBox& box) {
                    box.umax - box.umin, box.vmax - box.vmin});
 }
 
-double ConvergenceCriteria::step_bound(double u, double v) const {
-  return tolerance * std::max({scale, std::abs(u), std::abs(v)});
-}
+double ConvergenceCriteria::step_scale(double u, double v) const { return std::max({scale, std::abs(u), std::abs(v)}); }
 
 ConvergenceCriteria convergence_criteria(const Options& options, const ParamBox& box, int default_max_iterations) {
   ConvergenceCriteria c;
@@ -24,10 +22,14 @@ ConvergenceCriteria convergence_criteria(const Options& options, const ParamBox&
 }
 
 Orthogonality orthogonality(const Vec3& p, const Vec3& s, const Vec3& su, const Vec3& sv) {
+  return orthogonality(p, norm(p), s, su, sv);
+}
+
+Orthogonality orthogonality(const Vec3& p, double norm_p, const Vec3& s, const Vec3& su, const Vec3& sv) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
   const Vec3 r = p - s;
   const double d = norm(r);
-  const double noise = 16.0 * eps * (norm(p) + norm(s));
+  const double noise = 16.0 * eps * (norm_p + norm(s));
   // below the noise level the distance itself is rounding: measure against that level
   const double d_ref = std::max(d, noise);
   Orthogonality o;

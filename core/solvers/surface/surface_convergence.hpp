@@ -31,7 +31,9 @@ struct ConvergenceCriteria {
   double tolerance = kDefaultTolerance;  // relative step and residual tolerance
   double scale = 1.0;                    // parameter scale of the domain (parameter_scale)
   int max_iterations = 0;
-  double step_bound(double u, double v) const;
+  double step_bound(double u, double v) const { return tolerance * step_scale(u, v); }
+  // max(scale, |u|, |v|): what the step is measured against
+  double step_scale(double u, double v) const;
 };
 
 // Largest |bound| of the domain (at least the domain's width): the parameter scale.
@@ -46,6 +48,8 @@ struct Orthogonality {
   double floor = 0.0;                        // the rounding floor of the relative residual
 };
 Orthogonality orthogonality(const Vec3& p, const Vec3& s, const Vec3& su, const Vec3& sv);
+// The same with |p| given (an iteration computes it once).
+Orthogonality orthogonality(const Vec3& p, double norm_p, const Vec3& s, const Vec3& su, const Vec3& sv);
 
 // The stopping test of an iteration, fed once per step. `free` masks the residuals that must
 // vanish (a parameter held on its bound by the projected Newton method has no such condition).
