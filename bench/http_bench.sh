@@ -2,7 +2,7 @@
 # HTTP benchmark on loopback (wrk): footpoint-server against an echo baseline.
 #   bench/http_bench.sh [BUILD_DIR]          (a Release build: BUILD_DIR/footpoint-server and
 #                                              BUILD_DIR/bench/echo_server_bench; default build)
-# Environment: DURATION (seconds per wrk run, default 10), PORT (default 18471; the echo uses
+# Environment: DURATION (seconds per wrk run, default 10), HALF_WIDTH (domain, default 25), PORT (default 18471; the echo uses
 # PORT+1), CONNECTIONS (single-point runs, default 50), BATCH_CONNECTIONS (default 4).
 # Runs:
 #   1. single-point POST /v1/geometries/{id}/project on the GSA paper's Example 1 surface, random
@@ -73,7 +73,10 @@ end
 wrk.body = '{"points":[' .. table.concat(parts, ',') .. ']}'
 LUA
 
-surface='{"type":"parametric_surface","x":"u+v","y":"sin(u)+2*cos(v)","z":"sin(u+v)","domain":{"u":[-25,25],"v":[-25,25]}}'
+# HALF_WIDTH: the parameter domain [-w,w]^2 (25: the reference cases' domain for this example, where
+# the surface covers itself ~16 times; 3: S1 of the Open CASCADE comparison).
+w=${HALF_WIDTH:-25}
+surface='{"type":"parametric_surface","x":"u+v","y":"sin(u)+2*cos(v)","z":"sin(u+v)","domain":{"u":[-'"$w"','"$w"'],"v":[-'"$w"','"$w"']}}'
 
 run_wrk() {  # run_wrk NAME CONNECTIONS SCRIPT URL -> wrk output in $work/NAME.txt
   timeout $((DURATION + 30)) wrk -t2 -c"$2" -d"${DURATION}s" --timeout 30s --latency -s "$3" "$4" >"$work/$1.txt"
