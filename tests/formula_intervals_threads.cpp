@@ -95,6 +95,8 @@ TEST_CASE("interval enclosures hold for huge integral exponents and where subexp
       {"sign(sqrt(u))", -1.0, 1.0, -0.5, 0.0},
       {"min(sqrt(u), 5)", -1.0, 1.0, -0.5, 5.0},
       {"sqrt(u) ? 1 : 2", -1.0, 1.0, -0.5, 1.0},
+      {"u^-1024^1025", -2.0, 2.0, 1.0, 1.0},  // an infinite constant exponent
+      {"cos(1+u)", 0.5, 0.5, 0.5, std::cos(1.5)},  // a point box: no shifted-argument rounding
   };
   for (const auto& c : cases) {
     INFO(c.text);

@@ -227,16 +227,20 @@ struct IntervalArith {
     if (a.hi <= 0.0) return widen(f(-a.hi), f(-a.lo));
     return widen(f(0.0), f(std::max(-a.lo, a.hi)));
   }
-  // sin over [lo, hi]: the ends, plus +1 / -1 where a maximum pi/2 + 2k pi / minimum lies inside.
-  static T sine(double lo, double hi) {
+  // sin or cos over [lo, hi]: the ends, plus +1 / -1 where a maximum (phase_max + 2k pi) or a
+  // minimum (phase_max + pi + 2k pi) lies inside. Computed at the given ends, with no shifted
+  // argument whose rounding the widening would not cover.
+  template <class F>
+  static T periodic(double lo, double hi, F f, double phase_max) {
     if (!(hi - lo < 2.0 * std::numbers::pi)) return {-1.0, 1.0};
-    double rlo = std::min(std::sin(lo), std::sin(hi)), rhi = std::max(std::sin(lo), std::sin(hi));
-    auto contains = [&](double phase) {  // some phase + 2k pi in [lo, hi]
+    const double flo = f(lo), fhi = f(hi);
+    double rlo = std::min(flo, fhi), rhi = std::max(flo, fhi);
+    auto contains = [&](double phase) {  // some phase + 2k pi in [lo, hi] (with a little slack)
       const double k = std::ceil((lo - phase) / (2.0 * std::numbers::pi) - 1e-12);
       return phase + 2.0 * std::numbers::pi * k <= hi + 1e-12;
     };
-    if (contains(0.5 * std::numbers::pi)) rhi = 1.0;
-    if (contains(-0.5 * std::numbers::pi)) rlo = -1.0;
+    if (contains(phase_max)) rhi = 1.0;
+    if (contains(phase_max + std::numbers::pi)) rlo = -1.0;
     const T r = widen(rlo, rhi);
     return {std::max(r.lo, -1.0), std::min(r.hi, 1.0)};
   }
@@ -285,6 +289,7 @@ struct IntervalArith {
       case Op::rdiv_k: return div(constant(k), a);
       case Op::pow_int: return pow_int(a, static_cast<int>(k));
       case Op::pow_real:
+        if (!std::isfinite(k)) return {-kInf, kInf, true};  // x^(+-inf): 0, 1, inf or NaN by |x|
         if (k == std::floor(k)) {  // integral exponents beyond pow_int's range: the power rule's parity
           auto f = [k](double x) { return std::pow(x, k); };
           if (k < 0) return div(constant(1.0), unary(Op::pow_real, a, -k));
@@ -297,11 +302,8 @@ struct IntervalArith {
       case Op::ln: return increasing(a, [](double x) { return std::log(x); }, 0.0);
       case Op::log2: return increasing(a, [](double x) { return std::log2(x); }, 0.0);
       case Op::log10: return increasing(a, [](double x) { return std::log10(x); }, 0.0);
-      case Op::sin: return sine(a.lo, a.hi);
-      case Op::cos: {  // cos x = sin(x + pi/2); the shift's rounding is covered by widening
-        const T s = sine(a.lo + 0.5 * std::numbers::pi, a.hi + 0.5 * std::numbers::pi);
-        return {std::max(-1.0, std::nextafter(s.lo, -kInf)), std::min(1.0, std::nextafter(s.hi, kInf))};
-      }
+      case Op::sin: return periodic(a.lo, a.hi, [](double x) { return std::sin(x); }, 0.5 * std::numbers::pi);
+      case Op::cos: return periodic(a.lo, a.hi, [](double x) { return std::cos(x); }, 0.0);
       case Op::tan: {
         // A pole pi/2 + k pi inside the interval makes the range unbounded.
         const double k0 = std::floor((a.lo - 0.5 * std::numbers::pi) / std::numbers::pi);
