@@ -27,23 +27,7 @@ Landing iterate_eq20(const ImplicitEquations& equations, Vec3 p, Vec3 x0, const 
       out.status = Status::degenerate;
       return out;
     }
-    if (!is_finite(x1)) {
-      out.status = Status::non_finite;
-      return out;
-    }
-    const Vec3 dx = x1 - out.x;
-    out.step = norm(dx);
-    out.x = x1;
-    out.iterations = n + 1;
-    control.record(dx.x, dx.y, dx.z);
-    if (norm(x1) > limit) {
-      out.status = Status::diverged;
-      return out;
-    }
-    if (paper_iteration_done(equations, p, x1, out.step, previous, control, true)) {
-      out.status = Status::converged;
-      return out;
-    }
+    if (take_paper_step(equations, p, x1, n, limit, previous, control, true, out)) return out;
   }
 }
 

@@ -61,23 +61,7 @@ Landing land_on_curve(const ImplicitEquations& equations, Vec3 x0, const Iterati
       out.status = Status::degenerate;
       return out;
     }
-    if (!is_finite(x1)) {
-      out.status = Status::non_finite;
-      return out;
-    }
-    const Vec3 dx = x1 - out.x;
-    out.step = norm(dx);
-    out.x = x1;
-    out.iterations = n + 1;
-    control.record(dx.x, dx.y, dx.z);
-    if (norm(x1) > limit) {
-      out.status = Status::diverged;
-      return out;
-    }
-    if (paper_iteration_done(equations, x1, x1, out.step, previous, control, false)) {
-      out.status = Status::converged;
-      return out;
-    }
+    if (take_paper_step(equations, x1, x1, n, limit, previous, control, false, out)) return out;
   }
 }
 
@@ -85,6 +69,28 @@ bool paper_iteration_done(const ImplicitEquations& equations, Vec3 p, Vec3 x, do
                           const IterationControl& control, bool with_orthogonality) {
   if (control.progress(step, norm(x), previous) == IterationControl::Progress::running) return false;
   return foot_residuals_met(equations, p, x, control, with_orthogonality);
+}
+
+bool take_paper_step(const ImplicitEquations& equations, Vec3 p, Vec3 x1, int n, double limit, double& previous,
+                     const IterationControl& control, bool with_orthogonality, Landing& out) {
+  if (!is_finite(x1)) {
+    out.status = Status::non_finite;
+    return true;
+  }
+  const Vec3 dx = x1 - out.x;
+  out.step = norm(dx);
+  out.x = x1;
+  out.iterations = n + 1;
+  control.record(dx.x, dx.y, dx.z);
+  if (norm(x1) > limit) {
+    out.status = Status::diverged;
+    return true;
+  }
+  if (paper_iteration_done(equations, p, x1, out.step, previous, control, with_orthogonality)) {
+    out.status = Status::converged;
+    return true;
+  }
+  return false;
 }
 
 ProjectionResult paper_result(const ImplicitEquations& equations, const Box3& box, Vec3 p, Vec3 x,

@@ -43,6 +43,12 @@ ProjectionResult steepest_descent(const ImplicitEquations& equations, const Box3
 bool paper_iteration_done(const ImplicitEquations& equations, Vec3 p, Vec3 x, double step, double& previous,
                           const IterationControl& control, bool with_orthogonality);
 
+// Shared by the paper's loops: accept the iterate X_{n+1} = x1 (record its increment) and say
+// whether the loop stops: x1 non-finite, beyond `limit` (diverged) or done by paper_iteration_done
+// (converged); `out.status` then says which.
+bool take_paper_step(const ImplicitEquations& equations, Vec3 p, Vec3 x1, int n, double limit, double& previous,
+                     const IterationControl& control, bool with_orthogonality, Landing& out);
+
 // Shared by the paper's methods: the result at x after a loop that ended with `status`
 // (converged only if the residuals meet the tolerance; outside_domain when x is not in the box).
 ProjectionResult paper_result(const ImplicitEquations& equations, const Box3& box, Vec3 p, Vec3 x,
