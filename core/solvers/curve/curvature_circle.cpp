@@ -70,16 +70,7 @@ ProjectionResult curvature_circle(const ParametricCurve& curve, Vec3 p, const Op
       break;
     }
   }
-  ProjectionResult r = parametric_result(curve, p, t, "curvature_circle");
-  r.summary.iterations = n;
-  r.summary.step_norm = step;
-  if (status == Status::converged) {
-    if (!curve.domain().contains(t)) status = Status::outside_domain;
-    else if (!parametric_residual_met(r, control)) status = Status::degenerate;
-  }
-  r.summary.status = within_max_distance(status, r.distance, control);
-  r.trace = std::move(trace);
-  return r;
+  return finish_parametric_result(curve, p, t, "curvature_circle", status, n, step, control, std::move(trace));
 }
 
 }  // namespace footpoint::curve

@@ -48,4 +48,20 @@ double parametric_start(const ParametricCurve& curve, Vec3 p, const Options& opt
   return i >= 0 ? curve.samples().params[static_cast<std::size_t>(i)] : 0.5 * (curve.domain().tmin + curve.domain().tmax);
 }
 
+ProjectionResult finish_parametric_result(const ParametricCurve& curve, Vec3 p, double t, const char* method,
+                                          Status status, int iterations, double step,
+                                          const IterationControl& control,
+                                          std::vector<std::array<double, 3>> trace) {
+  ProjectionResult r = parametric_result(curve, p, t, method);
+  r.summary.iterations = iterations;
+  r.summary.step_norm = step;
+  if (status == Status::converged) {
+    if (!curve.domain().contains(t)) status = Status::outside_domain;
+    else if (!parametric_residual_met(r, control)) status = Status::degenerate;
+  }
+  r.summary.status = within_max_distance(status, r.distance, control);
+  r.trace = std::move(trace);
+  return r;
+}
+
 }  // namespace footpoint::curve

@@ -2,6 +2,9 @@
 // |<p - c, c'>| / (|p - c| |c'|) (at an end of the parameter interval, the first-order optimality
 // residual of the distance restricted to the interval instead), and where c(t) lies.
 #pragma once
+#include <array>
+#include <vector>
+
 #include "geometry/parametric_curve.hpp"
 #include "solvers/curve/iteration_control.hpp"
 #include "solvers/result.hpp"
@@ -15,6 +18,14 @@ ProjectionResult parametric_result(const ParametricCurve& curve, Vec3 p, double 
 
 // Whether the result's orthogonality meets the control's residual tolerance.
 bool parametric_residual_met(const ProjectionResult& r, const IterationControl& control);
+
+// The result of a local method's loop that ended at t with `status` after `iterations` steps, the
+// last of length `step`: converged only if t is in the domain (else outside_domain) and the
+// residual meets the tolerance (else degenerate: the iterates stalled); max_distance applied.
+ProjectionResult finish_parametric_result(const ParametricCurve& curve, Vec3 p, double t, const char* method,
+                                          Status status, int iterations, double step,
+                                          const IterationControl& control,
+                                          std::vector<std::array<double, 3>> trace);
 
 // The start of a local method: options.initial[0], else the parameter of the sample nearest p.
 double parametric_start(const ParametricCurve& curve, Vec3 p, const Options& options);

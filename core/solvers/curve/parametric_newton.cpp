@@ -40,16 +40,7 @@ ProjectionResult parametric_newton(const ParametricCurve& curve, Vec3 p, const O
       break;
     }
   }
-  ProjectionResult r = parametric_result(curve, p, t, "newton");
-  r.summary.iterations = n;
-  r.summary.step_norm = step;
-  if (status == Status::converged) {
-    if (!curve.domain().contains(t)) status = Status::outside_domain;
-    else if (!parametric_residual_met(r, control)) status = Status::degenerate;
-  }
-  r.summary.status = within_max_distance(status, r.distance, control);
-  r.trace = std::move(trace);
-  return r;
+  return finish_parametric_result(curve, p, t, "newton", status, n, step, control, std::move(trace));
 }
 
 double bracketed_newton(const CurveFormulas& formulas, Vec3 p, double a, double b, double t0,
