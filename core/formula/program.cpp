@@ -417,21 +417,26 @@ void seed(const double* x, int n, J* jets) {
 Program Program::compile(const std::vector<NamedFormula>& formulas, const std::vector<std::string>& variables,
                          const std::map<std::string, double>& constants, const CompileLimits& limits) {
   Program p;
-  p.tape_ = std::make_shared<const Tape>(build_tape(formulas, variables, constants, limits));
+  Tape tape = build_tape(formulas, variables, constants, limits);
+  tape.polynomial = polynomial_form(tape);
+  p.tape_ = std::make_shared<const Tape>(std::move(tape));
   return p;
 }
 
 int Program::num_inputs() const { return tape_->num_inputs; }
 int Program::num_outputs() const { return static_cast<int>(tape_->outputs.size()); }
 std::size_t Program::num_nodes() const { return tape_->nodes.size(); }
+bool Program::sum_of_monomials() const { return tape_->polynomial.has_value(); }
 std::size_t Program::memory_bytes() const {
-  return sizeof(Tape) + tape_->nodes.capacity() * sizeof(Node) + tape_->outputs.capacity() * sizeof(std::int32_t);
+  return sizeof(Tape) + tape_->nodes.capacity() * sizeof(Node) +
+         (tape_->polynomial ? tape_->polynomial->memory_bytes() : 0) + tape_->outputs.capacity() * sizeof(std::int32_t);
 }
 
 void Program::values(const double* x, double* out) const { run<ValueArith>(*tape_, x, out); }
 
 template <int N>
 void Program::jets2(const double* x, Jet2<N>* out) const {
+  if (tape_->polynomial) return polynomial_jets2<N>(*tape_->polynomial, x, out);
   Jet2<N> in[N];
   seed(x, N, in);
   run<Jet2Arith<N>>(*tape_, in, out);

@@ -55,6 +55,9 @@ class Program {
   int num_outputs() const;
   std::size_t num_nodes() const;
   std::size_t memory_bytes() const;
+  // Every formula is a sum of monomials as written (no product or multiple of a sum): jets2
+  // evaluates them term by term from a table of powers (polynomial.hpp) instead of the tape.
+  bool sum_of_monomials() const;
 
   // out[k] = value of formula k at x (x has num_inputs() entries).
   void values(const double* x, double* out) const;

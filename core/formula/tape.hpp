@@ -2,8 +2,10 @@
 // nodes before it, so one forward pass evaluates every formula. Internal to core/formula.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "formula/polynomial.hpp"
 #include "formula/program.hpp"
 
 namespace footpoint::formula {
@@ -43,7 +45,11 @@ struct Program::Tape {
   std::vector<Node> nodes;
   std::vector<std::int32_t> outputs;  // node index of each formula's result
   int num_inputs = 0;
+  std::optional<PolynomialForm> polynomial;  // set when every formula is a sum of monomials
 };
+
+// The formulas as sums of monomials in the tape's order of summation, if every one of them is.
+std::optional<PolynomialForm> polynomial_form(const Program::Tape& tape);
 
 // Reads muparser's bytecode of every formula into one tape (tape_builder.cpp).
 Program::Tape build_tape(const std::vector<NamedFormula>& formulas, const std::vector<std::string>& variables,

@@ -30,6 +30,14 @@ CASES = [
     ("x > y ? x^2*y : y^3 - x", sp.Piecewise((x**2*y, x > y), (y**3-x, True)), {}, [(0.7, 1.3), (1.6, 0.45)]),
     ("x^0.5*y^1.5 + (x*y)^(1/3)", sp.sqrt(x)*y**sp.Rational(3, 2)+(x*y)**sp.Rational(1, 3), {}, [(0.7, 1.3), (1.6, 0.45)]),
     ("(u_shift+x)^3", (sp.Rational(-3, 2)+x)**3, {"u_shift": -1.5}, [(0.0, 0.5), (0.2, 1.0)]),
+    # sums of monomials (evaluated term by term, core/formula/polynomial.cpp): the surfaces S2 and
+    # S3's first component, signs folded through -( ), k - ( ) and a - (b + c), constants divided
+    ("x^4*y^3+x*y+x", x**4*y**3+x*y+x, {}, [(0.7, 1.3), (-1.1, 0.4)]),
+    ("x^6+x^5*y+y^6-x^2*y^3+x*y^4-y^5+x^4+x^3*y+y^4+x^3-x*y^2+y^3+x*y+y^2+1",
+     x**6+x**5*y+y**6-x**2*y**3+x*y**4-y**5+x**4+x**3*y+y**4+x**3-x*y**2+y**3+x*y+y**2+1, {}, [(0.7, 1.3), (-1.1, 0.4)]),
+    ("1 - (x^2*y - 3*x) - y^3/4 + x*(-y)^2*R", 1-(x**2*y-3*x)-y**3/4+x*y**2*R, {"R": 2.5}, [(0.7, 1.3), (-1.1, 0.4)]),
+    ("-(x^3 - 2*y) + 4 - x*(y^2 - x^5)", -(x**3-2*y)+4-x*(y**2-x**5), {}, [(0.7, 1.3), (-1.1, 0.4)]),
+    ("(2*x*y^2)^3 - x^7 + 5", 8*x**3*y**6-x**7+5, {}, [(0.7, 1.3), (-1.1, 0.4)]),
 ]
 
 def num(e, pt):
