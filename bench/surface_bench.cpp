@@ -9,10 +9,12 @@
 //  2. `newton` and `gsa` per point from a given start (the auto answer's parameters moved by 1% of
 //     the domain) on the near points;
 //  3. the papers' methods and `auto` side by side from the papers' starting values;
-//  4. project_batch over the thread pool, 100,000 points, 2 threads against 1 (wall time).
+//  4. project_batch over the thread pool, 100,000 points, 2 threads against 1 (wall time);
+//  5. `auto` on A1 and S1 with bench/http_bench.sh's point distribution (uniform in
+//     x in [-20,20], y in [-3,3], z in [-1.5,1.5]), with the local solves per point.
 // The load average (/proc/loadavg) is printed with every section.
 //
-// Usage: surface_bench [points per set, default 2000] [runs, default 5] [--sections 1234]
+// Usage: surface_bench [points per set, default 2000] [runs, default 5] [--sections 12345]
 //        surface_bench --peer DIR [--reps R] [KEY ...]
 // --peer: the Open CASCADE peer's point sets (shared/peers/README.md; DIR is the peer's copy, with
 // surfaces.txt and build/data/points_<KEY>.txt, KEY in S1 S2 S3 S1n S2n S3n by default), projected
@@ -331,6 +333,29 @@ void section_batch(const ParametricSurface& g) {
   std::printf("   speed-up 2 threads / 1 thread: %.2fx\n", rate[2] / rate[1]);
 }
 
+// Points as bench/http_bench.sh draws them around the GSA paper's Example 1 surface.
+std::vector<Vec3> http_points(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  std::vector<Vec3> points;
+  for (int i = 0; i < n; ++i) points.push_back({U(rng) * 40 - 20, U(rng) * 6 - 3, U(rng) * 3 - 1.5});
+  return points;
+}
+
+void section_http(const std::vector<std::shared_ptr<const ParametricSurface>>& surfaces, int n, int runs,
+                  double overhead) {
+  std::printf("5. auto, http_bench's points (x in [-20,20], y in [-3,3], z in [-1.5,1.5]), CPU time per point\n"
+              "                                     median    mean   batch     p90     p99  solves mean median max\n");
+  const std::vector<Vec3> points = http_points(n, 4242);
+  for (std::size_t k : {std::size_t{3}, std::size_t{0}}) {  // A1, S1
+    const Timed t = time_points(*surfaces[k], points, "auto", {}, runs, overhead);
+    std::vector<double> starts;
+    for (const ProjectionResult& r : t.results) starts.push_back(r.summary.starts);
+    print_row((kSurfaces[k].name + " http points").c_str(), t);
+    std::printf("  %5.2f %6.0f %4.0f\n", mean(starts), median(starts), percentile(starts, 1.0));
+  }
+}
+
 // ---- the Open CASCADE peer's point sets ----
 
 std::map<std::string, SurfaceSpec> read_peer_surfaces(const std::string& path) {
@@ -443,7 +468,7 @@ int peer_mode(const std::string& dir, int reps, std::vector<std::string> keys) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> positional;
-  std::string peer, sections = "1234";
+  std::string peer, sections = "12345";
   int reps = 5;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--peer") && i + 1 < argc) {
@@ -490,6 +515,10 @@ int main(int argc, char** argv) {
   if (has('4')) {
     std::printf("\n[%s]\n", load_average().c_str());
     section_batch(*surfaces[2]);
+  }
+  if (has('5')) {
+    std::printf("\n[%s]\n", load_average().c_str());
+    section_http(surfaces, n, runs, overhead);
   }
   std::printf("\n[%s]\n", load_average().c_str());
   return 0;

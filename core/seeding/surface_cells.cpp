@@ -207,11 +207,11 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
   }
 }
 
-double SurfaceCells::box_distance(const SurfaceCellNode& node, const Vec3& p) {
+double SurfaceCells::box_distance2(const SurfaceCellNode& node, const Vec3& p) {
   const double dx = std::max({node.lo.x - p.x, 0.0, p.x - node.hi.x});
   const double dy = std::max({node.lo.y - p.y, 0.0, p.y - node.hi.y});
   const double dz = std::max({node.lo.z - p.z, 0.0, p.z - node.hi.z});
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
+  return dx * dx + dy * dy + dz * dz;
 }
 
 std::size_t SurfaceCells::memory_bytes() const {

@@ -101,8 +101,8 @@ class SurfaceCells {
   // Memory per cell: the cell and the two tree nodes it adds.
   static constexpr std::size_t bytes_per_cell() { return sizeof(SurfaceCell) + 2 * sizeof(SurfaceCellNode); }
 
-  // Lower bound on |p - x| over the node's box (0 inside it).
-  static double box_distance(const SurfaceCellNode& node, const Vec3& p);
+  // Lower bound on |p - x|^2 over the node's box (0 inside it).
+  static double box_distance2(const SurfaceCellNode& node, const Vec3& p);
 
  private:
   std::vector<SurfaceCellNode> nodes_;

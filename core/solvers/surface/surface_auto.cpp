@@ -64,28 +64,39 @@ class Search {
 
   void run() {
     const auto& nodes = cells_.nodes();
+    // depth first, nearer child first; squared box distances (no square roots in the walk)
     std::int32_t stack[kStack];
-    double stack_lb[kStack];
+    double stack_lb2[kStack];
     int top = 0;
-    const double root_lb = SurfaceCells::box_distance(nodes[0], p_);
-    if (!(root_lb < bound_)) return;
+    const double root_lb2 = SurfaceCells::box_distance2(nodes[0], p_);
+    if (!(root_lb2 < bound_ * bound_)) return;
     // the leaf down the nearest boxes first: usually the answer's cell, so that the walk below
     // starts with a tight bound
-    first_leaf_ = descend();
-    visit(first_leaf_, 0.0);
+    PathStep path[kStack];
+    int path_length = 0, path_next = 0;
+    const std::int32_t first_leaf = descend(path, &path_length);
+    visit(first_leaf, 0.0);
     stack[top] = 0;
-    stack_lb[top++] = root_lb;
+    stack_lb2[top++] = root_lb2;
     while (top > 0) {
       --top;
-      if (!(stack_lb[top] < bound_)) continue;
+      const double bound2 = bound_ * bound_;
+      if (!(stack_lb2[top] < bound2)) continue;
       const SurfaceCellNode& node = nodes[static_cast<std::size_t>(stack[top])];
       if (node.leaf()) {
-        if (node.cell != first_leaf_) visit(node.cell, stack_lb[top]);
+        if (node.cell != first_leaf) visit(node.cell, std::sqrt(stack_lb2[top]));
         continue;
       }
       const std::int32_t a = node.child[0], b = node.child[1];
-      double la = SurfaceCells::box_distance(nodes[static_cast<std::size_t>(a)], p_);
-      double lb = SurfaceCells::box_distance(nodes[static_cast<std::size_t>(b)], p_);
+      // the nodes of the first path come in the same order (ancestors first): reuse their children's distances
+      double la, lb;
+      if (path_next < path_length && path[path_next].node == stack[top]) {
+        la = path[path_next].la2;
+        lb = path[path_next++].lb2;
+      } else {
+        la = SurfaceCells::box_distance2(nodes[static_cast<std::size_t>(a)], p_);
+        lb = SurfaceCells::box_distance2(nodes[static_cast<std::size_t>(b)], p_);
+      }
       // push the farther child first so that the nearer one is taken next
       std::int32_t first = a, second = b;
       if (la < lb) {
@@ -93,13 +104,13 @@ class Search {
         std::swap(la, lb);
       }
       if (top + 2 > kStack) continue;  // cannot happen for trees shallower than kStack / 2
-      if (la < bound_) {
+      if (la < bound2) {
         stack[top] = first;
-        stack_lb[top++] = la;
+        stack_lb2[top++] = la;
       }
-      if (lb < bound_) {
+      if (lb < bound2) {
         stack[top] = second;
-        stack_lb[top++] = lb;
+        stack_lb2[top++] = lb;
       }
     }
     solve_candidates();
@@ -156,6 +167,14 @@ class Search {
     }
     if (!options_.all_minima) bound_ = std::min(bound_, dc);
 
+    // 2a. the tangent plane itself is no farther than its parallelogram (rule 2): a cell that far
+    //     from the plane (|<r, n>| >= (bound + ρ) |n|, n = s_u x s_v) needs no more
+    if (c.resolved) {
+      const Vec3 n = cross(j.su, j.sv);
+      const double rn = dot(r, n), reach = bound_ + c.rho;
+      const double nn = norm2(n);
+      if (nn > 0.0 && std::isfinite(reach) && rn * rn >= reach * reach * nn) return;
+    }
     const double uc = c.uc(), vc = c.vc();
     const double E = dot(j.su, j.su), F = dot(j.su, j.sv), G = dot(j.sv, j.sv);
     BoxQuadratic q;
@@ -366,14 +385,24 @@ class Search {
     return a.status == Status::converged && b.status != Status::converged;
   }
 
-  // Greedy walk to the leaf whose boxes are nearest (no solve): for an answer beyond max_distance.
-  std::int32_t descend() const {
+  // Greedy walk to the leaf whose boxes are nearest (no solve): the first cell visited, and the
+  // answer beyond max_distance. With `path`, records the nodes passed and their children's
+  // squared box distances, which the walk reuses.
+  struct PathStep {
+    std::int32_t node;
+    double la2, lb2;
+  };
+  std::int32_t descend(PathStep* path = nullptr, int* path_length = nullptr) const {
     const auto& nodes = cells_.nodes();
     std::size_t k = 0;
+    int n = 0;
     while (!nodes[k].leaf()) {
       const auto a = static_cast<std::size_t>(nodes[k].child[0]), b = static_cast<std::size_t>(nodes[k].child[1]);
-      k = SurfaceCells::box_distance(nodes[a], p_) <= SurfaceCells::box_distance(nodes[b], p_) ? a : b;
+      const double la2 = SurfaceCells::box_distance2(nodes[a], p_), lb2 = SurfaceCells::box_distance2(nodes[b], p_);
+      if (path && n < kStack) path[n++] = {static_cast<std::int32_t>(k), la2, lb2};
+      k = la2 <= lb2 ? a : b;
     }
+    if (path_length) *path_length = n;
     return nodes[k].cell;
   }
 
@@ -411,7 +440,6 @@ class Search {
   double nearest_ = std::numeric_limits<double>::infinity();
   std::int32_t nearest_cell_ = -1;
   int solves_ = 0;
-  std::int32_t first_leaf_ = -1;
   Found best_;
   bool has_best_ = false;
   // A cell whose model puts the minimum in a neighbour: its grown rectangle and that point.
