@@ -183,6 +183,10 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     cell.finite = e.finite;
     cell.resolved = e.score <= options.resolved_flatness;
     cell.fine = e.score <= options.flatness;
+    {  // the tangent parallelogram's farthest corner from the centre, plus ρ
+      const Vec3 a = e.jet.su * (0.5 * (r.u1 - r.u0)), b = e.jet.sv * (0.5 * (r.v1 - r.v0));
+      cell.radius = std::max(norm(a + b), norm(a - b)) + e.rho;
+    }
     const formula::Interval x[2] = {{r.u0, r.u1}, {r.v0, r.v1}};
     formula::Interval out[3];
     formulas.program().intervals(x, out);

@@ -65,6 +65,7 @@ struct SurfaceCell {
   double rho = 0.0;                               // tangent-plane model error bound (see above)
   double rho2 = 0.0;                              // the same for the quadratic (Taylor) model
   double extent = 0.0;                            // largest chord of the cell on the surface
+  double radius = 0.0;                            // |s - s_c| <= radius over a resolved cell
   bool finite = true;                             // the centre jet is finite
   bool resolved = true;                           // ρ <= resolved_flatness x extent
   bool fine = true;                               // ρ <= flatness x extent

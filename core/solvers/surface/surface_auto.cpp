@@ -166,6 +166,8 @@ class Search {
       nearest_cell_ = index;
     }
     if (!options_.all_minima) bound_ = std::min(bound_, dc);
+    // 1a. the ball around the centre that holds the cell (rule 2's model, its corners + ρ)
+    if (c.resolved && dc - c.radius >= bound_) return;
 
     // 2a. the tangent plane itself is no farther than its parallelogram (rule 2): a cell that far
     //     from the plane (|<r, n>| >= (bound + ρ) |n|, n = s_u x s_v) needs no more
@@ -298,6 +300,7 @@ class Search {
     k.lb = lb;
     k.u = std::clamp(c.uc() + du, box_.umin, box_.umax);
     k.v = std::clamp(c.vc() + dv, box_.vmin, box_.vmax);
+
     k.face = face;
     // rule 4's region: around the model's minimiser for a fine cell, the cell itself for a coarse
     // one (its model can put the minimum a cell off, and two minima can lie a cell apart, as near
