@@ -42,9 +42,35 @@ Interval read_interval(JsonReader& r, const std::string& field) {
   return v;
 }
 
+// Reads an object member by member: read_value(name, field) reads each value, field being the
+// member's name after `prefix`. A JSON error in the object's structure names `object_field` (at
+// its start) or `member_field` (between members); a member named twice is a duplicate_field error.
+template <class ReadValue>
+void read_object(JsonReader& r, const std::string& object_field, const std::string& member_field,
+                 const std::string& prefix, ReadValue&& read_value) {
+  try {
+    r.begin_object();
+  } catch (const JsonReadError& e) {
+    throw request_error(e, object_field);
+  }
+  std::vector<std::string> seen;
+  std::string name;
+  for (;;) {
+    try {
+      if (!r.next_member(name)) break;
+    } catch (const JsonReadError& e) {
+      throw request_error(e, member_field);
+    }
+    const std::string field = prefix + name;
+    for (const auto& s : seen)
+      if (s == name) throw ApiError(400, "duplicate_field", field + " appears twice", field);
+    seen.push_back(name);
+    read_value(name, field);
+  }
+}
+
 RawDefinition read_members(JsonReader& r, const std::string& prefix) {
   RawDefinition raw;
-  std::vector<std::string> seen;
   auto read_string = [&](const std::string& field) {
     try {
       return r.string();
@@ -52,22 +78,8 @@ RawDefinition read_members(JsonReader& r, const std::string& prefix) {
       throw request_error(e, field);
     }
   };
-  try {
-    r.begin_object();
-  } catch (const JsonReadError& e) {
-    throw request_error(e, prefix.empty() ? "body" : prefix.substr(0, prefix.size() - 1));
-  }
-  std::string key;
-  for (;;) {
-    try {
-      if (!r.next_member(key)) break;
-    } catch (const JsonReadError& e) {
-      throw request_error(e, prefix);
-    }
-    const std::string field = prefix + key;
-    for (const auto& s : seen)
-      if (s == key) throw ApiError(400, "duplicate_field", field + " appears twice", field);
-    seen.push_back(key);
+  const std::string object_field = prefix.empty() ? "body" : prefix.substr(0, prefix.size() - 1);
+  read_object(r, object_field, prefix, prefix, [&](const std::string& key, const std::string& field) {
     if (key == "type") {
       raw.type = read_string(field);
     } else if (key == "x") {
@@ -97,49 +109,22 @@ RawDefinition read_members(JsonReader& r, const std::string& prefix) {
       raw.equations = std::move(eqs);
     } else if (key == "domain") {
       std::vector<std::pair<std::string, Interval>> domain;
-      try {
-        r.begin_object();
-      } catch (const JsonReadError& e) {
-        throw request_error(e, field);
-      }
-      std::string name;
-      for (;;) {
-        try {
-          if (!r.next_member(name)) break;
-        } catch (const JsonReadError& e) {
-          throw request_error(e, field);
-        }
-        const std::string item = field + "." + name;
-        for (const auto& d : domain)
-          if (d.first == name) throw ApiError(400, "duplicate_field", item + " appears twice", item);
+      read_object(r, field, field, field + ".", [&](const std::string& name, const std::string& item) {
         domain.emplace_back(name, read_interval(r, item));
-      }
+      });
       raw.domain = std::move(domain);
     } else if (key == "constants") {
-      try {
-        r.begin_object();
-      } catch (const JsonReadError& e) {
-        throw request_error(e, field);
-      }
-      std::string name;
-      for (;;) {
-        try {
-          if (!r.next_member(name)) break;
-        } catch (const JsonReadError& e) {
-          throw request_error(e, field);
-        }
-        const std::string item = field + "." + name;
-        if (raw.constants.count(name)) throw ApiError(400, "duplicate_field", item + " appears twice", item);
+      read_object(r, field, field, field + ".", [&](const std::string& name, const std::string& item) {
         try {
           raw.constants[name] = r.number();
         } catch (const JsonReadError& e) {
           throw request_error(e, item);
         }
-      }
+      });
     } else {
       throw ApiError(400, "unknown_field", "unknown field " + field, field);
     }
-  }
+  });
   return raw;
 }
 

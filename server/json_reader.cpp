@@ -109,10 +109,12 @@ void JsonReader::begin_array() {
   open();
 }
 
-bool JsonReader::next_member(std::string& key) {
+// After an opening bracket or an item: the closing bracket (false) or, from the second item on,
+// the comma before the next item (true).
+bool JsonReader::next_item(char close, const char* end_message, const char* separator_message) {
   skip_whitespace();
-  if (pos_ >= text_.size()) syntax_error("unexpected end of input in an object");
-  if (text_[pos_] == '}') {
+  if (pos_ >= text_.size()) syntax_error(end_message);
+  if (text_[pos_] == close) {
     ++pos_;
     first_.pop_back();
     return false;
@@ -120,10 +122,15 @@ bool JsonReader::next_member(std::string& key) {
   if (first_.back()) {
     first_.back() = 0;
   } else {
-    if (text_[pos_] != ',') syntax_error("expected ',' or '}'");
+    if (text_[pos_] != ',') syntax_error(separator_message);
     ++pos_;
-    skip_whitespace();
   }
+  return true;
+}
+
+bool JsonReader::next_member(std::string& key) {
+  if (!next_item('}', "unexpected end of input in an object", "expected ',' or '}'")) return false;
+  skip_whitespace();
   if (pos_ >= text_.size() || text_[pos_] != '"') syntax_error("expected a member name (a string)");
   key.clear();
   parse_string_into(&key);
@@ -134,20 +141,7 @@ bool JsonReader::next_member(std::string& key) {
 }
 
 bool JsonReader::next_element() {
-  skip_whitespace();
-  if (pos_ >= text_.size()) syntax_error("unexpected end of input in an array");
-  if (text_[pos_] == ']') {
-    ++pos_;
-    first_.pop_back();
-    return false;
-  }
-  if (first_.back()) {
-    first_.back() = 0;
-  } else {
-    if (text_[pos_] != ',') syntax_error("expected ',' or ']'");
-    ++pos_;
-  }
-  return true;
+  return next_item(']', "unexpected end of input in an array", "expected ',' or ']'");
 }
 
 std::string_view JsonReader::scan_number() {

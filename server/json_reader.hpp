@@ -52,6 +52,7 @@ class JsonReader {
   static const char* name(Type type);
 
  private:
+  bool next_item(char close, const char* end_message, const char* separator_message);
   [[noreturn]] void syntax_error(const std::string& message) const;
   [[noreturn]] void type_error(Type expected);
   void skip_whitespace();
