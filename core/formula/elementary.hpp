@@ -117,8 +117,9 @@ inline double unary_value(Op op, double x, double k) {
       d[1] = scale * r; d[2] = -scale * r * r; d[3] = 2.0 * scale * r * r * r;
       return;
     }
-    case Op::sin: { const double s = std::sin(x), c = std::cos(x); d[0] = s; d[1] = c; d[2] = -s; d[3] = -c; return; }
-    case Op::cos: { const double s = std::sin(x), c = std::cos(x); d[0] = c; d[1] = -s; d[2] = -c; d[3] = s; return; }
+    // sin and cos together in one call (glibc's sincos; the compiler does not always fuse them)
+    case Op::sin: { double s, c; ::sincos(x, &s, &c); d[0] = s; d[1] = c; d[2] = -s; d[3] = -c; return; }
+    case Op::cos: { double s, c; ::sincos(x, &s, &c); d[0] = c; d[1] = -s; d[2] = -c; d[3] = s; return; }
     case Op::tan: {
       const double t = std::tan(x), q = 1.0 + t * t;  // tan' = 1 + tan^2
       d[0] = t; d[1] = q; d[2] = 2.0 * t * q; d[3] = 2.0 * q * (1.0 + 3.0 * t * t);

@@ -244,11 +244,13 @@ void polynomial_jets2_uv(const PolynomialForm& poly, const double* x, Jet2<2>* o
     for (std::uint32_t t = poly.first[k]; t < poly.first[k + 1]; ++t) {
       const Monomial& m = poly.terms[t];
       const int a = m.e[0], b = m.e[1];
-      Pair c[3];
-      std::memcpy(c, m.pairs.data(), sizeof c);
-      vh += c[0] * (u01[a] * v01[b]);
-      g += c[1] * (u10[a] * v01[b]);
-      h += c[2] * (u20[a] * v02[b]);
+      Pair c0, c1, c2;  // (loaded straight from the term; a local array would go through the stack)
+      std::memcpy(&c0, m.pairs.data(), sizeof c0);
+      std::memcpy(&c1, m.pairs.data() + 2, sizeof c1);
+      std::memcpy(&c2, m.pairs.data() + 4, sizeof c2);
+      vh += c0 * (u01[a] * v01[b]);
+      g += c1 * (u10[a] * v01[b]);
+      h += c2 * (u20[a] * v02[b]);
     }
     Jet2<2>& r = out[k];
     r.v = vh[0];

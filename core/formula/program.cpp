@@ -21,8 +21,11 @@ bool is_binary(Op op) { return (op >= Op::add && op <= Op::div) || (op >= Op::mi
 // ---- plain values -----------------------------------------------------------------------------
 struct ValueArith {
   using T = double;
+  using Input = double;
+  using Output = T;
+  static const T& output(const T& a) { return a; }
   static T constant(double c) { return c; }
-  static T variable(const T* x, int i) { return x[i]; }
+  static T variable(const Input* x, int i) { return x[i]; }
   [[gnu::always_inline]] static T unary(Op op, const T& a, double k) { return unary_value(op, a, k); }
   [[gnu::always_inline]] static T binary(Op op, const T& a, const T& b) { return binary_value(op, a, b); }
   static const T& select(const T& c, const T& a, const T& b) { return c != 0.0 ? a : b; }
@@ -32,12 +35,23 @@ struct ValueArith {
 template <int N>
 struct Jet2Arith {
   using T = Jet2<N>;
+  using Output = T;
+  static const T& output(const T& a) { return a; }
   static T constant(double c) {
     T r;
     r.v = c;
     return r;
   }
-  static T variable(const T* x, int i) { return x[i]; }
+  using Input = double;
+  // x_i: gradient e_i, no second derivatives. Built in registers (no entry indexed by i at run
+  // time) and stored whole: a jet stored by parts and read back by pairs of doubles would stall
+  // the load on store forwarding.
+  static T variable(const Input* x, int i) {
+    T r;
+    r.v = x[i];
+    for (int k = 0; k < N; ++k) r.g[k] = k == i ? 1.0 : 0.0;
+    return r;
+  }
   // Chain rule: (f∘a)_i = f' a_i,  (f∘a)_ij = f' a_ij + f'' a_i a_j.
   [[gnu::always_inline]] static T chain(const T& a, const double d[4]) {
     T r;
@@ -103,16 +117,106 @@ struct Jet2Arith {
   static const T& select(const T& c, const T& a, const T& b) { return c.v != 0.0 ? a : b; }
 };
 
+// ---- second-order jets in two variables, in pairs of doubles -----------------------------------------
+// The surfaces' case (u, v). A register holds (v, 0), (g_u, g_v), (h_uu, h_uv), (h_vu, h_vv), each an
+// aligned pair of doubles that every operation reads and writes whole, so that a node's result is
+// forwarded from its stores to the next node's loads (the generic jet, seven doubles read and
+// written in the compiler's own mix of single and paired accesses, stalls on store forwarding).
+// The arithmetic and the order of every sum are those of Jet2Arith; the Hessian is made exactly
+// symmetric by copying h_uv into h_vu.
+typedef double Pair __attribute__((vector_size(16)));
+
+struct PairJet {
+  Pair v, g, h0, h1;  // v = (value, 0)
+};
+
+struct Jet2PairArith {
+  using T = PairJet;
+  using Input = double;
+  using Output = Jet2<2>;
+  static Pair splat(double x) { return Pair{x, x}; }
+  static Pair value(double x) { return Pair{x, 0.0}; }
+  static Pair mirror(const Pair& h0, const Pair& h1) { return Pair{h0[1], h1[1]}; }  // h_vu := h_uv
+  static Output output(const T& a) {
+    Output r;
+    r.v = a.v[0];
+    r.g = {a.g[0], a.g[1]};
+    r.h = {{{a.h0[0], a.h0[1]}, {a.h1[0], a.h1[1]}}};
+    return r;
+  }
+  static T constant(double c) { return {value(c), Pair{0.0, 0.0}, Pair{0.0, 0.0}, Pair{0.0, 0.0}}; }
+  static T variable(const Input* x, int i) {
+    return {value(x[i]), i == 0 ? Pair{1.0, 0.0} : Pair{0.0, 1.0}, Pair{0.0, 0.0}, Pair{0.0, 0.0}};
+  }
+  static T scaled(const T& a, double s, double v) {
+    const Pair k = splat(s);
+    return {value(v), k * a.g, k * a.h0, k * a.h1};
+  }
+  // (f∘a)_i = f' a_i,  (f∘a)_ij = f' a_ij + (f'' a_i) a_j.
+  [[gnu::always_inline]] static T chain(const T& a, const double d[4]) {
+    const Pair d1 = splat(d[1]);
+    const Pair h0 = d1 * a.h0 + splat(d[2] * a.g[0]) * a.g;
+    const Pair h1 = d1 * a.h1 + splat(d[2] * a.g[1]) * a.g;
+    return {value(d[0]), d1 * a.g, h0, mirror(h0, h1)};
+  }
+  [[gnu::always_inline]] static T unary(Op op, const T& a, double k) {
+    switch (op) {
+      case Op::add_k: return {value(a.v[0] + k), a.g, a.h0, a.h1};
+      case Op::mul_k: return scaled(a, k, a.v[0] * k);
+      case Op::div_k: return scaled(a, 1.0 / k, a.v[0] / k);
+      case Op::rsub_k: return scaled(a, -1.0, k - a.v[0]);
+      case Op::neg: return scaled(a, -1.0, -a.v[0]);
+      default: {
+        double d[4];
+        unary_derivatives(op, a.v[0], k, 2, d);
+        return chain(a, d);
+      }
+    }
+  }
+  [[gnu::always_inline]] static T binary(Op op, const T& a, const T& b) {
+    switch (op) {
+      case Op::add: return {a.v + b.v, a.g + b.g, a.h0 + b.h0, a.h1 + b.h1};
+      case Op::sub: return {a.v - b.v, a.g - b.g, a.h0 - b.h0, a.h1 - b.h1};
+      case Op::mul: {  // Leibniz: (ab)_ij = a_ij b + a_i b_j + a_j b_i + a b_ij
+        const Pair av = splat(a.v[0]), bv = splat(b.v[0]);
+        const Pair h0 = a.h0 * bv + splat(a.g[0]) * b.g + a.g * splat(b.g[0]) + av * b.h0;
+        const Pair h1 = a.h1 * bv + splat(a.g[1]) * b.g + a.g * splat(b.g[1]) + av * b.h1;
+        return {value(a.v[0] * b.v[0]), a.g * bv + av * b.g, h0, mirror(h0, h1)};
+      }
+      case Op::div: {  // q = a/b:  q_i = (a_i - q b_i)/b,  q_ij = (a_ij - q_i b_j - q_j b_i - q b_ij)/b
+        const double q = a.v[0] / b.v[0];
+        const Pair bv = splat(b.v[0]), qv = splat(q);
+        const Pair g = (a.g - qv * b.g) / bv;
+        const Pair h0 = (a.h0 - splat(g[0]) * b.g - g * splat(b.g[0]) - qv * b.h0) / bv;
+        const Pair h1 = (a.h1 - splat(g[1]) * b.g - g * splat(b.g[1]) - qv * b.h1) / bv;
+        return {value(q), g, h0, mirror(h0, h1)};
+      }
+      case Op::min: return a.v[0] <= b.v[0] ? a : b;
+      case Op::max: return a.v[0] >= b.v[0] ? a : b;
+      default: return constant(binary_value(op, a.v[0], b.v[0]));
+    }
+  }
+  static const T& select(const T& c, const T& a, const T& b) { return c.v[0] != 0.0 ? a : b; }
+};
+
 // ---- third-order jets ------------------------------------------------------------------------
 template <int N>
 struct Jet3Arith {
   using T = Jet3<N>;
+  using Output = T;
+  static const T& output(const T& a) { return a; }
   static T constant(double c) {
     T r;
     r.v = c;
     return r;
   }
-  static T variable(const T* x, int i) { return x[i]; }
+  using Input = double;
+  static T variable(const Input* x, int i) {  // x_i: gradient e_i, no higher derivatives
+    T r;
+    r.v = x[i];
+    for (int k = 0; k < N; ++k) r.g[k] = k == i ? 1.0 : 0.0;
+    return r;
+  }
   // Faà di Bruno to third order:
   //   (f∘a)_ijk = f' a_ijk + f'' (a_ij a_k + a_ik a_j + a_jk a_i) + f''' a_i a_j a_k.
   [[gnu::always_inline]] static T chain(const T& a, const double d[4]) {
@@ -189,6 +293,9 @@ struct Jet3Arith {
 // ---- intervals with outward rounding -------------------------------------------------------------
 struct IntervalArith {
   using T = Interval;
+  using Input = Interval;
+  using Output = T;
+  static const T& output(const T& a) { return a; }
   static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   static T empty() { return {nan, nan}; }  // no point of the box is in the function's domain
   static T widen(double lo, double hi) {
@@ -197,7 +304,7 @@ struct IntervalArith {
   }
   static bool bad(const T& a) { return std::isnan(a.lo) || std::isnan(a.hi); }
   static T constant(double c) { return {c, c}; }
-  static T variable(const T* x, int i) { return x[i]; }
+  static T variable(const Input* x, int i) { return x[i]; }
   static T hull(const T& a, const T& b) {
     if (bad(a) || bad(b)) return empty();
     return {std::min(a.lo, b.lo), std::max(a.hi, b.hi), a.partial || b.partial};
@@ -371,7 +478,7 @@ struct IntervalArith {
 };
 
 template <class Arith>
-void run(const Program::Tape& tape, const typename Arith::T* inputs, typename Arith::T* outputs) {
+void run(const Program::Tape& tape, const typename Arith::Input* inputs, typename Arith::Output* outputs) {
   using T = typename Arith::T;
   thread_local std::vector<T> regs;
   if (regs.size() < tape.nodes.size()) regs.resize(tape.nodes.size());
@@ -399,17 +506,7 @@ void run(const Program::Tape& tape, const typename Arith::T* inputs, typename Ar
         else regs[i] = Arith::unary(node.op, regs[node.a], node.k);
     }
   }
-  for (std::size_t k = 0; k < tape.outputs.size(); ++k) outputs[k] = regs[tape.outputs[k]];
-}
-
-// Seeds the jets of the input variables: x_i has gradient e_i and no higher derivatives.
-template <class J>
-void seed(const double* x, int n, J* jets) {
-  for (int i = 0; i < n; ++i) {
-    jets[i] = J{};
-    jets[i].v = x[i];
-    jets[i].g[i] = 1.0;
-  }
+  for (std::size_t k = 0; k < tape.outputs.size(); ++k) outputs[k] = Arith::output(regs[tape.outputs[k]]);
 }
 
 }  // namespace
@@ -437,16 +534,13 @@ void Program::values(const double* x, double* out) const { run<ValueArith>(*tape
 template <int N>
 void Program::jets2(const double* x, Jet2<N>* out) const {
   if (tape_->polynomial) return polynomial_jets2<N>(*tape_->polynomial, x, out);
-  Jet2<N> in[N];
-  seed(x, N, in);
-  run<Jet2Arith<N>>(*tape_, in, out);
+  if constexpr (N == 2) run<Jet2PairArith>(*tape_, x, out);
+  else run<Jet2Arith<N>>(*tape_, x, out);
 }
 
 template <int N>
 void Program::jets3(const double* x, Jet3<N>* out) const {
-  Jet3<N> in[N];
-  seed(x, N, in);
-  run<Jet3Arith<N>>(*tape_, in, out);
+  run<Jet3Arith<N>>(*tape_, x, out);
 }
 
 void Program::intervals(const Interval* x, Interval* out) const { run<IntervalArith>(*tape_, x, out); }
