@@ -183,6 +183,11 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     cell.finite = e.finite;
     cell.resolved = e.score <= options.resolved_flatness;
     cell.fine = e.score <= options.flatness;
+    cell.E = dot(e.jet.su, e.jet.su);
+    cell.F = dot(e.jet.su, e.jet.sv);
+    cell.G = dot(e.jet.sv, e.jet.sv);
+    cell.normal = cross(e.jet.su, e.jet.sv);
+    cell.normal2 = norm2(cell.normal);
     {  // the tangent parallelogram's farthest corner from the centre, plus ρ
       const Vec3 a = e.jet.su * (0.5 * (r.u1 - r.u0)), b = e.jet.sv * (0.5 * (r.v1 - r.v0));
       cell.radius = std::max(norm(a + b), norm(a - b)) + e.rho;

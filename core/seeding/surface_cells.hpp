@@ -66,6 +66,11 @@ struct SurfaceCell {
   double rho2 = 0.0;                              // the same for the quadratic (Taylor) model
   double extent = 0.0;                            // largest chord of the cell on the surface
   double radius = 0.0;                            // |s - s_c| <= radius over a resolved cell
+  // The tangent plane's metric and normal at the centre (first fundamental form E, F, G;
+  // n = s_u x s_v, |n|^2), which every visit of the cell uses.
+  double E = 0.0, F = 0.0, G = 0.0;
+  Vec3 normal;
+  double normal2 = 0.0;
   bool finite = true;                             // the centre jet is finite
   bool resolved = true;                           // ρ <= resolved_flatness x extent
   bool fine = true;                               // ρ <= flatness x extent

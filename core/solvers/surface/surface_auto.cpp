@@ -172,13 +172,11 @@ class Search {
     // 2a. the tangent plane itself is no farther than its parallelogram (rule 2): a cell that far
     //     from the plane (|<r, n>| >= (bound + ρ) |n|, n = s_u x s_v) needs no more
     if (c.resolved) {
-      const Vec3 n = cross(j.su, j.sv);
-      const double rn = dot(r, n), reach = bound_ + c.rho;
-      const double nn = norm2(n);
-      if (nn > 0.0 && std::isfinite(reach) && rn * rn >= reach * reach * nn) return;
+      const double rn = dot(r, c.normal), reach = bound_ + c.rho;
+      if (c.normal2 > 0.0 && std::isfinite(reach) && rn * rn >= reach * reach * c.normal2) return;
     }
     const double uc = c.uc(), vc = c.vc();
-    const double E = dot(j.su, j.su), F = dot(j.su, j.sv), G = dot(j.sv, j.sv);
+    const double E = c.E, F = c.F, G = c.G;
     BoxQuadratic q;
     q.g = {dot(r, j.su), dot(r, j.sv)};
     // 2. the tangent-plane model: min over the cell of |r + s_u δu + s_v δv|, less ρ
