@@ -32,9 +32,14 @@ struct ValueArith {
 };
 
 // ---- second-order jets: value, gradient, Hessian ------------------------------------------------
-template <int N>
-struct Jet2Arith {
-  using T = Jet2<N>;
+// The leaves of a jet tape, any order: a constant (no derivatives) and an input variable x_i
+// (gradient e_i, no higher derivatives), built in registers (no entry indexed by i at run time) and
+// stored whole: a jet stored by parts and read back by pairs of doubles would stall the load on
+// store forwarding.
+template <class J, int N>
+struct JetLeaves {
+  using T = J;
+  using Input = double;
   using Output = T;
   static const T& output(const T& a) { return a; }
   static T constant(double c) {
@@ -42,16 +47,18 @@ struct Jet2Arith {
     r.v = c;
     return r;
   }
-  using Input = double;
-  // x_i: gradient e_i, no second derivatives. Built in registers (no entry indexed by i at run
-  // time) and stored whole: a jet stored by parts and read back by pairs of doubles would stall
-  // the load on store forwarding.
   static T variable(const Input* x, int i) {
     T r;
     r.v = x[i];
     for (int k = 0; k < N; ++k) r.g[k] = k == i ? 1.0 : 0.0;
     return r;
   }
+};
+
+template <int N>
+struct Jet2Arith : JetLeaves<Jet2<N>, N> {
+  using T = Jet2<N>;
+  using JetLeaves<Jet2<N>, N>::constant;
   // Chain rule: (f∘a)_i = f' a_i,  (f∘a)_ij = f' a_ij + f'' a_i a_j.
   [[gnu::always_inline]] static T chain(const T& a, const double d[4]) {
     T r;
@@ -201,22 +208,9 @@ struct Jet2PairArith {
 
 // ---- third-order jets ------------------------------------------------------------------------
 template <int N>
-struct Jet3Arith {
+struct Jet3Arith : JetLeaves<Jet3<N>, N> {
   using T = Jet3<N>;
-  using Output = T;
-  static const T& output(const T& a) { return a; }
-  static T constant(double c) {
-    T r;
-    r.v = c;
-    return r;
-  }
-  using Input = double;
-  static T variable(const Input* x, int i) {  // x_i: gradient e_i, no higher derivatives
-    T r;
-    r.v = x[i];
-    for (int k = 0; k < N; ++k) r.g[k] = k == i ? 1.0 : 0.0;
-    return r;
-  }
+  using JetLeaves<Jet3<N>, N>::constant;
   // Faà di Bruno to third order:
   //   (f∘a)_ijk = f' a_ijk + f'' (a_ij a_k + a_ik a_j + a_jk a_i) + f''' a_i a_j a_k.
   [[gnu::always_inline]] static T chain(const T& a, const double d[4]) {
