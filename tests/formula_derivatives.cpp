@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <random>
 #include <nlohmann/json.hpp>
 
 #include "formula/program.hpp"
@@ -145,4 +146,42 @@ TEST_CASE("several formulas share one tape and common subexpressions") {
   CHECK(j[2].v == std::sin(0.3 - 0.8));
   CHECK(j[1].h[1][1] == -2.0 * std::cos(-0.8));
   CHECK(j[2].h[0][1] == -std::sin(0.3 - 0.8));
+}
+
+TEST_CASE("two-variable jets (paired arithmetic) agree with the generic third-order jets, op by op") {
+  // jets2<2> runs its own arithmetic on pairs of doubles (program.cpp, Jet2PairArith); jets3 runs
+  // the generic rules. Every op on the tape, at many points: value, gradient and Hessian agree to a
+  // few ulps of the jet's largest entry, and the Hessian is symmetric.
+  const char* formulas[] = {
+      "x*y - x/y + 3*x - y/4 + 5 - (2 - x)", "x^3*y^-2 + (x*y)^2.5 + 2^x + 7/(1 + x*x)",
+      "sqrt(x*y) + exp(x-y) + ln(x+y) + log2(x*y) + log10(3*x)", "sin(x*y) + cos(x/y) + tan(0.3*x*y)",
+      "asin(0.2*x*y) + acos(0.3*x-0.1*y) + atan(x/y)", "sinh(x-y) + cosh(x*y) + tanh(x/y)",
+      "asinh(x*y) + acosh(1+x*y) + atanh(0.2*x*y)", "abs(x-y)*y + sign(x-y)*x^2 + min(x*y, x+y) + max(x, y^2)",
+      "x > y ? x^2*y : y^3 - x", "(x < y) + (x >= y)*x + (x != y)*y + (x*y > 1 && x < 2)*x*y",
+      "-x*(-y) + -(x/y)"};
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> coord(0.2, 1.8);
+  for (const char* text : formulas) {
+    const Program p = compile1(text);
+    for (int trial = 0; trial < 200; ++trial) {
+      const double pt[2] = {coord(rng), coord(rng)};
+      Jet2<2> j2;
+      Jet3<2> j3;
+      p.jets2<2>(pt, &j2);
+      p.jets3<2>(pt, &j3);
+      double scale = std::max(1.0, std::fabs(j3.v));
+      for (int a = 0; a < 2; ++a) {
+        scale = std::max(scale, std::fabs(j3.g[a]));
+        for (int b = 0; b < 2; ++b) scale = std::max(scale, std::fabs(j3.h[a][b]));
+      }
+      INFO(text << " at (" << pt[0] << ", " << pt[1] << ")");
+      const double tol = 64 * 1e-16 * scale;
+      CHECK(std::fabs(j2.v - j3.v) <= tol);
+      for (int a = 0; a < 2; ++a) {
+        CHECK(std::fabs(j2.g[a] - j3.g[a]) <= tol);
+        for (int b = 0; b < 2; ++b) CHECK(std::fabs(j2.h[a][b] - j3.h[a][b]) <= tol);
+      }
+      CHECK(j2.h[0][1] == j2.h[1][0]);
+    }
+  }
 }
