@@ -63,17 +63,8 @@ ApiResponse echo(const RouteMatch& match, std::string_view body, std::size_t max
 int main(int argc, char** argv) {
   block_shutdown_signals();
   ServerConfig config;
-  try {
-    bool help = false;
-    config = load_config(argc, argv, [](const char* name) { return std::getenv(name); }, help);
-    if (help) {
-      std::fputs(usage().c_str(), stdout);
-      return 0;
-    }
-  } catch (const ConfigError& e) {
-    std::fprintf(stderr, "echo_server_bench: %s\n", e.what());
-    return 2;
-  }
+  const int exit_code = configure_from_command_line(argc, argv, "echo_server_bench", config);
+  if (exit_code >= 0) return exit_code;
   HttpServer* self = nullptr;
   HttpServer server(config, [&self, &config](const RouteMatch& m, std::string_view method, std::string_view body) {
     if (m.route == Route::project || m.route == Route::geometry_project) return echo(m, body, config.max_points);

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs everything footpoint needs to build, test and benchmark, from Debian 12 packages.
 # Idempotent; run as root (or with sudo available). Used by both README commands and by CI.
+# Packages given as arguments are installed as well (fuzz/install.sh adds clang's libFuzzer).
 set -euo pipefail
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
@@ -12,6 +13,7 @@ packages=(
   python3 python3-yaml python3-jsonschema   # openapi / manifest checks in the tests
   python3-numpy python3-scipy python3-sympy python3-mpmath  # shared/cases/oracle.py, reference generators
   curl jq wrk
+  "$@"
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,6 +1,8 @@
 #include "config.hpp"
 
 #include <charconv>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <vector>
 
@@ -175,6 +177,21 @@ std::string usage() {
     text += line;
   }
   return text;
+}
+
+int configure_from_command_line(int argc, const char* const* argv, const char* program, ServerConfig& config) {
+  try {
+    bool help = false;
+    config = load_config(argc, argv, [](const char* name) { return std::getenv(name); }, help);
+    if (help) {
+      std::fputs(usage().c_str(), stdout);
+      return 0;
+    }
+  } catch (const ConfigError& e) {
+    std::fprintf(stderr, "%s: %s\n", program, e.what());
+    return 2;
+  }
+  return -1;
 }
 
 }  // namespace footpoint::server

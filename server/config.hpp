@@ -74,4 +74,9 @@ ServerConfig load_config(int argc, const char* const* argv,
 // The flags, their variables and defaults, one per line.
 std::string usage();
 
+// A server executable's start: the configuration from argv and the process environment into
+// `config`, or the exit code to end with: 0 after printing usage() for --help, 2 after naming the
+// bad flag or value on stderr (prefixed with `program`). -1: go on.
+int configure_from_command_line(int argc, const char* const* argv, const char* program, ServerConfig& config);
+
 }  // namespace footpoint::server

@@ -23,17 +23,8 @@ int main(int argc, char** argv) {
   block_shutdown_signals();
 
   ServerConfig config;
-  try {
-    bool help = false;
-    config = load_config(argc, argv, [](const char* name) { return std::getenv(name); }, help);
-    if (help) {
-      std::fputs(usage().c_str(), stdout);
-      return 0;
-    }
-  } catch (const ConfigError& e) {
-    std::fprintf(stderr, "footpoint-server: %s\n", e.what());
-    return 2;
-  }
+  const int exit_code = configure_from_command_line(argc, argv, "footpoint-server", config);
+  if (exit_code >= 0) return exit_code;
 
   int status = 0;
   try {

@@ -10,40 +10,21 @@
 namespace footpoint {
 
 bool SampleGrid::near(const std::vector<Vec3>& points, Vec3 x, double radius) const {
-  const CellIndex c = grid_.index_of(x);
   const double r2 = radius * radius;
-  for (int dx = -1; dx <= 1; ++dx)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dz = -1; dz <= 1; ++dz) {
-        const CellIndex n{c[0] + dx, c[1] + dy, c[2] + dz};
-        if (n[0] < 0 || n[1] < 0 || n[2] < 0) continue;
-        const auto it = buckets_.find(CellGrid::key(n));
-        if (it == buckets_.end()) continue;
-        for (std::int32_t i : it->second)
-          if (norm2(points[static_cast<std::size_t>(i)] - x) <= r2) return true;
-      }
-  return false;
+  return any_nearby(x, [&](std::int32_t i) { return norm2(points[static_cast<std::size_t>(i)] - x) <= r2; });
 }
 
 std::int32_t SampleGrid::nearest_end(const CurveSamples& samples, Vec3 x, double radius, std::int32_t below) const {
-  const CellIndex c = grid_.index_of(x);
   double best = radius * radius;
   std::int32_t found = -1;
-  for (int dx = -1; dx <= 1; ++dx)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dz = -1; dz <= 1; ++dz) {
-        const CellIndex n{c[0] + dx, c[1] + dy, c[2] + dz};
-        if (n[0] < 0 || n[1] < 0 || n[2] < 0) continue;
-        const auto it = buckets_.find(CellGrid::key(n));
-        if (it == buckets_.end()) continue;
-        for (std::int32_t i : it->second) {
-          const auto k = static_cast<std::size_t>(i);
-          if (i >= below || samples.kind[k] != SampleKind::regular || (samples.prev[k] >= 0 && samples.next[k] >= 0))
-            continue;
-          const double d2 = norm2(samples.points[k] - x);
-          if (d2 <= best) best = d2, found = i;
-        }
-      }
+  any_nearby(x, [&](std::int32_t i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (i >= below || samples.kind[k] != SampleKind::regular || (samples.prev[k] >= 0 && samples.next[k] >= 0))
+      return false;
+    const double d2 = norm2(samples.points[k] - x);
+    if (d2 <= best) best = d2, found = i;
+    return false;
+  });
   return found;
 }
 

@@ -29,6 +29,23 @@ class SampleGrid {
   std::int32_t nearest_end(const CurveSamples& samples, Vec3 x, double radius, std::int32_t below) const;
 
  private:
+  // visit(i) for every sample in x's cell and the 26 around it (false from visit stops: true then)
+  template <class Visit>
+  bool any_nearby(Vec3 x, Visit&& visit) const {
+    const CellIndex c = grid_.index_of(x);
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const CellIndex n{c[0] + dx, c[1] + dy, c[2] + dz};
+          if (n[0] < 0 || n[1] < 0 || n[2] < 0) continue;
+          const auto it = buckets_.find(CellGrid::key(n));
+          if (it == buckets_.end()) continue;
+          for (std::int32_t i : it->second)
+            if (visit(i)) return true;
+        }
+    return false;
+  }
+
   CellGrid grid_;
   std::unordered_map<std::uint64_t, std::vector<std::int32_t>> buckets_;
 };

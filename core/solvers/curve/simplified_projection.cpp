@@ -35,13 +35,9 @@ Landing iterate_eq20(const ImplicitEquations& equations, Vec3 p, Vec3 x0, const 
 
 ProjectionResult simplified_projection(const ImplicitEquations& equations, const Box3& box, Vec3 p,
                                        const Options& options) {
-  std::vector<std::array<double, 3>> trace;
-  const IterationControl control = make_control(options, kPaperIterations, &trace);
-  Landing l = land_on_curve(equations, paper_start(p, options, equations.planar()), control);
-  if (l.status == Status::converged) l = iterate_eq20(equations, p, l.x, control);
-  ProjectionResult r = paper_result(equations, box, p, l.x, "simplified", l.status, l.iterations, l.step, control);
-  r.trace = std::move(trace);
-  return r;
+  return land_then(equations, box, p, options, "simplified", [&](const Landing& l, const IterationControl& control) {
+    return iterate_eq20(equations, p, l.x, control);
+  });
 }
 
 }  // namespace footpoint::curve

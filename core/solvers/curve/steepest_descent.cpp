@@ -117,13 +117,8 @@ ProjectionResult paper_result(const ImplicitEquations& equations, const Box3& bo
 
 ProjectionResult steepest_descent(const ImplicitEquations& equations, const Box3& box, Vec3 p,
                                   const Options& options) {
-  std::vector<std::array<double, 3>> trace;
-  const IterationControl control = make_control(options, kPaperIterations, &trace);
-  const Landing l = land_on_curve(equations, paper_start(p, options, equations.planar()), control);
-  ProjectionResult r = paper_result(equations, box, p, l.x, "steepest_descent", l.status, l.iterations,
-                                    l.step, control, /*with_orthogonality=*/false);
-  r.trace = std::move(trace);
-  return r;
+  auto landed = [](const Landing& l, const IterationControl&) { return l; };
+  return land_then(equations, box, p, options, "steepest_descent", landed, /*with_orthogonality=*/false);
 }
 
 }  // namespace footpoint::curve

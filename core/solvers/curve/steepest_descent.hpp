@@ -55,4 +55,20 @@ ProjectionResult paper_result(const ImplicitEquations& equations, const Box3& bo
                               const char* method, Status status, int iterations, double step,
                               const IterationControl& control, bool with_orthogonality = true);
 
+// Shared by the paper's methods: Algorithm 1 from the paper's start (or options.initial), then
+// `refine` (Landing refine(Landing landed, const IterationControl&)) when the landing converged,
+// and the result at the end with the trace of every increment.
+template <class Refine>
+ProjectionResult land_then(const ImplicitEquations& equations, const Box3& box, Vec3 p, const Options& options,
+                           const char* method, Refine&& refine, bool with_orthogonality = true) {
+  std::vector<std::array<double, 3>> trace;
+  const IterationControl control = make_control(options, kPaperIterations, &trace);
+  Landing l = land_on_curve(equations, paper_start(p, options, equations.planar()), control);
+  if (l.status == Status::converged) l = refine(l, control);
+  ProjectionResult r =
+      paper_result(equations, box, p, l.x, method, l.status, l.iterations, l.step, control, with_orthogonality);
+  r.trace = std::move(trace);
+  return r;
+}
+
 }  // namespace footpoint::curve
