@@ -16,6 +16,13 @@ struct Rect {
   double u0, u1, v0, v1;
 };
 
+// The subdivision as it is built: a binary tree, folded into SurfaceCellNodes at the end.
+struct BinaryNode {
+  Vec3 lo, hi;  // box containing s over the node's rectangle
+  std::int32_t child[2]{-1, -1};
+  std::int32_t cell = -1;  // leaf: index into cells_
+};
+
 struct Evaluated {
   SurfaceJet jet;
   bool finite = false;
@@ -97,16 +104,16 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     c.s = formulas.point(c.u, c.v);
     c.finite = is_finite(c.s);
   }
+  std::vector<BinaryNode> nodes;
   std::vector<Rect> rects;
   std::vector<Evaluated> evals;
   std::vector<int> depths;
   auto add_node = [&](const Rect& r, int depth) {
-    nodes_.emplace_back();
+    nodes.emplace_back();
     rects.push_back(r);
     evals.push_back(evaluate(formulas, r));
     depths.push_back(depth);
-    depth_ = std::max(depth_, depth);
-    return static_cast<std::int32_t>(nodes_.size() - 1);
+    return static_cast<std::int32_t>(nodes.size() - 1);
   };
   auto split = [&](std::int32_t i) {
     const Rect r = rects[static_cast<std::size_t>(i)];
@@ -119,8 +126,8 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     }
     const std::int32_t ia = add_node(a, depth);
     const std::int32_t ib = add_node(b, depth);
-    nodes_[static_cast<std::size_t>(i)].child[0] = ia;
-    nodes_[static_cast<std::size_t>(i)].child[1] = ib;
+    nodes[static_cast<std::size_t>(i)].child[0] = ia;
+    nodes[static_cast<std::size_t>(i)].child[1] = ib;
     return std::pair{ia, ib};
   };
 
@@ -164,10 +171,9 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     ++leaves;
   }
   // the leaves: cells with their rigorous boxes
-  nodes_.shrink_to_fit();
   cells_.reserve(static_cast<std::size_t>(leaves));
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    SurfaceCellNode& node = nodes_[i];
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    BinaryNode& node = nodes[i];
     if (node.child[0] >= 0) continue;
     const Rect& r = rects[i];
     const Evaluated& e = evals[i];
@@ -204,23 +210,67 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     cells_.push_back(cell);
   }
   // parents' boxes: unions of the children's (children come after their parent)
-  for (std::size_t k = nodes_.size(); k-- > 0;) {
-    SurfaceCellNode& node = nodes_[k];
-    if (node.leaf()) continue;
-    const SurfaceCellNode& a = nodes_[static_cast<std::size_t>(node.child[0])];
-    const SurfaceCellNode& b = nodes_[static_cast<std::size_t>(node.child[1])];
+  for (std::size_t k = nodes.size(); k-- > 0;) {
+    BinaryNode& node = nodes[k];
+    if (node.cell >= 0) continue;
+    const BinaryNode& a = nodes[static_cast<std::size_t>(node.child[0])];
+    const BinaryNode& b = nodes[static_cast<std::size_t>(node.child[1])];
     for (int c = 0; c < 3; ++c) {
       node.lo[c] = std::min(a.lo[c], b.lo[c]);
       node.hi[c] = std::max(a.hi[c], b.hi[c]);
     }
   }
+  lo_ = nodes[0].lo;
+  hi_ = nodes[0].hi;
+  // Fold two levels into one: a node's children are its binary children's children (a binary
+  // child that is a leaf stays a child). Breadth first, so a node's index is below its children's.
+  if (nodes[0].cell >= 0) return;  // a single cell: no node
+  std::vector<std::int32_t> from{0};  // the binary node each SurfaceCellNode folds
+  for (std::size_t w = 0; w < from.size(); ++w) {
+    const BinaryNode& b = nodes[static_cast<std::size_t>(from[w])];
+    SurfaceCellNode node;
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < SurfaceCellNode::kWidth; ++k) {
+        node.lo[c][k] = inf;
+        node.hi[c][k] = -inf;
+      }
+    for (int k = 0; k < SurfaceCellNode::kWidth; ++k) node.child[k] = -1;
+    auto add = [&](std::int32_t i) {
+      const BinaryNode& n = nodes[static_cast<std::size_t>(i)];
+      const int k = node.children++;
+      for (int c = 0; c < 3; ++c) {
+        node.lo[c][k] = n.lo[c];
+        node.hi[c][k] = n.hi[c];
+      }
+      if (n.cell >= 0) {
+        node.child[k] = ~n.cell;
+      } else {
+        node.child[k] = static_cast<std::int32_t>(from.size());
+        from.push_back(i);
+      }
+    };
+    for (std::int32_t i : b.child) {
+      const BinaryNode& n = nodes[static_cast<std::size_t>(i)];
+      if (n.cell >= 0) {
+        add(i);
+      } else {
+        add(n.child[0]);
+        add(n.child[1]);
+      }
+    }
+    nodes_.push_back(node);
+  }
+  nodes_.shrink_to_fit();
 }
 
-double SurfaceCells::box_distance2(const SurfaceCellNode& node, const Vec3& p) {
-  const double dx = std::max({node.lo.x - p.x, 0.0, p.x - node.hi.x});
-  const double dy = std::max({node.lo.y - p.y, 0.0, p.y - node.hi.y});
-  const double dz = std::max({node.lo.z - p.z, 0.0, p.z - node.hi.z});
-  return dx * dx + dy * dy + dz * dz;
+double SurfaceCells::root_distance2(const Vec3& p) const {
+  double d2 = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const double d = std::max({lo_[c] - p[c], 0.0, p[c] - hi_[c]});
+    d2 += d * d;
+  }
+  return d2;
 }
 
 std::size_t SurfaceCells::memory_bytes() const {

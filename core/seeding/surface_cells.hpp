@@ -1,14 +1,14 @@
 // What `auto` precomputes once per parametric surface and reuses for every point: an adaptive
-// subdivision of the parameter domain into cells, stored as a binary tree (a bounding-volume
-// hierarchy over the parameter rectangles), with
+// subdivision of the parameter domain into cells, stored as a tree (a bounding-volume hierarchy
+// over the parameter rectangles; binary as built, two levels folded into one for the search), with
 //  - per cell: the jet of s at the cell's centre (value, first and second partials), and ρ, a bound
 //    on |s(t) - (s_c + s_u δu + s_v δv)| over the cell (the tangent-plane model's error, estimated
 //    from 16 samples plus twice the quadratic model's error there, which bounds the gap between the
 //    samples), and ρ2, the same for the quadratic model (twice its sampled error);
-//  - per node: an axis-aligned box containing s over the node's rectangle. For a leaf it is the
-//    formula engine's interval enclosure (rigorous, outward rounded); a parent's box is the union
-//    of its children's. dist(p, box) is a lower bound on the distance from p to that part of the
-//    surface.
+//  - per node of the tree: an axis-aligned box containing s over the node's rectangle. For a leaf
+//    it is the formula engine's interval enclosure (rigorous, outward rounded); a parent's box is
+//    the union of its children's. dist(p, box) is a lower bound on the distance from p to that
+//    part of the surface.
 // Cells are split (where the tangent-plane model is worse), worst cell first, until the
 // tangent-plane model is good to `flatness` of the cell's size, so that the Newton model of a
 // cell predicts where the distance is least, and most points need a single local solve.
@@ -26,12 +26,12 @@
 // Fine and coarse cells are "resolved". Refinement, worst cell first, pursues `flatness` up to
 // `target_cells` cells, then `resolved_flatness` up to the memory cap `max_bytes`.
 // The trade-off: finer cells give tighter bounds, better starts and fewer local solves, but a
-// longer compile (~1.5 µs per node, two nodes per cell), more memory (memory_bytes(), ~340 bytes
+// longer compile (~1.5 µs per binary node, two per cell), more memory (memory_bytes(), ~355 bytes
 // per cell) and, for points near a surface that covers itself many times, more cells to visit.
 // On the [-25,25]^2 surface (bench/surface_bench.cpp, A1): all fine at flatness 0.05 would take
 // ~50,000 cells, 17 MB and ~0.2 s to compile; the former fixed budget of 4096 cells left every
 // cell unresolved (~30 local solves per point); the defaults give ~4,300 cells (target 4096, then
-// on to 0.25), 1.4 MB, ~15 ms, and per point about a third of the local solves and time of the
+// on to 0.25), 1.5 MB, ~15 ms, and per point about a third of the local solves and time of the
 // fixed budget. S1-S3 reach flatness 0.05 within the target (394-2306 cells), as before.
 #pragma once
 #include <array>
@@ -54,8 +54,8 @@ struct SurfaceSeedingOptions {
   // The requirement: refine while ρ > resolved_flatness x extent, up to max_bytes; a cell within
   // it is resolved.
   double resolved_flatness = 0.25;
-  // Memory cap of the cells and the tree (memory_bytes()): about 12,000 cells, a compile of
-  // ~40 ms. Refinement stops there whatever the flatness.
+  // Memory cap of the cells and the tree (memory_bytes()): about 8,400 cells, a compile of
+  // ~25 ms. Refinement stops there whatever the flatness.
   std::size_t max_bytes = std::size_t{4} << 20;
 };
 
@@ -85,36 +85,68 @@ struct SurfaceCorner {
   bool finite = false;
 };
 
+// A node of the search tree: two levels of the binary subdivision folded into one, so a node
+// has 2-4 children (a child leaf of the binary tree stays a child). The children's boxes are
+// stored in the node, coordinate by coordinate (lo[c][k], hi[c][k] for child k), so that the walk
+// gets all four box distances from one node's memory in a few vector operations. An unused slot
+// has an empty box (lo = +inf, hi = -inf): its distance is infinite.
 struct SurfaceCellNode {
-  Vec3 lo, hi;                 // box containing s over the node's rectangle
-  std::int32_t child[2]{-1, -1};
-  std::int32_t cell = -1;      // leaf: index into cells()
-  bool leaf() const { return cell >= 0; }
+  static constexpr int kWidth = 4;
+  alignas(32) double lo[3][kWidth];
+  double hi[3][kWidth];
+  // child >= 0: a node; child < 0: the leaf holding cell ~child (i.e. -child - 1)
+  std::int32_t child[kWidth];
+  int children = 0;
 };
 
 class SurfaceCells {
  public:
   SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box, const SurfaceSeedingOptions& options = {});
 
-  const std::vector<SurfaceCellNode>& nodes() const { return nodes_; }  // nodes()[0] is the root
+  // nodes()[0] is the root, unless the tree is a single cell (then nodes() is empty).
+  const std::vector<SurfaceCellNode>& nodes() const { return nodes_; }
   const std::vector<SurfaceCell>& cells() const { return cells_; }
+  // The box containing the whole surface (the root's).
+  const Vec3& lo() const { return lo_; }
+  const Vec3& hi() const { return hi_; }
   // The domain's corners (umin, vmin), (umax, vmin), (umin, vmax), (umax, vmax): minima of their
   // own, which `auto` compares with its answer (a cell's model cannot tell a corner from an edge
   // minimum within the model's error of it).
   const std::array<SurfaceCorner, 4>& corners() const { return corners_; }
-  int depth() const { return depth_; }
   std::size_t memory_bytes() const;
-  // Memory per cell: the cell and the two tree nodes it adds.
-  static constexpr std::size_t bytes_per_cell() { return sizeof(SurfaceCell) + 2 * sizeof(SurfaceCellNode); }
+  // Memory per cell, an upper bound: the cell and a node (a tree with n >= 2 leaves whose nodes
+  // have at least two children each has fewer than n nodes).
+  static constexpr std::size_t bytes_per_cell() { return sizeof(SurfaceCell) + sizeof(SurfaceCellNode); }
 
-  // Lower bound on |p - x|^2 over the node's box (0 inside it).
-  static double box_distance2(const SurfaceCellNode& node, const Vec3& p);
+  // Lower bounds on |p - x|^2 over each child's box of `node` (0 inside it, +inf for an unused slot).
+  static void box_distances2(const SurfaceCellNode& node, const Vec3& p, double out[SurfaceCellNode::kWidth]) {
+    // GCC/Clang vector extensions, two lanes (one SSE2 register) at a time
+    typedef double Pair __attribute__((vector_size(2 * sizeof(double))));
+    const Pair zero = {0.0, 0.0};
+    const double q[3] = {p.x, p.y, p.z};
+    for (int k = 0; k < SurfaceCellNode::kWidth; k += 2) {
+      Pair sum = zero;
+      for (int c = 0; c < 3; ++c) {
+        Pair lo, hi;
+        __builtin_memcpy(&lo, &node.lo[c][k], sizeof lo);
+        __builtin_memcpy(&hi, &node.hi[c][k], sizeof hi);
+        const Pair qc = {q[c], q[c]};
+        const Pair below = lo - qc, above = qc - hi;  // at most one is positive
+        Pair d = below > above ? below : above;
+        d = d > zero ? d : zero;
+        sum += d * d;
+      }
+      __builtin_memcpy(&out[k], &sum, sizeof sum);
+    }
+  }
+  // The same for the root box.
+  double root_distance2(const Vec3& p) const;
 
  private:
   std::vector<SurfaceCellNode> nodes_;
   std::vector<SurfaceCell> cells_;
   std::array<SurfaceCorner, 4> corners_;
-  int depth_ = 0;
+  Vec3 lo_, hi_;
 };
 
 }  // namespace footpoint

@@ -64,53 +64,53 @@ class Search {
 
   void run() {
     const auto& nodes = cells_.nodes();
-    // depth first, nearer child first; squared box distances (no square roots in the walk)
-    std::int32_t stack[kStack];
-    double stack_lb2[kStack];
-    int top = 0;
-    const double root_lb2 = SurfaceCells::box_distance2(nodes[0], p_);
-    if (!(root_lb2 < bound_ * bound_)) return;
+    if (!(cells_.root_distance2(p_) < bound_ * bound_)) return;
     // the leaf down the nearest boxes first: usually the answer's cell, so that the walk below
     // starts with a tight bound
     PathStep path[kStack];
     int path_length = 0, path_next = 0;
-    const std::int32_t first_leaf = descend(path, &path_length);
-    visit(first_leaf, 0.0);
-    stack[top] = 0;
-    stack_lb2[top++] = root_lb2;
+    const std::int32_t first_cell = descend(path, &path_length);
+    visit(first_cell, 0.0);
+    // depth first, nearest child first; squared box distances (no square roots in the walk).
+    // An entry is a node (>= 0) or the leaf of cell ~entry, with its squared box distance.
+    constexpr int W = SurfaceCellNode::kWidth;
+    std::int32_t stack[kStack];
+    double stack_lb2[kStack];
+    int top = 0;
+    if (!nodes.empty()) {
+      stack[top] = 0;
+      stack_lb2[top++] = 0.0;
+    }
     while (top > 0) {
       --top;
       const double bound2 = bound_ * bound_;
       if (!(stack_lb2[top] < bound2)) continue;
-      const SurfaceCellNode& node = nodes[static_cast<std::size_t>(stack[top])];
-      if (node.leaf()) {
-        if (node.cell != first_leaf) visit(node.cell, std::sqrt(stack_lb2[top]));
+      if (stack[top] < 0) {
+        if (~stack[top] != first_cell) visit(~stack[top], std::sqrt(stack_lb2[top]));
         continue;
       }
-      const std::int32_t a = node.child[0], b = node.child[1];
-      // the nodes of the first path come in the same order (ancestors first): reuse their children's distances
-      double la, lb;
+      const SurfaceCellNode& node = nodes[static_cast<std::size_t>(stack[top])];
+      // the nodes of the first path come in the same order (ancestors first): reuse their
+      // children's distances
+      double d2[W];
       if (path_next < path_length && path[path_next].node == stack[top]) {
-        la = path[path_next].la2;
-        lb = path[path_next++].lb2;
+        for (int k = 0; k < W; ++k) d2[k] = path[path_next].d2[k];
+        ++path_next;
       } else {
-        la = SurfaceCells::box_distance2(nodes[static_cast<std::size_t>(a)], p_);
-        lb = SurfaceCells::box_distance2(nodes[static_cast<std::size_t>(b)], p_);
+        SurfaceCells::box_distances2(node, p_, d2);
       }
-      // push the farther child first so that the nearer one is taken next
-      std::int32_t first = a, second = b;
-      if (la < lb) {
-        std::swap(first, second);
-        std::swap(la, lb);
+      // the children within the bound, pushed farthest first so that the nearest is taken next
+      int order[W], n = 0;
+      for (int k = 0; k < node.children; ++k) {
+        if (!(d2[k] < bound2)) continue;
+        int i = n++;
+        for (; i > 0 && d2[order[i - 1]] < d2[k]; --i) order[i] = order[i - 1];
+        order[i] = k;
       }
-      if (top + 2 > kStack) continue;  // cannot happen for trees shallower than kStack / 2
-      if (la < bound2) {
-        stack[top] = first;
-        stack_lb2[top++] = la;
-      }
-      if (lb < bound2) {
-        stack[top] = second;
-        stack_lb2[top++] = lb;
+      if (top + n > kStack) continue;  // cannot happen: the tree is at most 24 nodes deep
+      for (int i = 0; i < n; ++i) {
+        stack[top] = node.child[order[i]];
+        stack_lb2[top++] = d2[order[i]];
       }
     }
     solve_candidates();
@@ -391,20 +391,29 @@ class Search {
   // squared box distances, which the walk reuses.
   struct PathStep {
     std::int32_t node;
-    double la2, lb2;
+    double d2[SurfaceCellNode::kWidth];
   };
   std::int32_t descend(PathStep* path = nullptr, int* path_length = nullptr) const {
     const auto& nodes = cells_.nodes();
-    std::size_t k = 0;
     int n = 0;
-    while (!nodes[k].leaf()) {
-      const auto a = static_cast<std::size_t>(nodes[k].child[0]), b = static_cast<std::size_t>(nodes[k].child[1]);
-      const double la2 = SurfaceCells::box_distance2(nodes[a], p_), lb2 = SurfaceCells::box_distance2(nodes[b], p_);
-      if (path && n < kStack) path[n++] = {static_cast<std::int32_t>(k), la2, lb2};
-      k = la2 <= lb2 ? a : b;
+    std::int32_t k = 0;
+    if (nodes.empty()) k = ~0;  // a single cell
+    while (k >= 0) {
+      const SurfaceCellNode& node = nodes[static_cast<std::size_t>(k)];
+      double d2[SurfaceCellNode::kWidth];
+      SurfaceCells::box_distances2(node, p_, d2);
+      if (path && n < kStack) {
+        path[n].node = k;
+        for (int i = 0; i < SurfaceCellNode::kWidth; ++i) path[n].d2[i] = d2[i];
+        ++n;
+      }
+      int nearest = 0;
+      for (int i = 1; i < node.children; ++i)
+        if (d2[i] < d2[nearest]) nearest = i;
+      k = node.child[nearest];
     }
     if (path_length) *path_length = n;
-    return nodes[k].cell;
+    return ~k;
   }
 
   std::vector<Minimum> minima() const {
