@@ -192,11 +192,18 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     cell.E = dot(e.jet.su, e.jet.su);
     cell.F = dot(e.jet.su, e.jet.sv);
     cell.G = dot(e.jet.sv, e.jet.sv);
-    cell.normal = cross(e.jet.su, e.jet.sv);
-    cell.normal2 = norm2(cell.normal);
-    {  // the tangent parallelogram's farthest corner from the centre, plus ρ
-      const Vec3 a = e.jet.su * (0.5 * (r.u1 - r.u0)), b = e.jet.sv * (0.5 * (r.v1 - r.v0));
-      cell.radius = std::max(norm(a + b), norm(a - b)) + e.rho;
+    {
+      const Vec3 n = cross(e.jet.su, e.jet.sv);
+      const double n_len = norm(n), su_len = norm(e.jet.su);
+      const double hu = 0.5 * (r.u1 - r.u0), hv = 0.5 * (r.v1 - r.v0);
+      cell.framed = e.finite && n_len > 0.0 && su_len > 0.0 && std::isfinite(n_len);
+      if (cell.framed) {
+        cell.unit_normal = n * (1.0 / n_len);
+        cell.e1 = e.jet.su * (1.0 / su_len);
+        cell.e2 = cross(cell.unit_normal, cell.e1);
+        cell.half1 = su_len * hu + std::abs(dot(e.jet.sv, cell.e1)) * hv;
+        cell.half2 = std::abs(dot(e.jet.sv, cell.e2)) * hv;
+      }
     }
     const formula::Interval x[2] = {{r.u0, r.u1}, {r.v0, r.v1}};
     formula::Interval out[3];

@@ -65,12 +65,17 @@ struct SurfaceCell {
   double rho = 0.0;                               // tangent-plane model error bound (see above)
   double rho2 = 0.0;                              // the same for the quadratic (Taylor) model
   double extent = 0.0;                            // largest chord of the cell on the surface
-  double radius = 0.0;                            // |s - s_c| <= radius over a resolved cell
-  // The tangent plane's metric and normal at the centre (first fundamental form E, F, G;
-  // n = s_u x s_v, |n|^2), which every visit of the cell uses.
+  // The tangent plane's metric at the centre (first fundamental form E, F, G), which every visit
+  // of the cell uses.
   double E = 0.0, F = 0.0, G = 0.0;
-  Vec3 normal;
-  double normal2 = 0.0;
+  // The rectangle in the tangent plane that holds the cell's tangent parallelogram
+  // {s_c + s_u δu + s_v δv}: centred at s_c, axes e1 = s_u/|s_u|, e2 = n x e1 (n = the unit
+  // normal), half-widths half1 = |s_u| hu + |<s_v, e1>| hv, half2 = |<s_v, e2>| hv (hu, hv the
+  // cell's half-widths in u and v). The cell lies within ρ of it. framed = false where
+  // s_u x s_v = 0 (no plane).
+  Vec3 e1, e2, unit_normal;
+  double half1 = 0.0, half2 = 0.0;
+  bool framed = false;
   bool finite = true;                             // the centre jet is finite
   bool resolved = true;                           // ρ <= resolved_flatness x extent
   bool fine = true;                               // ρ <= flatness x extent

@@ -20,15 +20,6 @@ BoxMinimum minimize_on_box(const BoxQuadratic& q, const std::array<double, 2>& l
   BoxMinimum best;
   const double a = q.H[0][0], b = q.H[0][1], c = q.H[1][1];
   const double det = a * c - b * b;
-  if (a > 0.0 && det > 0.0) {
-    const double d0 = (-q.g[0] * c + q.g[1] * b) / det;
-    const double d1 = (-q.g[1] * a + q.g[0] * b) / det;
-    if (d0 > lo[0] && d0 < hi[0] && d1 > lo[1] && d1 < hi[1]) {
-      best.delta = {d0, d1};
-      best.value = q.value(d0, d1);
-      return best;
-    }
-  }
   bool first = true;
   auto consider = [&](double d0, double d1) {
     const double f = q.value(d0, d1);
@@ -38,9 +29,33 @@ BoxMinimum minimize_on_box(const BoxQuadratic& q, const std::array<double, 2>& l
       best.value = f;
     }
   };
-  // edges δ0 = lo/hi: minimise over δ1 of (g1 + b δ0) δ1 + ½ c δ1^2; likewise for δ1 fixed
-  for (double d0 : {lo[0], hi[0]}) consider(d0, minimize_1d(q.g[1] + b * d0, c, lo[1], hi[1]));
-  for (double d1 : {lo[1], hi[1]}) consider(minimize_1d(q.g[0] + b * d1, a, lo[0], hi[0]), d1);
+  if (a > 0.0 && det > 0.0) {
+    const double d0 = (-q.g[0] * c + q.g[1] * b) / det;
+    const double d1 = (-q.g[1] * a + q.g[0] * b) / det;
+    const bool beyond0 = !(d0 > lo[0] && d0 < hi[0]), beyond1 = !(d1 > lo[1] && d1 < hi[1]);
+    if (!beyond0 && !beyond1) {
+      best.delta = {d0, d1};
+      best.value = q.value(d0, d1);
+      return best;
+    }
+    // H positive definite, its minimiser d outside: the box's minimiser x is on a side that d
+    // is beyond. Were x inside a side x1 = hi1 with d1 < hi1, say, then with e = x - d, e1 > 0,
+    // the first-order conditions ∂0 = a e0 + b e1 = 0 and ∂1 = b e0 + c e1 <= 0 would give
+    // ∂1 = e1 (ac - b^2)/a > 0; were x a corner with d beyond neither of its sides, the outward
+    // gradient there would give e^T H e = e·∇f(x) <= 0. Likewise for the other sides.
+    if (beyond0) {
+      const double d = d0 <= lo[0] ? lo[0] : hi[0];
+      consider(d, minimize_1d(q.g[1] + b * d, c, lo[1], hi[1]));
+    }
+    if (beyond1) {
+      const double d = d1 <= lo[1] ? lo[1] : hi[1];
+      consider(minimize_1d(q.g[0] + b * d, a, lo[0], hi[0]), d);
+    }
+  } else {
+    // edges δ0 = lo/hi: minimise over δ1 of (g1 + b δ0) δ1 + ½ c δ1^2; likewise for δ1 fixed
+    for (double d0 : {lo[0], hi[0]}) consider(d0, minimize_1d(q.g[1] + b * d0, c, lo[1], hi[1]));
+    for (double d1 : {lo[1], hi[1]}) consider(minimize_1d(q.g[0] + b * d1, a, lo[0], hi[0]), d1);
+  }
   best.side = {side_of(best.delta[0], lo[0], hi[0]), side_of(best.delta[1], lo[1], hi[1])};
   return best;
 }

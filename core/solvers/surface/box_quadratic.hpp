@@ -1,7 +1,8 @@
 // The minimum of a 2-D quadratic q(δ) = g·δ + ½ δ^T H δ over a rectangle lo <= δ <= hi, exactly:
 // the unconstrained minimiser when H is positive definite and it lies inside, else the best of the
-// four edges (a 1-D quadratic each, minimised in closed form) - the minimum of a quadratic over a
-// rectangle is at an interior stationary point or on the boundary. Used by the seeding (the
+// edges (a 1-D quadratic each, minimised in closed form) - the minimum of a quadratic over a
+// rectangle is at an interior stationary point or on the boundary; for a positive definite H only
+// the one or two edges its minimiser is beyond. Used by the seeding (the
 // tangent-plane lower bound and the Newton model of each cell) without any allocation.
 #pragma once
 #include <array>

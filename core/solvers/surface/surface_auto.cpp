@@ -166,14 +166,14 @@ class Search {
       nearest_cell_ = index;
     }
     if (!options_.all_minima) bound_ = std::min(bound_, dc);
-    // 1a. the ball around the centre that holds the cell (rule 2's model, its corners + ρ)
-    if (c.resolved && dc - c.radius >= bound_) return;
-
-    // 2a. the tangent plane itself is no farther than its parallelogram (rule 2): a cell that far
-    //     from the plane (|<r, n>| >= (bound + ρ) |n|, n = s_u x s_v) needs no more
-    if (c.resolved) {
-      const double rn = dot(r, c.normal), reach = bound_ + c.rho;
-      if (c.normal2 > 0.0 && std::isfinite(reach) && rn * rn >= reach * reach * c.normal2) return;
+    // 2a. the rectangle in the tangent plane that holds the tangent parallelogram (rule 2's
+    //     model): the cell is within ρ of it, so a cell whose rectangle is at least bound + ρ
+    //     away needs no more (coordinates of r in the frame e1, e2, n; no square root)
+    if (c.resolved && c.framed) {
+      const double out1 = std::max(std::abs(dot(r, c.e1)) - c.half1, 0.0);
+      const double out2 = std::max(std::abs(dot(r, c.e2)) - c.half2, 0.0);
+      const double h = dot(r, c.unit_normal), reach = bound_ + c.rho;
+      if (std::isfinite(reach) && h * h + out1 * out1 + out2 * out2 >= reach * reach) return;
     }
     const double uc = c.uc(), vc = c.vc();
     const double E = c.E, F = c.F, G = c.G;
