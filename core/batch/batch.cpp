@@ -4,6 +4,13 @@
 
 namespace footpoint {
 
+namespace {
+// Points between two reads of the clock: a read costs ~20 ns, a fast projection ~1 µs (S1), so
+// reading it for every point would cost 2 % of the batch; up to kClockStride - 1 more points of
+// a chunk may start after the deadline.
+constexpr std::size_t kClockStride = 4;
+}  // namespace
+
 std::vector<ProjectionResult> project_batch(ThreadPool& pool, const BatchRequest& request) {
   std::vector<ProjectionResult> results(request.count);
   const int dim = request.geometry->point_dim();
@@ -12,9 +19,12 @@ std::vector<ProjectionResult> project_batch(ThreadPool& pool, const BatchRequest
   const std::size_t chunk = std::clamp<std::size_t>(request.count / (8 * pool.size() + 1), 16, 1024);
   pool.parallel_for(request.count, chunk, [&](std::size_t begin, std::size_t end) {
     Options options = request.options;
+    bool late = false;
     for (std::size_t i = begin; i < end; ++i) {
       ProjectionResult& r = results[i];
-      if (std::chrono::steady_clock::now() >= request.deadline) {
+      // the clock is read before every kClockStride-th point of a chunk
+      if ((i - begin) % kClockStride == 0) late = std::chrono::steady_clock::now() >= request.deadline;
+      if (late) {
         r.dim = dim;
         r.num_params = request.geometry->num_params();
         r.summary.method = request.method;

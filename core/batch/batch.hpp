@@ -1,5 +1,7 @@
 // The one entry point for projecting many points: used by the server, the tests and the
-// benchmarks alike. Order is kept; points not started before the deadline get deadline_exceeded.
+// benchmarks alike. Order is kept; points not started before the deadline get deadline_exceeded
+// (the clock is read before every fourth point of a chunk, so up to three more points of each
+// chunk may start after it).
 #pragma once
 #include <array>
 #include <chrono>

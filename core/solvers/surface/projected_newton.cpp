@@ -57,6 +57,9 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     have_prev = true;
   }
   if (!is_finite(jet)) status = Status::non_finite;
+  // the early stop has something to compare with: a minimiser or a distance found before
+  const bool may_stop_early =
+      early && (early->minimiser_count > 0 || early->cutoff < std::numeric_limits<double>::infinity());
 
   while (status == Status::max_iterations) {
     const Vec3 r = jet.s - p;
@@ -139,7 +142,7 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
       break;
     }
     if (sol.iterations >= criteria.max_iterations) break;
-    if (early && have_prev && definite) {
+    if (may_stop_early && have_prev && definite) {
       const double lambda_min = det / (0.5 * (a + c) + std::sqrt(0.25 * (a - c) * (a - c) + b * b));  // det / λ2
       // the ball around t (or the point t + d) inside the domain
       auto within = [&](double c0, double c1, double radius) {
