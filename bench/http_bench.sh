@@ -2,13 +2,16 @@
 # HTTP benchmark on loopback (wrk): footpoint-server against an echo baseline.
 #   bench/http_bench.sh [BUILD_DIR]          (a Release build: BUILD_DIR/footpoint-server and
 #                                              BUILD_DIR/bench/echo_server_bench; default build)
-# Environment: DURATION (seconds per wrk run, default 10), HALF_WIDTHS (domains, default "3 25"), PORT (default 18471; the echo uses
-# PORT+1), CONNECTIONS (single-point runs, default 50), BATCH_CONNECTIONS (default 4).
+# Environment: DURATION (seconds per wrk run, default 10), HALF_WIDTHS (domains, default "3 25"),
+# REPEATS (batch pairs per domain, default 3), PORT (default 18471; the echo uses PORT+1),
+# CONNECTIONS (single-point runs, default 50), BATCH_CONNECTIONS (default 4).
 # Runs:
 #   1. single-point POST /v1/geometries/{id}/project on the GSA paper's Example 1 surface, random
-#      points, CONNECTIONS connections: requests/s and p50/p99 latency;
-#   2. 10,000-point batches on the same surface: points/s;
-#   3. the same two against the echo server (same HTTP layer and JSON reader/writer, no projection).
+#      points, CONNECTIONS connections: requests/s and p50/p99 latency; the same against the echo
+#      server (same HTTP layer and JSON reader/writer, no projection);
+#   2. 10,000-point batches on the same surface and on the echo server, in REPEATS back-to-back
+#      pairs per domain: the ratio of each pair, and the medians (a pair sees the same machine
+#      load, so the ratio moves less than either throughput).
 # Only 127.0.0.1 is targeted; every step is bounded by `timeout` and the whole script by 600 s.
 set -euo pipefail
 
@@ -87,41 +90,52 @@ pct() { awk -v p="$2" '$1 == p {print $2}' "$work/$1.txt"; }
 errors() { awk '/Non-2xx|Socket errors/ {print}' "$work/$1.txt"; }
 points() { awk -v r="$(rps "$1")" 'BEGIN {printf "%.0f", r * 10000}'; }
 
+REPEATS=${REPEATS:-3}
+median() { sort -g | awk '{v[NR] = $1} END {if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+
 start "$SERVER" "$PORT"
+start "$ECHO" "$ECHO_PORT"
 for w in "${widths[@]}"; do
   surface='{"type":"parametric_surface","x":"u+v","y":"sin(u)+2*cos(v)","z":"sin(u+v)","domain":{"u":[-'"$w"','"$w"'],"v":[-'"$w"','"$w"']}}'
   id=$(curl -fsS --max-time 30 -H 'Content-Type: application/json' -d "$surface" "http://$HOST:$PORT/v1/geometries" |
     sed -E 's/.*"geometry_id":"([0-9a-f]+)".*/\1/')
   url="http://$HOST:$PORT/v1/geometries/$id/project"
+  echo_url="http://$HOST:$ECHO_PORT/v1/geometries/$id/project"
   timeout 30 wrk -t2 -c"$CONNECTIONS" -d2s -s "$work/single.lua" "$url" >/dev/null  # warm-up
   run_wrk "single_$w" "$CONNECTIONS" "$work/single.lua" "$url"
-  run_wrk "batch_$w" "$BATCH_CONNECTIONS" "$work/batch.lua" "$url"
+  for r in $(seq "$REPEATS"); do
+    run_wrk "batch_${w}_$r" "$BATCH_CONNECTIONS" "$work/batch.lua" "$url"
+    run_wrk "echo_batch_${w}_$r" "$BATCH_CONNECTIONS" "$work/batch.lua" "$echo_url"
+  done
 done
-
-start "$ECHO" "$ECHO_PORT"
-echo_url="http://$HOST:$ECHO_PORT/v1/geometries/$id/project"
 timeout 30 wrk -t2 -c"$CONNECTIONS" -d2s -s "$work/single.lua" "$echo_url" >/dev/null
 run_wrk echo_single "$CONNECTIONS" "$work/single.lua" "$echo_url"
-run_wrk echo_batch "$BATCH_CONNECTIONS" "$work/batch.lua" "$echo_url"
 
 echo "http_bench: wrk -t2 on $HOST, ${DURATION}s per run, $(nproc) cores; GSA paper Example 1 surface"
-printf '  echo baseline: single point, %d connections: %s req/s (p50 %s, p99 %s); 10,000-point batches, %d connections: %s points/s (p50 %s)\n' \
-  "$CONNECTIONS" "$(rps echo_single)" "$(pct echo_single 50%)" "$(pct echo_single 99%)" \
-  "$BATCH_CONNECTIONS" "$(points echo_batch)" "$(pct echo_batch 50%)"
+printf '  echo baseline: single point, %d connections: %s req/s (p50 %s, p99 %s)\n' \
+  "$CONNECTIONS" "$(rps echo_single)" "$(pct echo_single 50%)" "$(pct echo_single 99%)"
 for w in "${widths[@]}"; do
-  printf '  domain [-%s,%s]^2: single point, %d connections: %s req/s (p50 %s, p99 %s); 10,000-point batches, %d connections: %s points/s (p50 %s)\n' \
-    "$w" "$w" "$CONNECTIONS" "$(rps "single_$w")" "$(pct "single_$w" 50%)" "$(pct "single_$w" 99%)" \
-    "$BATCH_CONNECTIONS" "$(points "batch_$w")" "$(pct "batch_$w" 50%)"
-  awk -v a="$(rps "batch_$w")" -v b="$(rps echo_batch)" -v w="$w" \
-    'BEGIN {if (b > 0) printf "    batch throughput / echo throughput on [-%s,%s]^2: %.1f%% (target >= 50%%)\n", w, w, 100 * a / b}'
+  printf '  domain [-%s,%s]^2: single point, %d connections: %s req/s (p50 %s, p99 %s)\n' \
+    "$w" "$w" "$CONNECTIONS" "$(rps "single_$w")" "$(pct "single_$w" 50%)" "$(pct "single_$w" 99%)"
+  ratios=()
+  for r in $(seq "$REPEATS"); do
+    ratio=$(awk -v a="$(rps "batch_${w}_$r")" -v b="$(rps "echo_batch_${w}_$r")" 'BEGIN {if (b > 0) printf "%.1f", 100 * a / b; else print "nan"}')
+    ratios+=("$ratio")
+    printf '    pair %d, 10,000-point batches, %d connections: %s points/s (p50 %s), echo %s points/s: %s%%\n' \
+      "$r" "$BATCH_CONNECTIONS" "$(points "batch_${w}_$r")" "$(pct "batch_${w}_$r" 50%)" "$(points "echo_batch_${w}_$r")" "$ratio"
+  done
+  printf '    medians on [-%s,%s]^2: %s points/s, echo %s points/s; batch throughput / echo throughput: %s%% (target >= 50%%)\n' \
+    "$w" "$w" \
+    "$(for r in $(seq "$REPEATS"); do points "batch_${w}_$r"; echo; done | median)" \
+    "$(for r in $(seq "$REPEATS"); do points "echo_batch_${w}_$r"; echo; done | median)" \
+    "$(printf '%s\n' "${ratios[@]}" | median)"
 done
-for run in echo_single echo_batch; do
+runs=(echo_single)
+for w in "${widths[@]}"; do
+  runs+=("single_$w")
+  for r in $(seq "$REPEATS"); do runs+=("batch_${w}_$r" "echo_batch_${w}_$r"); done
+done
+for run in "${runs[@]}"; do
   e=$(errors "$run")
   [ -z "$e" ] || echo "  $run: $e"
-done
-for w in "${widths[@]}"; do
-  for run in "single_$w" "batch_$w"; do
-    e=$(errors "$run")
-    [ -z "$e" ] || echo "  $run: $e"
-  done
 done

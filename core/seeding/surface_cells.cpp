@@ -101,7 +101,8 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     SurfaceCorner& c = corners_[static_cast<std::size_t>(k)];
     c.u = k % 2 == 0 ? box.umin : box.umax;
     c.v = k < 2 ? box.vmin : box.vmax;
-    c.s = formulas.point(c.u, c.v);
+    c.jet = formulas.jet(c.u, c.v);
+    c.s = c.jet.s;
     c.finite = is_finite(c.s);
   }
   std::vector<BinaryNode> nodes;

@@ -87,6 +87,7 @@ struct SurfaceCell {
 struct SurfaceCorner {
   double u = 0.0, v = 0.0;
   Vec3 s;
+  SurfaceJet jet;  // s and its partials there: a local solve that starts at the corner needs no evaluation
   bool finite = false;
 };
 

@@ -35,14 +35,15 @@ constexpr double kTie = 1e-13;
 
 LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, double u0,
                                double v0, const ConvergenceCriteria& criteria,
-                               std::vector<std::array<double, 3>>* trace, const EarlyStop* early) {
+                               std::vector<std::array<double, 3>>* trace, const EarlyStop* early,
+                               const SurfaceJet* start_jet) {
   const double lo[2] = {box.umin, box.vmin}, hi[2] = {box.umax, box.vmax};
   const double width[2] = {box.umax - box.umin, box.vmax - box.vmin};
   const double norm_p = norm(p);
   double t[2] = {std::clamp(u0, lo[0], hi[0]), std::clamp(v0, lo[1], hi[1])};
 
   LocalSolution sol;
-  SurfaceJet jet = formulas.jet(t[0], t[1]);
+  SurfaceJet jet = start_jet ? *start_jet : formulas.jet(t[0], t[1]);
   Status status = Status::max_iterations;
   ConvergenceTest test(criteria);
   double last_step_inf = std::numeric_limits<double>::infinity();

@@ -62,10 +62,11 @@ struct EarlyStop {
 // Default iteration budget of the local solve (Newton from a cell's model minimiser needs 2-4).
 inline constexpr int kLocalMaxIterations = 100;
 
-// Starts at (u0, v0) clamped into the box. With `trace`, appends every accepted step (Δu, Δv, 0).
-// With `early`, may stop early with `abandoned` set.
+// Starts at (u0, v0) clamped into the box; `start_jet`, if given, is the jet there. With `trace`,
+// appends every accepted step (Δu, Δv, 0). With `early`, may stop early with `abandoned` set.
 LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, double u0,
                                double v0, const ConvergenceCriteria& criteria,
-                               std::vector<std::array<double, 3>>* trace = nullptr, const EarlyStop* early = nullptr);
+                               std::vector<std::array<double, 3>>* trace = nullptr, const EarlyStop* early = nullptr,
+                               const SurfaceJet* start_jet = nullptr);
 
 }  // namespace footpoint::surface

@@ -355,7 +355,11 @@ class Search {
       early.reference_t = from->reference_t;
       early.reference_H = from->reference_H;
     }
-    f.sol = projected_newton(formulas_, box_, p_, f.u_start, f.v_start, criteria_, nullptr, &early);
+    // a domain corner's jet is known (the search's candidates are clamped onto the corners exactly)
+    const SurfaceJet* start_jet = nullptr;
+    for (const SurfaceCorner& corner : cells_.corners())
+      if (corner.u == f.u_start && corner.v == f.v_start) start_jet = &corner.jet;
+    f.sol = projected_newton(formulas_, box_, p_, f.u_start, f.v_start, criteria_, nullptr, &early, start_jet);
     ++solves_;
     if (f.sol.abandoned) {  // its predicted minimiser still answers for its basin (rule 4)
       if (std::isfinite(f.sol.distance)) remember(f.sol.u, f.sol.v, f.sol.distance);
