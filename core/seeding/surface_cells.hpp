@@ -59,15 +59,9 @@ struct SurfaceSeedingOptions {
   std::size_t max_bytes = std::size_t{4} << 20;
 };
 
-struct SurfaceCell {
-  double u0 = 0.0, u1 = 0.0, v0 = 0.0, v1 = 0.0;  // the parameter rectangle
-  SurfaceJet centre;                              // s and its partials at ((u0+u1)/2, (v0+v1)/2)
-  double rho = 0.0;                               // tangent-plane model error bound (see above)
-  double rho2 = 0.0;                              // the same for the quadratic (Taylor) model
-  double extent = 0.0;                            // largest chord of the cell on the surface
-  // The tangent plane's metric at the centre (first fundamental form E, F, G), which every visit
-  // of the cell uses.
-  double E = 0.0, F = 0.0, G = 0.0;
+// Laid out for the search: what the first test of a visit reads (the frame, ρ, the flags and s_c)
+// comes first, in the cell's first two cache lines.
+struct alignas(64) SurfaceCell {
   // The rectangle in the tangent plane that holds the cell's tangent parallelogram
   // {s_c + s_u δu + s_v δv}: centred at s_c, axes e1 = s_u/|s_u|, e2 = n x e1 (n = the unit
   // normal), half-widths half1 = |s_u| hu + |<s_v, e1>| hv, half2 = |<s_v, e2>| hv (hu, hv the
@@ -75,10 +69,18 @@ struct SurfaceCell {
   // s_u x s_v = 0 (no plane).
   Vec3 e1, e2, unit_normal;
   double half1 = 0.0, half2 = 0.0;
+  double rho = 0.0;                               // tangent-plane model error bound (see above)
   bool framed = false;
   bool finite = true;                             // the centre jet is finite
   bool resolved = true;                           // ρ <= resolved_flatness x extent
   bool fine = true;                               // ρ <= flatness x extent
+  SurfaceJet centre;                              // s and its partials at ((u0+u1)/2, (v0+v1)/2)
+  double u0 = 0.0, u1 = 0.0, v0 = 0.0, v1 = 0.0;  // the parameter rectangle
+  // The tangent plane's metric at the centre (first fundamental form E, F, G), which every visit
+  // of the cell uses.
+  double E = 0.0, F = 0.0, G = 0.0;
+  double rho2 = 0.0;                              // the same as ρ for the quadratic (Taylor) model
+  double extent = 0.0;                            // largest chord of the cell on the surface
   double uc() const { return 0.5 * (u0 + u1); }
   double vc() const { return 0.5 * (v0 + v1); }
 };
