@@ -166,25 +166,24 @@ class Search {
       nearest_cell_ = index;
     }
     if (!options_.all_minima) bound_ = std::min(bound_, dc);
-    // 2a. the rectangle in the tangent plane that holds the tangent parallelogram (rule 2's
-    //     model): the cell is within ρ of it, so a cell whose rectangle is at least bound + ρ
-    //     away needs no more (coordinates of r in the frame e1, e2, n; no square root)
+    // 2. the rectangle in the tangent plane that holds the tangent parallelogram (rule 2's
+    //    model): the cell is within ρ of it, so its distance less ρ is a lower bound, and a cell
+    //    whose rectangle is at least bound + ρ away needs no more (coordinates of r in the frame
+    //    e1, e2, n)
+    double lb = box_lb;
     if (c.resolved && c.framed) {
       const double out1 = std::max(std::abs(dot(r, c.e1)) - c.half1, 0.0);
       const double out2 = std::max(std::abs(dot(r, c.e2)) - c.half2, 0.0);
       const double h = dot(r, c.unit_normal), reach = bound_ + c.rho;
-      if (std::isfinite(reach) && h * h + out1 * out1 + out2 * out2 >= reach * reach) return;
+      const double rect2 = h * h + out1 * out1 + out2 * out2;
+      if (std::isfinite(reach) && rect2 >= reach * reach) return;
+      lb = std::max(box_lb, std::sqrt(rect2) - c.rho);
     }
+    if (!(lb < bound_)) return;
     const double uc = c.uc(), vc = c.vc();
-    const double E = c.E, F = c.F, G = c.G;
     BoxQuadratic q;
     q.g = {dot(r, j.su), dot(r, j.sv)};
-    // 2. the tangent-plane model: min over the cell of |r + s_u δu + s_v δv|, less ρ
-    q.H = {{{E, F}, {F, G}}};
-    const BoxMinimum lin = minimize_on_box(q, {c.u0 - uc, c.v0 - vc}, {c.u1 - uc, c.v1 - vc});
-    const double lb =
-        c.resolved ? std::max(box_lb, std::sqrt(std::max(rr + 2.0 * lin.value, 0.0)) - c.rho) : box_lb;
-    if (!(lb < bound_)) return;
+    q.H = {{{c.E, c.F}, {c.F, c.G}}};
     // 3. the Newton model over the grown cell, within the domain
     q.H[0][0] += dot(r, j.suu);
     q.H[0][1] += dot(r, j.suv);

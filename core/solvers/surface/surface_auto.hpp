@@ -5,8 +5,8 @@
 // nearest box first, and a cell is skipped when
 //   1. its box is farther than the best distance known (a solved foot point, or any cell centre:
 //      every s(t) bounds the minimum from above) or than options.max_distance;
-//   2. its tangent-plane model, grown by the model error ρ, is that far (distance to a
-//      parallelogram: a convex quadratic on a rectangle);
+//   2. its tangent-plane model, grown by the model error ρ, is that far (the distance to the
+//      rectangle in the tangent plane that holds the cell's tangent parallelogram, less ρ);
 //   3. the minimum of its Newton model (the second-order Taylor expansion of ½|s - p|^2 at the
 //      centre) over the cell grown by a margin lies on the grown cell's border inside the domain:
 //      the distance decreases into a neighbour, which answers for it (two cells claiming each
