@@ -11,7 +11,9 @@
 #      server (same HTTP layer and JSON reader/writer, no projection);
 #   2. 10,000-point batches on the same surface and on the echo server, in REPEATS back-to-back
 #      pairs per domain: the ratio of each pair, and the medians (a pair sees the same machine
-#      load, so the ratio moves less than either throughput).
+#      load, so the ratio moves less than either throughput). The echo replays the server's own
+#      answer to the batch (echo_server_bench --replay): the same request parsed, the same
+#      response written, byte for byte, without the projection.
 # Only 127.0.0.1 is targeted; every step is bounded by `timeout` and the whole script by 600 s.
 set -euo pipefail
 
@@ -41,15 +43,15 @@ cleanup() {
 }
 trap cleanup EXIT
 
-start() {  # start EXE PORT: runs it on 127.0.0.1:PORT with default settings, waits for /healthz
-  "$1" --host "$HOST" --port "$2" >/dev/null 2>&1 &  # the request log (one line each) is discarded
+start() {  # start EXE PORT [ARGS...]: runs it on 127.0.0.1:PORT with default settings, waits for /healthz
+  "$1" --host "$HOST" --port "$2" "${@:3}" >/dev/null 2>&1 &  # the request log (one line each) is discarded
   pids+=($!)
   for _ in $(seq 100); do
     curl -fsS --max-time 1 "http://$HOST:$2/healthz" >/dev/null 2>&1 && return 0
     sleep 0.1
   done
   echo "http_bench: $1 did not start:" >&2
-  timeout 2 "$1" --host "$HOST" --port "$2" >&2 || true
+  timeout 2 "$1" --host "$HOST" --port "$2" "${@:3}" >&2 || true
   exit 1
 }
 
@@ -64,16 +66,21 @@ request = function()
   return wrk.format(nil, nil, nil, body)
 end
 LUA
-cat >"$work/batch.lua" <<'LUA'
+# The batch body (10,000 points, the same distribution) is a file: wrk posts it, and the echo
+# replays the server's answer to it.
+awk 'BEGIN {
+  srand(11)
+  printf "{\"points\":["
+  for (i = 0; i < 10000; ++i)
+    printf "%s[%.17g,%.17g,%.17g]", (i ? "," : ""), rand() * 40 - 20, rand() * 6 - 3, rand() * 3 - 1.5
+  printf "]}"
+}' >"$work/batch.json"
+cat >"$work/batch.lua" <<LUA
 wrk.method = "POST"
 wrk.headers["Content-Type"] = "application/json"
-math.randomseed(11)
-local parts = {}
-for i = 1, 10000 do
-  parts[i] = string.format('[%.17g,%.17g,%.17g]',
-    math.random() * 40 - 20, math.random() * 6 - 3, math.random() * 3 - 1.5)
-end
-wrk.body = '{"points":[' .. table.concat(parts, ',') .. ']}'
+local f = assert(io.open("$work/batch.json", "rb"))
+wrk.body = f:read("*a")
+f:close()
 LUA
 
 # HALF_WIDTHS: the parameter domains [-w,w]^2 measured (default "3 25"): 3 is S1 of the Open CASCADE
@@ -93,12 +100,24 @@ points() { awk -v r="$(rps "$1")" 'BEGIN {printf "%.0f", r * 10000}'; }
 REPEATS=${REPEATS:-3}
 median() { sort -g | awk '{v[NR] = $1} END {if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 
+# The echo answers a batch with the server's own results for it (--replay), so that both write
+# the same bytes: the server is asked once per domain first.
 start "$SERVER" "$PORT"
-start "$ECHO" "$ECHO_PORT"
+ids=()
+replays=()
 for w in "${widths[@]}"; do
   surface='{"type":"parametric_surface","x":"u+v","y":"sin(u)+2*cos(v)","z":"sin(u+v)","domain":{"u":[-'"$w"','"$w"'],"v":[-'"$w"','"$w"']}}'
   id=$(curl -fsS --max-time 30 -H 'Content-Type: application/json' -d "$surface" "http://$HOST:$PORT/v1/geometries" |
     sed -E 's/.*"geometry_id":"([0-9a-f]+)".*/\1/')
+  ids+=("$id")
+  curl -fsS --max-time 60 -H 'Content-Type: application/json' --data-binary "@$work/batch.json" \
+    "http://$HOST:$PORT/v1/geometries/$id/project" >"$work/replay_$id.json"
+  replays+=(--replay "$id=$work/replay_$id.json")
+done
+start "$ECHO" "$ECHO_PORT" "${replays[@]}"
+for k in "${!widths[@]}"; do
+  w=${widths[$k]}
+  id=${ids[$k]}
   url="http://$HOST:$PORT/v1/geometries/$id/project"
   echo_url="http://$HOST:$ECHO_PORT/v1/geometries/$id/project"
   timeout 30 wrk -t2 -c"$CONNECTIONS" -d2s -s "$work/single.lua" "$url" >/dev/null  # warm-up
