@@ -36,8 +36,10 @@ constexpr int kCandidates = 64;
 
 // Which face of the domain a parameter point is on: per parameter -1 (lower bound), +1 (upper),
 // 0 (inside). Rule 4 only merges a candidate with a minimum on the same face.
+// (No default member initializers: the search's candidate buffer is left unconstructed until
+// used; Face{} is the interior.)
 struct Face {
-  int u = 0, v = 0;
+  int u, v;
   bool operator==(const Face&) const = default;
 };
 
