@@ -5,7 +5,8 @@
 //  - SurfaceCells::box_distances2: the four children's squared box distances of a search node (two
 //    SSE2 lanes at a time), against the scalar formula, with empty slots and unbounded boxes;
 //  - the search tree: every cell is a leaf of it exactly once, and every node's child boxes hold
-//    the boxes below them.
+//    the boxes below them; trees of one cell (no node) and of a few cells answer as the full one;
+//  - every cell lies within ρ of the rectangle in its tangent plane (rule 2's bound).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -148,4 +149,26 @@ TEST_CASE("a cell lies within rho of the rectangle in its tangent plane") {
     CHECK(worst <= 1.0);
   }
   CHECK(framed == static_cast<int>(g->cells().cells().size()));
+}
+
+TEST_CASE("trees of a single cell and of a few cells answer as the full one") {
+  GeometryDefinition def;
+  def.type = GeometryType::parametric_surface;
+  def.formulas = {{"x", "u+v"}, {"y", "sin(u)+2*cos(v)"}, {"z", "sin(u+v)"}};
+  def.domain = {{"u", {-3, 3}}, {"v", {-3, 3}}};
+  const auto full = make_surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-3, 3}, {-3, 3});
+  REQUIRE(full);
+  for (std::size_t cap : {1, 2, 3, 5}) {
+    SurfaceSeedingOptions seeding;
+    seeding.max_bytes = cap * SurfaceCells::bytes_per_cell();
+    const ParametricSurface g(def, compile_formulas(def, {"u", "v"}, {}), ParamBox{-3, 3, -3, 3}, seeding);
+    CAPTURE(cap);
+    CHECK(g.cells().cells().size() == cap);
+    CHECK(g.cells().nodes().empty() == (cap == 1));
+    for (const std::array<double, 3>& p : {std::array<double, 3>{0.3, 0.5, 0.2}, {9.0, -2.0, 1.0}, {-1.0, 2.5, -0.5}}) {
+      const ProjectionResult r = project(g, p, "auto");
+      CHECK(r.summary.status == Status::converged);
+      CHECK(r.distance == doctest::Approx(project(*full, p, "auto").distance).epsilon(1e-12));
+    }
+  }
 }
