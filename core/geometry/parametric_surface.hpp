@@ -8,6 +8,11 @@ namespace footpoint {
 struct SurfaceJet {
   Vec3 s, su, sv, suu, suv, svv;
 };
+// All 18 entries finite: as is_finite(Vec3), a sum of 0 x is 0 exactly when they are.
+inline bool is_finite(const SurfaceJet& j) {
+  const Vec3 zero = 0.0 * j.s + 0.0 * j.su + 0.0 * j.sv + 0.0 * j.suu + 0.0 * j.suv + 0.0 * j.svv;
+  return (zero.x + zero.y) + zero.z == 0.0;
+}
 struct SurfaceJet3 : SurfaceJet {
   Vec3 suuu, suuv, suvv, svvv;
 };

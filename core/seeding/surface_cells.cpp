@@ -33,11 +33,6 @@ struct Evaluated {
   bool split_u = true;   // the cell is longer along u on the surface
 };
 
-bool finite_jet(const SurfaceJet& j) {
-  return is_finite(j.s) && is_finite(j.su) && is_finite(j.sv) && is_finite(j.suu) && is_finite(j.suv) &&
-         is_finite(j.svv);
-}
-
 double finite_or_zero(double x) { return std::isfinite(x) ? x : 0.0; }
 
 double chord(const Vec3& a, const Vec3& b) { return finite_or_zero(norm(a - b)); }
@@ -47,7 +42,7 @@ Evaluated evaluate(const SurfaceFormulas& f, const Rect& r) {
   const double uc = 0.5 * (r.u0 + r.u1), vc = 0.5 * (r.v0 + r.v1);
   const double hu = 0.5 * (r.u1 - r.u0), hv = 0.5 * (r.v1 - r.v0);
   e.jet = f.jet(uc, vc);
-  e.finite = finite_jet(e.jet);
+  e.finite = is_finite(e.jet);
   // corners, edge midpoints, the centres of the four quarters, and the quarter points of the
   // centre lines
   constexpr int K = 16;

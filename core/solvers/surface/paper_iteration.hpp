@@ -29,12 +29,6 @@ inline constexpr int kPaperMaxIterations = 1000;
 // |t|∞ beyond this many parameter scales counts as divergence.
 inline constexpr double kDivergenceScales = 1e8;
 
-inline bool is_finite(const SurfaceJet& j) {
-  // as is_finite(Vec3): a sum of 0 x over the 18 entries is 0 exactly when all are finite
-  const Vec3 zero = 0.0 * j.s + 0.0 * j.su + 0.0 * j.sv + 0.0 * j.suu + 0.0 * j.suv + 0.0 * j.svv;
-  return (zero.x + zero.y) + zero.z == 0.0;
-}
-
 // Method provides `PaperStep step(const Vec3& p, double u, double v, const SurfaceJet3& jet)`
 // (or takes a SurfaceJet); it may keep state between calls (the hybrid method's phase). A method
 // that also provides `bool needs_third() const` gets the third partials of the next iterate when
