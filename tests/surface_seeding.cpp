@@ -84,8 +84,8 @@ TEST_CASE("the domain's corners are kept with their points") {
     CHECK(c.finite);
     CHECK(c.u == expect[k][0]);
     CHECK(c.v == expect[k][1]);
-    CHECK(c.s.x == expect[k][0]);
-    CHECK(c.s.y == expect[k][1]);
-    CHECK(c.s.z == expect[k][0] * expect[k][1]);
+    CHECK(c.jet.s.x == expect[k][0]);
+    CHECK(c.jet.s.y == expect[k][1]);
+    CHECK(c.jet.s.z == expect[k][0] * expect[k][1]);
   }
 }

@@ -97,8 +97,7 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     c.u = k % 2 == 0 ? box.umin : box.umax;
     c.v = k < 2 ? box.vmin : box.vmax;
     c.jet = formulas.jet(c.u, c.v);
-    c.s = c.jet.s;
-    c.finite = is_finite(c.s);
+    c.finite = is_finite(c.jet.s);
   }
   std::vector<BinaryNode> nodes;
   std::vector<Rect> rects;

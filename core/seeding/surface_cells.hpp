@@ -76,8 +76,8 @@ struct alignas(64) SurfaceCell {
   bool fine = true;                               // ρ <= flatness x extent
   SurfaceJet centre;                              // s and its partials at ((u0+u1)/2, (v0+v1)/2)
   double u0 = 0.0, u1 = 0.0, v0 = 0.0, v1 = 0.0;  // the parameter rectangle
-  // The tangent plane's metric at the centre (first fundamental form E, F, G), which every visit
-  // of the cell uses.
+  // The tangent plane's metric at the centre (first fundamental form E, F, G), for the Newton
+  // model of every visit past rule 2.
   double E = 0.0, F = 0.0, G = 0.0;
   double rho2 = 0.0;                              // the same as ρ for the quadratic (Taylor) model
   double extent = 0.0;                            // largest chord of the cell on the surface
@@ -88,7 +88,6 @@ struct alignas(64) SurfaceCell {
 // A corner of the parameter domain and its point of the surface.
 struct SurfaceCorner {
   double u = 0.0, v = 0.0;
-  Vec3 s;
   SurfaceJet jet;  // s and its partials there: a local solve that starts at the corner needs no evaluation
   bool finite = false;
 };

@@ -122,7 +122,7 @@ class Search {
     // (all_minima solves from every corner: each may be a minimum of its own.)
     for (const SurfaceCorner& corner : cells_.corners()) {
       const double answer = has_best_ ? best_.sol.distance : std::min(nearest_, options_.max_distance);
-      if (corner.finite && (options_.all_minima || norm(corner.s - p_) < answer)) solve(corner.u, corner.v);
+      if (corner.finite && (options_.all_minima || norm(corner.jet.s - p_) < answer)) solve(corner.u, corner.v);
     }
     if (nearest_cell_ >= 0 && (!has_best_ || nearest_ < best_.sol.distance)) {
       const SurfaceCell& c = cells_.cells()[static_cast<std::size_t>(nearest_cell_)];
