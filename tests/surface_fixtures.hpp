@@ -24,6 +24,22 @@ inline std::shared_ptr<const ParametricSurface> make_surface(const std::string& 
   return std::dynamic_pointer_cast<const ParametricSurface>(compile_parametric_surface(def, {}));
 }
 
+// The GSA paper's Example 1 surface over [-w,w]^2 (w = 25: 8 periods each way, folded; w = 3: S1).
+inline GeometryDefinition example1(double half_width) {
+  GeometryDefinition def;
+  def.type = GeometryType::parametric_surface;
+  def.formulas = {{"x", "u+v"}, {"y", "sin(u)+2*cos(v)"}, {"z", "sin(u+v)"}};
+  def.domain = {{"u", {-half_width, half_width}}, {"v", {-half_width, half_width}}};
+  return def;
+}
+
+// A parametric surface compiled with seeding options of its own (compile_parametric_surface
+// uses the defaults).
+inline ParametricSurface compile_with(const GeometryDefinition& def, const SurfaceSeedingOptions& seeding) {
+  const auto u = def.domain[0].second, v = def.domain[1].second;
+  return ParametricSurface(def, compile_formulas(def, {"u", "v"}, {}), ParamBox{u[0], u[1], v[0], v[1]}, seeding);
+}
+
 inline ProjectionResult project(const CompiledGeometry& g, std::array<double, 3> p, std::string_view method,
                                 const Options& options = {}) {
   return g.project(p.data(), method, options);

@@ -152,16 +152,13 @@ TEST_CASE("a cell lies within rho of the rectangle in its tangent plane") {
 }
 
 TEST_CASE("trees of a single cell and of a few cells answer as the full one") {
-  GeometryDefinition def;
-  def.type = GeometryType::parametric_surface;
-  def.formulas = {{"x", "u+v"}, {"y", "sin(u)+2*cos(v)"}, {"z", "sin(u+v)"}};
-  def.domain = {{"u", {-3, 3}}, {"v", {-3, 3}}};
+  const GeometryDefinition def = example1(3);
   const auto full = make_surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-3, 3}, {-3, 3});
   REQUIRE(full);
   for (std::size_t cap : {1, 2, 3, 5}) {
     SurfaceSeedingOptions seeding;
     seeding.max_bytes = cap * SurfaceCells::bytes_per_cell();
-    const ParametricSurface g(def, compile_formulas(def, {"u", "v"}, {}), ParamBox{-3, 3, -3, 3}, seeding);
+    const ParametricSurface g = compile_with(def, seeding);
     CAPTURE(cap);
     CHECK(g.cells().cells().size() == cap);
     CHECK(g.cells().nodes().empty() == (cap == 1));

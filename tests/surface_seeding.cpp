@@ -11,20 +11,6 @@ using namespace footpoint::test;
 
 namespace {
 
-// The GSA paper's Example 1 surface over [-25,25]^2: 8 periods each way, folded.
-GeometryDefinition example1(double half_width) {
-  GeometryDefinition def;
-  def.type = GeometryType::parametric_surface;
-  def.formulas = {{"x", "u+v"}, {"y", "sin(u)+2*cos(v)"}, {"z", "sin(u+v)"}};
-  def.domain = {{"u", {-half_width, half_width}}, {"v", {-half_width, half_width}}};
-  return def;
-}
-
-ParametricSurface compile_with(const GeometryDefinition& def, const SurfaceSeedingOptions& seeding) {
-  const auto u = def.domain[0].second, v = def.domain[1].second;
-  return ParametricSurface(def, compile_formulas(def, {"u", "v"}, {}), ParamBox{u[0], u[1], v[0], v[1]}, seeding);
-}
-
 struct Tally {
   std::size_t fine = 0, coarse = 0, unresolved = 0;
 };
