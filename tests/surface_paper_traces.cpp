@@ -161,16 +161,20 @@ TEST_CASE("gsa reproduces Table 10's first rows (Example 2 from (2, -2)) and end
 }
 
 TEST_CASE("Table 3: from Example 1's starts newton converges, mostly to stationary points that are not the nearest") {
-  // The paper prints NC (no convergence) for Newton. It does converge, but from 6 of the 7 starts
-  // to a stationary point that is not the nearest (PAPER_TRACES.md lists d = 1.4456513076 and
-  // 4.7432376769; which one a start reaches is sensitive to rounding over the 5-40 steps, and one
-  // start here ends at d = 5.156). gsa and first_order reach the global foot from every start,
-  // gsa in a tenth of the steps.
+  // The paper prints NC (no convergence) for Newton. It does converge, but from most starts to a
+  // stationary point that is not the nearest (PAPER_TRACES.md: 6 of the 7, at d = 1.4456513076
+  // or 4.7432376769). Five starts get there in 5-14 steps (`reached`, 0 for the other two); the
+  // other two wander out of [-25, 25]^2 for 34-49 steps, so that where they end depends on the
+  // last bits of sin and cos (here one or both reach the nearest foot's copies out there, or
+  // d = 5.156). gsa and first_order reach the global foot from every start, gsa in a tenth of
+  // the steps.
   const auto g = example1();
   const double starts[7][2] = {{1, 2}, {2, 0.5}, {-1, -2.5}, {1, -0.5}, {-0.3, -0.5}, {-1, 1.1}, {-0.7, 0.4}};
+  const double reached[7] = {1.4456513076, 1.4456513076, 0.0, 1.4456513076, 0.0, 4.7432376769, 1.4456513076};
   const double global = 1.0788706069836736;
   int nearest = 0;
-  for (const auto& s : starts) {
+  for (int i = 0; i < 7; ++i) {
+    const auto& s = starts[i];
     INFO("start (" << s[0] << ", " << s[1] << ")");
     // a foot point is reached from many parameter pairs, some outside [-25, 25]^2
     auto stationary = [](const ProjectionResult& r) {
@@ -179,6 +183,7 @@ TEST_CASE("Table 3: from Example 1's starts newton converges, mostly to stationa
     };
     const ProjectionResult n = project(*g, {1, 2, 2}, "newton", start_at(s[0], s[1]));
     CHECK(stationary(n));
+    if (reached[i] > 0.0) CHECK(n.distance == doctest::Approx(reached[i]).epsilon(1e-10));
     nearest += std::abs(n.distance - global) < 1e-12 ? 1 : 0;
     const ProjectionResult gs = project(*g, {1, 2, 2}, "gsa", start_at(s[0], s[1]));
     const ProjectionResult fo = project(*g, {1, 2, 2}, "first_order", start_at(s[0], s[1]));
@@ -188,7 +193,7 @@ TEST_CASE("Table 3: from Example 1's starts newton converges, mostly to stationa
     CHECK(fo.distance == doctest::Approx(global).epsilon(1e-12));
     CHECK(gs.summary.iterations * 10 < fo.summary.iterations);
   }
-  CHECK(nearest == 1);
+  CHECK(nearest <= 2);
 }
 
 namespace {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "formula/sin_cos.hpp"
 #include "formula/tape.hpp"
 
 namespace footpoint::formula {
@@ -44,8 +45,9 @@ inline double unary_value(Op op, double x, double k) {
     case Op::ln: return std::log(x);
     case Op::log2: return std::log2(x);
     case Op::log10: return std::log10(x);
-    case Op::sin: return std::sin(x);
-    case Op::cos: return std::cos(x);
+    // the jets' sin_cos, so that a point and a jet at the same parameters agree to the last bit
+    case Op::sin: { double s, c; sin_cos(x, &s, &c); return s; }
+    case Op::cos: { double s, c; sin_cos(x, &s, &c); return c; }
     case Op::tan: return std::tan(x);
     case Op::asin: return std::asin(x);
     case Op::acos: return std::acos(x);
@@ -117,9 +119,8 @@ inline double unary_value(Op op, double x, double k) {
       d[1] = scale * r; d[2] = -scale * r * r; d[3] = 2.0 * scale * r * r * r;
       return;
     }
-    // sin and cos together in one call (glibc's sincos; the compiler does not always fuse them)
-    case Op::sin: { double s, c; ::sincos(x, &s, &c); d[0] = s; d[1] = c; d[2] = -s; d[3] = -c; return; }
-    case Op::cos: { double s, c; ::sincos(x, &s, &c); d[0] = c; d[1] = -s; d[2] = -c; d[3] = s; return; }
+    case Op::sin: { double s, c; sin_cos(x, &s, &c); d[0] = s; d[1] = c; d[2] = -s; d[3] = -c; return; }
+    case Op::cos: { double s, c; sin_cos(x, &s, &c); d[0] = c; d[1] = -s; d[2] = -c; d[3] = s; return; }
     case Op::tan: {
       const double t = std::tan(x), q = 1.0 + t * t;  // tan' = 1 + tan^2
       d[0] = t; d[1] = q; d[2] = 2.0 * t * q; d[3] = 2.0 * q * (1.0 + 3.0 * t * t);
