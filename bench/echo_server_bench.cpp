@@ -117,6 +117,7 @@ ApiResponse echo(const RouteMatch& match, std::string_view body, std::size_t max
 
 int main(int argc, char** argv) {
   block_shutdown_signals();
+  keep_large_buffers_for_reuse();  // the server's buffer policy: the same cost of moving the JSON
   // --replay ID=FILE (repeatable) is this executable's own; the other flags are the server's
   Replays replays;
   std::vector<char*> args{argv[0]};

@@ -1,5 +1,6 @@
 #include "http_server.hpp"
 
+#include <malloc.h>
 #include <sys/socket.h>
 
 #include <cctype>
@@ -307,6 +308,13 @@ void HttpServer::shutdown() {
     http_->stop();
     stopped_ = true;
   }
+}
+
+void keep_large_buffers_for_reuse() {
+  // the largest threshold glibc accepts (half its 64 MiB per-thread heap): every buffer a
+  // request can need is below it with the default limits
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);
 }
 
 }  // namespace footpoint::server

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   using namespace footpoint::server;
   // Before any thread exists, so that every thread inherits the mask.
   block_shutdown_signals();
+  keep_large_buffers_for_reuse();
 
   ServerConfig config;
   const int exit_code = configure_from_command_line(argc, argv, "footpoint-server", config);
