@@ -22,6 +22,17 @@ constexpr double kNoiseSteps = 1e3;
 // Convex steps at most this x the parameter scale are taken without the decrease test (Newton's
 // local regime, where f changes by little more than its rounding).
 constexpr double kLocalStep = 1e-6;
+// Newton's last step: a convex step short next to the length over which the partials change,
+// |Δ|∞ |s''| <= kTaylorStep min(|s_u|, |s_v|) (|s''| the largest second partial), moves the jet
+// as its own Taylor expansion says, to rounding:
+//   s(t + Δ) = s + s_u Δu + s_v Δv + ½ (s_uu Δu^2 + 2 s_uv Δu Δv + s_vv Δv^2) + O(|Δ|^3 s''')
+//   s_u(t + Δ) = s_u + s_uu Δu + s_uv Δv + O(|Δ|^2 s''')   (likewise s_v; s'' + O(|Δ| s''')),
+// where, with s''' of the order of |s''|^2 / |s'| (a surface that changes on one length scale),
+// the remainders are about (|Δ| |s''| / |s'|)^2 <= 1e-16 relative: the rounding of s and its
+// partials. Such a step takes the expanded jet instead of evaluating the formulas - not twice in
+// a row, so that a slow (not quadratic) convergence still sees a fresh evaluation every other
+// step. The step after it tests convergence there as after any other.
+constexpr double kTaylorStep = 1e-8;
 // A step at most this x the parameter scale that is not below kShrink x the previous one is
 // stagnant; three in a row end the solve (the residual must still be below kStalledResidual).
 constexpr double kStagnantStep = 1e-9;
@@ -48,6 +59,7 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
   ConvergenceTest test(criteria);
   double last_step_inf = std::numeric_limits<double>::infinity();
   int stagnant_steps = 0;
+  bool expanded = false;  // the jet is the Taylor expansion of the previous one
   // the previous iterate (first: the caller's reference point) and its H (upper triangle), for
   // the early stop's Lipschitz estimate
   double t_prev[2] = {0.0, 0.0}, H_prev[3] = {0.0, 0.0, 0.0};
@@ -209,13 +221,25 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     double alpha = 1.0;
     const Vec3 r0 = jet.s - p;
     const double local_step = kLocalStep * criteria.step_scale(t[0], t[1]);
+    const bool expand = convex && !expanded &&
+                        step_inf * step_inf * std::max({norm2(jet.suu), norm2(jet.suv), norm2(jet.svv)}) <=
+                            kTaylorStep * kTaylorStep * std::min(norm2(jet.su), norm2(jet.sv));
+    expanded = false;
     for (int ls = 0; ls < kMaxBacktracks && !accepted; ++ls, alpha *= 0.5) {
       for (int i = 0; i < 2; ++i) tn[i] = std::clamp(t[i] + alpha * d[i], lo[i], hi[i]);
       const double dt0 = tn[0] - t[0], dt1 = tn[1] - t[1];
       if (dt0 == 0.0 && dt1 == 0.0) break;
       const double slope = g[0] * dt0 + g[1] * dt1;
       Vec3 sn;
-      if (ls == 0) {
+      if (ls == 0 && expand && tn[0] == t[0] + d[0] && tn[1] == t[1] + d[1]) {  // d not clipped
+        jn.suu = jet.suu, jn.suv = jet.suv, jn.svv = jet.svv;
+        jn.su = jet.su + jet.suu * dt0 + jet.suv * dt1;
+        jn.sv = jet.sv + jet.suv * dt0 + jet.svv * dt1;
+        jn.s = jet.s + jet.su * dt0 + jet.sv * dt1 +
+               0.5 * (jet.suu * (dt0 * dt0) + 2.0 * jet.suv * (dt0 * dt1) + jet.svv * (dt1 * dt1));
+        sn = jn.s;
+        expanded = true;
+      } else if (ls == 0) {
         jn = formulas.jet(tn[0], tn[1]);
         sn = jn.s;
       } else {
