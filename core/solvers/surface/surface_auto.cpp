@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "solvers/surface/box_quadratic.hpp"
@@ -207,15 +208,21 @@ class Search {
     const bool on_border = (m.side[0] < 0 && glo[0] > box_.umin) || (m.side[0] > 0 && ghi[0] < box_.umax) ||
                            (m.side[1] < 0 && glo[1] > box_.vmin) || (m.side[1] > 0 && ghi[1] < box_.vmax);
     if (c.resolved && on_border) {
-      // Next to the domain's boundary the claim must beat the model's error in f = ½|s - p|^2,
-      // about |s - p| ρ2: the model must fall from the cell into the neighbour by more than that.
-      // Else the cell is a candidate itself, from its model's minimiser over the cell, and also
-      // from the model's best point on the boundary, on its edge or corner (rule 4 merges that one
-      // only with a minimum found on the same edge or corner, never with the interior minimum the
-      // claim points to; a coarse cell's are not merged at all).
+      // Next to the domain's boundary, and for a coarse cell, the claim must beat the model's
+      // error in f = ½|s - p|^2, about |s - p| ρ2: the model must fall from the cell into the
+      // neighbour by more than that. Else the cell is a candidate itself, from its model's
+      // minimiser over the cell:
+      //  - next to the boundary, also from the model's best point on the boundary, on its edge or
+      //    corner (rule 4 merges that one only with a minimum found on the same edge or corner,
+      //    never with the interior minimum the claim points to; a coarse cell's are not merged at
+      //    all);
+      //  - inside the domain, a coarse cell, whose claim can point past a minimum in the cell
+      //    itself (next to a fold the claims of a row of coarse cells can lead from the nearest
+      //    minimum to a worse one): merged with a minimum found in the grown cell (where the
+      //    claim points), no farther than the model's foot.
       const bool touches_boundary =
           c.u0 == box_.umin || c.u1 == box_.umax || c.v0 == box_.vmin || c.v1 == box_.vmax;
-      if (touches_boundary) {
+      if (touches_boundary || !c.fine) {
         const double model_error = 2.0 * (dc + c.extent) * c.rho2;
         const double lo0 = c.u0 - uc, hi0 = c.u1 - uc, lo1 = c.v0 - vc, hi1 = c.v1 - vc;
         const BoxMinimum own = minimize_on_box(q, {lo0, lo1}, {hi0, hi1});
@@ -223,8 +230,13 @@ class Search {
           const Face own_face{
               own.side[0] < 0 && c.u0 == box_.umin ? -1 : (own.side[0] > 0 && c.u1 == box_.umax ? 1 : 0),
               own.side[1] < 0 && c.v0 == box_.vmin ? -1 : (own.side[1] > 0 && c.v1 == box_.vmax ? 1 : 0)};
-          add_candidate(c, q, own.delta[0], own.delta[1], lb, own_face, c.fine);
-          add_boundary_candidates(c, q, lb, m.value + model_error, own_face);
+          if (touches_boundary) {
+            add_candidate(c, q, own.delta[0], own.delta[1], lb, own_face, c.fine);
+            add_boundary_candidates(c, q, lb, m.value + model_error, own_face);
+          } else {
+            add_candidate(c, q, own.delta[0], own.delta[1], lb, own_face, true,
+                          std::array<double, 4>{glo[0], ghi[0], glo[1], ghi[1]});
+          }
           return;
         }
       }
@@ -282,7 +294,7 @@ class Search {
   // its Newton model (its Hessian at the centre starts the early stop's Lipschitz estimate).
   // Rule 4 may merge it with a minimum found nearby if the cell is resolved and `mergeable`.
   void add_candidate(const SurfaceCell& c, const BoxQuadratic& model, double du, double dv, double lb, Face face,
-                     bool mergeable = true) {
+                     bool mergeable = true, std::optional<std::array<double, 4>> basin = std::nullopt) {
     Candidate k;
     k.reference_t = {c.uc(), c.vc()};
     k.reference_H = {model.H[0][0], model.H[0][1], model.H[1][1]};
@@ -305,10 +317,12 @@ class Search {
     // one (its model can put the minimum a cell off, and two minima can lie a cell apart, as near
     // folds where s_u x s_v -> 0)
     const double wu = kSameBasin * (c.u1 - c.u0), wv = kSameBasin * (c.v1 - c.v0);
-    k.basin = c.fine ? std::array<double, 4>{k.u - wu, k.u + wu, k.v - wv, k.v + wv}
-                     : std::array<double, 4>{c.u0, c.u1, c.v0, c.v1};
+    k.basin = basin ? *basin
+                    : (c.fine ? std::array<double, 4>{k.u - wu, k.u + wu, k.v - wv, k.v + wv}
+                              : std::array<double, 4>{c.u0, c.u1, c.v0, c.v1});
     k.mergeable = c.resolved && mergeable;
     k.fine = c.fine;
+    k.merge_within = k.d_model + (c.fine ? c.rho2 : 0.0);
     candidates_[candidates_count_++] = k;
   }
 
@@ -324,10 +338,14 @@ class Search {
       const Candidate& k = candidates_[i];
       if (!(k.lb < bound_)) continue;
       if (k.mergeable) {
-        // a coarse cell can hold two minima: merged only with one no farther than its model's
+        // merged only with a minimum no farther than the model's foot (a fine cell's: than the
+        // model's foot within the model's error, so that a minimum a hair nearer than the model
+        // said is not solved again); one farther is another: the model's foot lies within that
+        // error of the surface, so something nearer is there (a coarse cell can hold two minima,
+        // and a fine one next to a fold two a cell apart)
         auto same = [&](double u, double v, double distance) {
           return u >= k.basin[0] && u <= k.basin[1] && v >= k.basin[2] && v <= k.basin[3] &&
-                 face_of(box_, u, v) == k.face && (k.fine || distance <= k.d_model);
+                 face_of(box_, u, v) == k.face && distance <= k.merge_within;
         };
         bool found = false;
         for (int f = 0; f < feet_count_ && !found; ++f) found = same(feet_[f][0], feet_[f][1], feet_distance_[f]);
@@ -466,6 +484,7 @@ class Search {
   Claim claims_[kClaims];
   struct Candidate {
     double d_model;             // distance to the model's foot point
+    double merge_within;        // rule 4: a minimum found this near, in the basin, is this one
     double lb;                  // lower bound (rules 1, 2)
     double u, v;                // start of the local solve
     std::array<double, 4> basin;  // rule 4's region: u0, u1, v0, v1

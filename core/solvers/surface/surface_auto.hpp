@@ -13,9 +13,13 @@
 //      other are solved from between their two predictions; next to the domain's boundary, and
 //      for a coarse cell (seeding/surface_cells.hpp), the claim must beat the model's error, else
 //      the cell is solved);
-//   4. a minimum already found lies within a cell's width of the cell model's minimiser, on the
-//      same face of the domain (interior, the same edge, the same corner) - not for the
-//      candidates of a coarse cell whose claim failed rule 3's error test.
+//   4. a minimum already found, no farther than the cell model's foot point (a fine cell's: within
+//      the model's error ρ2 of it - a minimum farther than that is another one, since the
+//      model's foot lies within ρ2 of the surface), lies within a cell's width of the cell
+//      model's minimiser (a coarse cell: in the cell; a coarse cell inside the domain whose claim
+//      failed rule 3's error test: in the cell grown by the margin, where its claim pointed), on
+//      the same face of the domain (interior, the same edge, the same corner) - not for the
+//      candidates of a coarse cell next to the boundary whose claim failed that test.
 //      (Distinct minima are told apart by parameters here, not by 3-D foot points: a surface
 //      folding over itself has distinct minima with feet closer than any model can tell apart.
 //      Periodic and degenerate parametrisations, which reach one foot from many (u, v), cost a
