@@ -16,9 +16,10 @@ struct Rect {
   double u0, u1, v0, v1;
 };
 
-// The subdivision as it is built: a binary tree, folded into SurfaceCellNodes at the end.
+// The subdivision as it is built: a binary tree over parameter rectangles. Its leaves are the
+// cells; the search hierarchy (SurfaceCellNodes) is built over their boxes at the end.
 struct BinaryNode {
-  Vec3 lo, hi;  // box containing s over the node's rectangle
+  Vec3 lo, hi;  // a leaf: box containing s over the cell's rectangle
   std::int32_t child[2]{-1, -1};
   std::int32_t cell = -1;  // leaf: index into cells_
 };
@@ -211,59 +212,88 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     node.cell = static_cast<std::int32_t>(cells_.size());
     cells_.push_back(cell);
   }
-  // parents' boxes: unions of the children's (children come after their parent)
-  for (std::size_t k = nodes.size(); k-- > 0;) {
-    BinaryNode& node = nodes[k];
-    if (node.cell >= 0) continue;
-    const BinaryNode& a = nodes[static_cast<std::size_t>(node.child[0])];
-    const BinaryNode& b = nodes[static_cast<std::size_t>(node.child[1])];
+  // The search hierarchy is built over the cells' boxes in space, not over the parameter
+  // subdivision: a surface folded or turned in space puts cells far apart in parameters side by
+  // side, and boxes grouped by where they are overlap less. The whole surface's box is the union.
+  std::vector<SpaceLeaf> leaves_in_space;
+  for (const BinaryNode& n : nodes)
+    if (n.cell >= 0) leaves_in_space.push_back({n.lo, n.hi, n.cell});
+  lo_ = leaves_in_space[0].lo;
+  hi_ = leaves_in_space[0].hi;
+  for (const SpaceLeaf& l : leaves_in_space)
     for (int c = 0; c < 3; ++c) {
-      node.lo[c] = std::min(a.lo[c], b.lo[c]);
-      node.hi[c] = std::max(a.hi[c], b.hi[c]);
+      lo_[c] = std::min(lo_[c], l.lo[c]);
+      hi_[c] = std::max(hi_[c], l.hi[c]);
     }
-  }
-  lo_ = nodes[0].lo;
-  hi_ = nodes[0].hi;
-  // Fold two levels into one: a node's children are its binary children's children (a binary
-  // child that is a leaf stays a child). Breadth first, so a node's index is below its children's.
-  if (nodes[0].cell >= 0) return;  // a single cell: no node
-  std::vector<std::int32_t> from{0};  // the binary node each SurfaceCellNode folds
-  for (std::size_t w = 0; w < from.size(); ++w) {
-    const BinaryNode& b = nodes[static_cast<std::size_t>(from[w])];
-    SurfaceCellNode node;
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    for (int c = 0; c < 3; ++c)
-      for (int k = 0; k < SurfaceCellNode::kWidth; ++k) {
-        node.lo[c][k] = inf;
-        node.hi[c][k] = -inf;
-      }
-    for (int k = 0; k < SurfaceCellNode::kWidth; ++k) node.child[k] = -1;
-    auto add = [&](std::int32_t i) {
-      const BinaryNode& n = nodes[static_cast<std::size_t>(i)];
-      const int k = node.children++;
-      for (int c = 0; c < 3; ++c) {
-        node.lo[c][k] = n.lo[c];
-        node.hi[c][k] = n.hi[c];
-      }
-      if (n.cell >= 0) {
-        node.child[k] = ~n.cell;
-      } else {
-        node.child[k] = static_cast<std::int32_t>(from.size());
-        from.push_back(i);
-      }
-    };
-    for (std::int32_t i : b.child) {
-      const BinaryNode& n = nodes[static_cast<std::size_t>(i)];
-      if (n.cell >= 0) {
-        add(i);
-      } else {
-        add(n.child[0]);
-        add(n.child[1]);
-      }
-    }
-    nodes_.push_back(node);
-  }
+  if (leaves_in_space.size() == 1) return;  // a single cell: no node
+  build_space_tree(leaves_in_space, 0, leaves_in_space.size());
   nodes_.shrink_to_fit();
+}
+
+// A node over leaves[begin, end): four groups (fewer when there are fewer leaves), by two rounds
+// of median splits of the boxes' centres along their longest spread; a group of one leaf is a
+// leaf child, a larger one a node of its own. Nodes come before their children.
+std::int32_t SurfaceCells::build_space_tree(std::vector<SpaceLeaf>& leaves, std::size_t begin, std::size_t end) {
+  const auto index = static_cast<std::int32_t>(nodes_.size());
+  nodes_.emplace_back();
+  auto centre = [](const SpaceLeaf& l, int c) {
+    const double m = 0.5 * (l.lo[c] + l.hi[c]);
+    return std::isfinite(m) ? m : 0.0;  // an unbounded box (a cell where s is not finite)
+  };
+  auto split = [&](std::size_t b, std::size_t e) {  // partitions [b, e) at its median; the middle
+    double lo[3], hi[3];
+    for (int c = 0; c < 3; ++c) lo[c] = std::numeric_limits<double>::infinity(), hi[c] = -lo[c];
+    for (std::size_t i = b; i < e; ++i)
+      for (int c = 0; c < 3; ++c) {
+        lo[c] = std::min(lo[c], centre(leaves[i], c));
+        hi[c] = std::max(hi[c], centre(leaves[i], c));
+      }
+    int axis = 0;
+    for (int c = 1; c < 3; ++c)
+      if (hi[c] - lo[c] > hi[axis] - lo[axis]) axis = c;
+    const std::size_t m = b + (e - b) / 2;
+    std::nth_element(leaves.begin() + static_cast<std::ptrdiff_t>(b), leaves.begin() + static_cast<std::ptrdiff_t>(m),
+                     leaves.begin() + static_cast<std::ptrdiff_t>(e),
+                     [&](const SpaceLeaf& x, const SpaceLeaf& y) { return centre(x, axis) < centre(y, axis); });
+    return m;
+  };
+  constexpr int W = SurfaceCellNode::kWidth;
+  std::size_t bounds[W + 1];
+  int groups = 0;
+  if (end - begin <= static_cast<std::size_t>(W)) {
+    groups = static_cast<int>(end - begin);
+    for (int g = 0; g <= groups; ++g) bounds[g] = begin + static_cast<std::size_t>(g);
+  } else {
+    const std::size_t mid = split(begin, end);
+    bounds[0] = begin;
+    bounds[1] = split(begin, mid);
+    bounds[2] = mid;
+    bounds[3] = split(mid, end);
+    bounds[4] = end;
+    groups = W;
+  }
+  SurfaceCellNode node;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < W; ++k) {
+      node.lo[c][k] = inf;
+      node.hi[c][k] = -inf;
+    }
+  for (int k = 0; k < W; ++k) node.child[k] = -1;
+  node.children = groups;
+  for (int k = 0; k < groups; ++k)
+    for (std::size_t i = bounds[k]; i < bounds[k + 1]; ++i)
+      for (int c = 0; c < 3; ++c) {
+        node.lo[c][k] = std::min(node.lo[c][k], leaves[i].lo[c]);
+        node.hi[c][k] = std::max(node.hi[c][k], leaves[i].hi[c]);
+      }
+  nodes_[static_cast<std::size_t>(index)] = node;
+  for (int k = 0; k < groups; ++k) {
+    const std::int32_t child = bounds[k + 1] - bounds[k] == 1 ? ~leaves[bounds[k]].cell
+                                                               : build_space_tree(leaves, bounds[k], bounds[k + 1]);
+    nodes_[static_cast<std::size_t>(index)].child[k] = child;
+  }
+  return index;
 }
 
 double SurfaceCells::root_distance2(const Vec3& p) const {

@@ -1,14 +1,14 @@
 // What `auto` precomputes once per parametric surface and reuses for every point: an adaptive
-// subdivision of the parameter domain into cells, stored as a tree (a bounding-volume hierarchy
-// over the parameter rectangles; binary as built, two levels folded into one for the search), with
+// subdivision of the parameter domain into cells (a binary tree as built), searched through a
+// bounding-volume hierarchy over the cells' boxes in space (4-ary), with
 //  - per cell: the jet of s at the cell's centre (value, first and second partials), and ρ, a bound
 //    on |s(t) - (s_c + s_u δu + s_v δv)| over the cell (the tangent-plane model's error, estimated
 //    from 16 samples plus twice the quadratic model's error there, which bounds the gap between the
 //    samples), and ρ2, the same for the quadratic model (twice its sampled error);
-//  - per node of the tree: an axis-aligned box containing s over the node's rectangle. For a leaf
-//    it is the formula engine's interval enclosure (rigorous, outward rounded); a parent's box is
-//    the union of its children's. dist(p, box) is a lower bound on the distance from p to that
-//    part of the surface.
+//  - per node of the hierarchy: an axis-aligned box containing s over its cells. For a cell it is
+//    the formula engine's interval enclosure over the cell's rectangle (rigorous, outward
+//    rounded); a node's box is the union of its children's. dist(p, box) is a lower bound on the
+//    distance from p to that part of the surface.
 // Cells are split (where the tangent-plane model is worse), worst cell first, until the
 // tangent-plane model is good to `flatness` of the cell's size, so that the Newton model of a
 // cell predicts where the distance is least, and most points need a single local solve.
@@ -92,8 +92,7 @@ struct SurfaceCorner {
   bool finite = false;
 };
 
-// A node of the search tree: two levels of the binary subdivision folded into one, so a node
-// has 2-4 children (a child leaf of the binary tree stays a child). The children's boxes are
+// A node of the search hierarchy: 2-4 children, each a node or a cell (a leaf). The children's boxes are
 // stored in the node, coordinate by coordinate (lo[c][k], hi[c][k] for child k), so that the walk
 // gets all four box distances from one node's memory in a few vector operations. An unused slot
 // has an empty box (lo = +inf, hi = -inf): its distance is infinite.
@@ -150,6 +149,11 @@ class SurfaceCells {
   double root_distance2(const Vec3& p) const;
 
  private:
+  struct SpaceLeaf {
+    Vec3 lo, hi;  // the cell's box
+    std::int32_t cell;
+  };
+  std::int32_t build_space_tree(std::vector<SpaceLeaf>& leaves, std::size_t begin, std::size_t end);
   std::vector<SurfaceCellNode> nodes_;
   std::vector<SurfaceCell> cells_;
   std::array<SurfaceCorner, 4> corners_;
