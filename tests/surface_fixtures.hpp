@@ -91,7 +91,7 @@ inline void check_auto_against_oracle(const ParametricSurface& g, const nlohmann
   const ProjectionResult r = g.project(p.data(), "auto", Options{});
   INFO("p = (" << p[0] << ", " << p[1] << ", " << p[2] << "), oracle d = " << d_ref << " type "
                << o.at("type").get<std::string>() << "; auto d = " << r.distance << " at (" << r.params[0]
-               << ", " << r.params[1] << "), status " << to_string(r.summary.status) << ", starts "
+               << ", " << r.params[1] << "), status " << std::string(to_string(r.summary.status)) << ", starts "
                << r.summary.starts);
   CHECK(r.summary.status == Status::converged);
   CHECK(r.summary.method == "auto");

@@ -8,6 +8,8 @@
 //  - A1: the GSA paper's Example 1 over [-25,25]^2, folded and 8 periods each way (~16 parameter
 //    pairs per foot point; the seeding's budget must grow to resolve it);
 //  - fold: a sheet folded along curves (s_u x s_v = 0), where two minima lie a cell apart;
+//  - fold_near: a sheet folded harder, and points nearer to it than the cells' model error, whose
+//    nearest point lies in a cell whose model claims that the distance falls into a neighbour;
 //  - wavy: bumps a few cells wide; two minima a cell apart;
 //  - ripple: a corner answer next to an edge minimum within the corner cell's model error;
 //  - cone: the apex and the seam u = 0 = 2pi, with feet next to the seam;
@@ -20,8 +22,8 @@ using namespace footpoint;
 using namespace footpoint::test;
 
 TEST_CASE("auto against oracle references") {
-  for (const char* name : {"sphere", "torus", "monkey_saddle", "plane", "S1", "S2", "S3", "A1", "fold", "wavy", "ripple",
-                           "cone", "S3_edge"}) {
+  for (const char* name : {"sphere", "torus", "monkey_saddle", "plane", "S1", "S2", "S3", "A1", "fold", "fold_near",
+                           "wavy", "ripple", "cone", "S3_edge"}) {
     SUBCASE(name) {
       const nlohmann::json c = read_json(std::string(FOOTPOINT_TESTS_DIR) + "/data/surface_" + name + ".json");
       const auto& f = c.at("formulas");

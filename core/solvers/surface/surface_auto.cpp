@@ -208,31 +208,37 @@ class Search {
     const bool on_border = (m.side[0] < 0 && glo[0] > box_.umin) || (m.side[0] > 0 && ghi[0] < box_.umax) ||
                            (m.side[1] < 0 && glo[1] > box_.vmin) || (m.side[1] > 0 && ghi[1] < box_.vmax);
     if (c.resolved && on_border) {
-      // Next to the domain's boundary, and for a coarse cell, the claim must beat the model's
-      // error in f = ½|s - p|^2, about |s - p| ρ2: the model must fall from the cell into the
-      // neighbour by more than that. Else the cell is a candidate itself, from its model's
-      // minimiser over the cell:
+      // The claim must beat the model's error in f = ½|s - p|^2, about |s - p| ρ2: the model
+      // must fall from the cell into the neighbour by more than that. Else the cell answers for
+      // itself, from its model's minimiser over the cell:
       //  - next to the boundary, also from the model's best point on the boundary, on its edge or
       //    corner (rule 4 merges that one only with a minimum found on the same edge or corner,
       //    never with the interior minimum the claim points to; a coarse cell's are not merged at
       //    all);
-      //  - inside the domain, a coarse cell, whose claim can point past a minimum in the cell
-      //    itself (next to a fold the claims of a row of coarse cells can lead from the nearest
-      //    minimum to a worse one): merged with a minimum found in the grown cell (where the
-      //    claim points), no farther than the model's foot.
+      //  - inside the domain, when the cell may hold a point nearer than the best known (f is at
+      //    least ½|r|^2 + the model's least value over the cell - its error): a claim the model
+      //    cannot back can point past a minimum in the cell itself - next to a fold, or for a
+      //    point nearer the surface than the model's error, where claims can lead from the
+      //    nearest minimum to a worse one, or into a neighbour no nearer than the best and so
+      //    never visited. A coarse cell's candidate is merged with a minimum found in the grown
+      //    cell (where the claim points), no farther than the model's foot.
       const bool touches_boundary =
           c.u0 == box_.umin || c.u1 == box_.umax || c.v0 == box_.vmin || c.v1 == box_.vmax;
-      if (touches_boundary || !c.fine) {
-        const double model_error = 2.0 * (dc + c.extent) * c.rho2;
-        const double lo0 = c.u0 - uc, hi0 = c.u1 - uc, lo1 = c.v0 - vc, hi1 = c.v1 - vc;
-        const BoxMinimum own = minimize_on_box(q, {lo0, lo1}, {hi0, hi1});
-        if (!(own.value - m.value > model_error)) {
-          const Face own_face{
-              own.side[0] < 0 && c.u0 == box_.umin ? -1 : (own.side[0] > 0 && c.u1 == box_.umax ? 1 : 0),
-              own.side[1] < 0 && c.v0 == box_.vmin ? -1 : (own.side[1] > 0 && c.v1 == box_.vmax ? 1 : 0)};
-          if (touches_boundary) {
-            add_candidate(c, q, own.delta[0], own.delta[1], lb, own_face, c.fine);
-            add_boundary_candidates(c, q, lb, m.value + model_error, own_face);
+      const double model_error = 2.0 * (dc + c.extent) * c.rho2;
+      const double lo0 = c.u0 - uc, hi0 = c.u1 - uc, lo1 = c.v0 - vc, hi1 = c.v1 - vc;
+      const BoxMinimum own = minimize_on_box(q, {lo0, lo1}, {hi0, hi1});
+      if (!(own.value - m.value > model_error)) {
+        const Face own_face{
+            own.side[0] < 0 && c.u0 == box_.umin ? -1 : (own.side[0] > 0 && c.u1 == box_.umax ? 1 : 0),
+            own.side[1] < 0 && c.v0 == box_.vmin ? -1 : (own.side[1] > 0 && c.v1 == box_.vmax ? 1 : 0)};
+        if (touches_boundary) {
+          add_candidate(c, q, own.delta[0], own.delta[1], lb, own_face, c.fine);
+          add_boundary_candidates(c, q, lb, m.value + model_error, own_face);
+          return;
+        }
+        if (rr + 2.0 * (own.value - model_error) < bound_ * bound_) {
+          if (c.fine) {
+            add_candidate(c, q, own.delta[0], own.delta[1], lb, own_face);
           } else {
             add_candidate(c, q, own.delta[0], own.delta[1], lb, own_face, true,
                           std::array<double, 4>{glo[0], ghi[0], glo[1], ghi[1]});

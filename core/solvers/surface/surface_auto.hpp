@@ -10,9 +10,11 @@
 //   3. the minimum of its Newton model (the second-order Taylor expansion of ½|s - p|^2 at the
 //      centre) over the cell grown by a margin lies on the grown cell's border inside the domain:
 //      the distance decreases into a neighbour, which answers for it (two cells claiming each
-//      other are solved from between their two predictions; next to the domain's boundary, and
-//      for a coarse cell (seeding/surface_cells.hpp), the claim must beat the model's error, else
-//      the cell is solved);
+//      other are solved from between their two predictions). The claim must beat the model's
+//      error, else the cell is solved - next to the domain's boundary always, inside it when the
+//      cell may hold a point nearer than the best known (the model's least value over the cell
+//      less its error): near a fold, or for a point nearer the surface than the model's error,
+//      claims can lead past the nearest minimum to a worse one or into a neighbour never visited;
 //   4. a minimum already found, no farther than the cell model's foot point (a fine cell's: within
 //      the model's error ρ2 of it - a minimum farther than that is another one, since the
 //      model's foot lies within ρ2 of the surface), lies within a cell's width of the cell
