@@ -4,7 +4,8 @@
 // projected Newton solve) - a different search from `auto`'s cell tree, so a rule of its that
 // prunes a basin it should not (seeding/surface_cells.hpp, solvers/surface/surface_auto.hpp)
 // shows as `auto` farther than the reference. On the Open CASCADE comparison's S1, S2, S3, a
-// torus and A1 (the GSA paper's Example 1 folded over [-25,25]^2), with points uniform in the box
+// torus, A1 (the GSA paper's Example 1 folded over [-25,25]^2) and two sheets folded along
+// curves, with points uniform in the box
 // twice the surface's size and points within 2% of its size from a random surface point.
 #include <doctest/doctest.h>
 
@@ -71,6 +72,9 @@ TEST_CASE("auto is never farther than a brute-force grid search on random points
       {"torus", {0, 6.283185307179586}, {0, 6.283185307179586}, "(2+0.5*cos(v))*cos(u)", "(2+0.5*cos(v))*sin(u)",
        "0.5*sin(v)"},
       {"A1", {-25, 25}, {-25, 25}, "u+v", "sin(u)+2*cos(v)", "sin(u+v)"},
+      // folded sheets (s_u x s_v = 0 along curves; tests/data/surface_fold*.json)
+      {"fold", {-4, 4}, {-4, 4}, "u+0.3*sin(4*v)", "v+0.3*cos(3*u)", "0.4*sin(2*u)*cos(3*v)"},
+      {"fold_near", {-3, 3}, {-3, 3}, "u+0.5*sin(3*v)", "v+0.5*cos(2*u)", "0.3*sin(3*u)*cos(2*v)"},
   };
   for (const Spec& spec : specs) {
     SUBCASE(spec.name) {
