@@ -298,7 +298,8 @@ class Search {
 
   // A cell that may hold a better minimum, to be solved from its centre + (du, dv); `model` is
   // its Newton model (its Hessian at the centre starts the early stop's Lipschitz estimate).
-  // Rule 4 may merge it with a minimum found nearby if the cell is resolved and `mergeable`.
+  // Rule 4 may merge it with a minimum found nearby if the cell is resolved and `mergeable`;
+  // `basin`, when given, is where (else around the model's minimiser, or the coarse cell itself).
   void add_candidate(const SurfaceCell& c, const BoxQuadratic& model, double du, double dv, double lb, Face face,
                      bool mergeable = true, std::optional<std::array<double, 4>> basin = std::nullopt) {
     Candidate k;
@@ -327,7 +328,6 @@ class Search {
                     : (c.fine ? std::array<double, 4>{k.u - wu, k.u + wu, k.v - wv, k.v + wv}
                               : std::array<double, 4>{c.u0, c.u1, c.v0, c.v1});
     k.mergeable = c.resolved && mergeable;
-    k.fine = c.fine;
     k.merge_within = k.d_model + (c.fine ? c.rho2 : 0.0);
     candidates_[candidates_count_++] = k;
   }
@@ -496,7 +496,6 @@ class Search {
     std::array<double, 4> basin;  // rule 4's region: u0, u1, v0, v1
     Face face;                    // the face the model's minimiser is on
     bool mergeable;               // rule 4 applies
-    bool fine;
     std::array<double, 2> reference_t;  // the cell's centre and the Newton model's Hessian there
     std::array<double, 3> reference_H;
   };
