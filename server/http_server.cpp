@@ -311,8 +311,9 @@ void HttpServer::shutdown() {
 }
 
 void keep_large_buffers_for_reuse() {
-  // the largest threshold glibc accepts (half its 64 MiB per-thread heap): every buffer a
-  // request can need is below it with the default limits
+  // the largest threshold glibc accepts (half its 64 MiB per-thread heap): below it are the
+  // body, points, results and response of batches up to ~90,000 points (a larger one's response
+  // is mapped for itself, as before)
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
 }
