@@ -4,13 +4,15 @@
 // projected Newton solve) - a different search from `auto`'s cell tree, so a rule of its that
 // prunes a basin it should not (seeding/surface_cells.hpp, solvers/surface/surface_auto.hpp)
 // shows as `auto` farther than the reference. On the Open CASCADE comparison's S1, S2, S3, a
-// torus, A1 (the GSA paper's Example 1 folded over [-25,25]^2) and two sheets folded along
-// curves, with points uniform in the box
+// torus, A1 (the GSA paper's Example 1 folded over [-25,25]^2), two sheets folded along curves
+// and six more shapes, with points uniform in the box
 // twice the surface's size and points within 2% of its size from a random surface point.
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <iomanip>
 #include <limits>
 #include <random>
 #include <string>
@@ -32,7 +34,13 @@ struct Spec {
 };
 
 constexpr int kGrid = 240;    // grid steps per parameter
-constexpr int kPoints = 150;  // per surface and kind (box, near)
+// Points per surface and kind (box, near): 150, or FOOTPOINT_STRESS_POINTS for a longer sweep
+// (e.g. FOOTPOINT_STRESS_POINTS=2000 build/tests/test_surface -tc='*brute-force*': ~40 s).
+int points_per_kind() {
+  const char* env = std::getenv("FOOTPOINT_STRESS_POINTS");
+  const int n = env ? std::atoi(env) : 0;
+  return n > 0 ? n : 150;
+}
 
 // The reference distance for p: local solves from the grid's local minima.
 double brute_force(const ParametricSurface& g, const std::vector<Vec3>& grid, const Vec3& p, double size) {
@@ -75,7 +83,17 @@ TEST_CASE("auto is never farther than a brute-force grid search on random points
       // folded sheets (s_u x s_v = 0 along curves; tests/data/surface_fold*.json)
       {"fold", {-4, 4}, {-4, 4}, "u+0.3*sin(4*v)", "v+0.3*cos(3*u)", "0.4*sin(2*u)*cos(3*v)"},
       {"fold_near", {-3, 3}, {-3, 3}, "u+0.5*sin(3*v)", "v+0.5*cos(2*u)", "0.3*sin(3*u)*cos(2*v)"},
+      // bumps and ripples a few cells wide, a cone's apex and seam, a sphere's poles, a saddle
+      // with ripples, Enneper's surface (it crosses itself)
+      {"wavy", {-4, 4}, {-4, 4}, "u", "v", "0.2*sin(7*u)*sin(5*v)"},
+      {"ripple", {-1, 1}, {-1, 1}, "u", "v", "0.05*sin(20*u)*sin(17*v)"},
+      {"cone", {0, 6.283185307179586}, {0, 1}, "v*cos(u)", "v*sin(u)", "v"},
+      {"sphere", {0, 6.283185307179586}, {-1.5707963267948966, 1.5707963267948966}, "cos(u)*cos(v)", "sin(u)*cos(v)",
+       "sin(v)"},
+      {"saddle", {-2, 2}, {-2, 2}, "u", "v", "u*u*u-3*u*v*v+0.5*sin(4*u*v)"},
+      {"enneper", {-2, 2}, {-2, 2}, "u-u^3/3+u*v^2", "v-v^3/3+v*u^2", "u^2-v^2"},
   };
+  const int points = points_per_kind();
   for (const Spec& spec : specs) {
     SUBCASE(spec.name) {
       const auto g = make_surface(spec.x, spec.y, spec.z, spec.u, spec.v);
@@ -95,7 +113,7 @@ TEST_CASE("auto is never farther than a brute-force grid search on random points
       std::uniform_real_distribution<double> U(0.0, 1.0);
       int farther = 0;
       for (int kind = 0; kind < 2; ++kind)
-        for (int k = 0; k < kPoints; ++k) {
+        for (int k = 0; k < points; ++k) {
           Vec3 p;
           if (kind == 0) {  // the box twice the surface's size
             for (int c = 0; c < 3; ++c) p[c] = 0.5 * (lo[c] + hi[c]) + (U(rng) - 0.5) * 2.0 * (hi[c] - lo[c]);
@@ -113,9 +131,11 @@ TEST_CASE("auto is never farther than a brute-force grid search on random points
           if (!(r.distance <= reference + tolerance)) {
             ++farther;
             const std::string where = std::string(spec.name) + (kind ? " near" : " box");
-            MESSAGE(where << " p = (" << p.x << ", " << p.y << ", " << p.z << "): auto " << r.distance
-                          << ", brute force " << reference);
+            MESSAGE(where << std::setprecision(17) << " p = (" << p.x << ", " << p.y << ", " << p.z
+                          << "): auto " << r.distance << ", brute force " << reference);
           }
+          INFO(std::string(spec.name) << std::setprecision(17) << " p = (" << p.x << ", " << p.y << ", " << p.z << "): status "
+                         << std::string(to_string(r.summary.status)));
           CHECK(r.summary.status == Status::converged);
         }
       CHECK(farther == 0);

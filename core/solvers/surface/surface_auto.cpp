@@ -328,7 +328,6 @@ class Search {
                     : (c.fine ? std::array<double, 4>{k.u - wu, k.u + wu, k.v - wv, k.v + wv}
                               : std::array<double, 4>{c.u0, c.u1, c.v0, c.v1});
     k.mergeable = c.resolved && mergeable;
-    k.merge_within = k.d_model + (c.fine ? c.rho2 : 0.0);
     candidates_[candidates_count_++] = k;
   }
 
@@ -344,14 +343,14 @@ class Search {
       const Candidate& k = candidates_[i];
       if (!(k.lb < bound_)) continue;
       if (k.mergeable) {
-        // merged only with a minimum no farther than the model's foot (a fine cell's: than the
-        // model's foot within the model's error, so that a minimum a hair nearer than the model
-        // said is not solved again); one farther is another: the model's foot lies within that
-        // error of the surface, so something nearer is there (a coarse cell can hold two minima,
-        // and a fine one next to a fold two a cell apart)
+        // merged only with a minimum no farther than the model's foot: a farther one may be
+        // another, however near - where the model's error is not small next to the distance
+        // (near folds, points very near the surface) a fine cell can hold a second minimum a
+        // cell from the first, and a coarse one two; the solve of a copy stops early (it is
+        // in a known minimiser's basin)
         auto same = [&](double u, double v, double distance) {
           return u >= k.basin[0] && u <= k.basin[1] && v >= k.basin[2] && v <= k.basin[3] &&
-                 face_of(box_, u, v) == k.face && distance <= k.merge_within;
+                 face_of(box_, u, v) == k.face && distance <= k.d_model;
         };
         bool found = false;
         for (int f = 0; f < feet_count_ && !found; ++f) found = same(feet_[f][0], feet_[f][1], feet_distance_[f]);
@@ -490,7 +489,6 @@ class Search {
   Claim claims_[kClaims];
   struct Candidate {
     double d_model;             // distance to the model's foot point
-    double merge_within;        // rule 4: a minimum found this near, in the basin, is this one
     double lb;                  // lower bound (rules 1, 2)
     double u, v;                // start of the local solve
     std::array<double, 4> basin;  // rule 4's region: u0, u1, v0, v1

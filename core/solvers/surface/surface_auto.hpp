@@ -15,10 +15,9 @@
 //      cell may hold a point nearer than the best known (the model's least value over the cell
 //      less its error): near a fold, or for a point nearer the surface than the model's error,
 //      claims can lead past the nearest minimum to a worse one or into a neighbour never visited;
-//   4. a minimum already found, no farther than the cell model's foot point (a fine cell's: within
-//      the model's error ρ2 of it - a minimum farther than that is another one, since the
-//      model's foot lies within ρ2 of the surface), lies within a cell's width of the cell
-//      model's minimiser (a coarse cell: in the cell; a coarse cell inside the domain whose claim
+//   4. a minimum already found, no farther than the cell model's foot point (a farther one may be
+//      another, where the model's error is not small next to the distance), lies within a cell's
+//      width of the cell model's minimiser (a coarse cell: in the cell; a coarse cell inside the domain whose claim
 //      failed rule 3's error test: in the cell grown by the margin, where its claim pointed), on
 //      the same face of the domain (interior, the same edge, the same corner) - not for the
 //      candidates of a coarse cell next to the boundary whose claim failed that test.
