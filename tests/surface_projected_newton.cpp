@@ -59,3 +59,18 @@ TEST_CASE("a solve ends with the formulas' jet at its parameters, expanded or ev
     CHECK(expanded > 0);  // the expansion is what this test measures
   }
 }
+
+TEST_CASE("a convex Newton step below the parameters' last bit ends a solve as converged") {
+  // The GSA paper's Example 1 over [-25,25]^2, from a start found by the brute-force sweep: the
+  // fourth step (3e-13) is an expanded one, whose jet leaves the residual a hair above its
+  // rounding floor; the next Newton step is below the last bit of u = 17.77 (it used to end
+  // the solve as `degenerate`).
+  const auto g = make_surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-25, 25}, {-25, 25});
+  const ConvergenceCriteria criteria = convergence_criteria(Options{}, g->domain(), kLocalMaxIterations);
+  const Vec3 p{0.29084437405683827, 0.12161836911652069, -0.35682163493964258};
+  const LocalSolution sol = projected_newton(g->formulas(), g->domain(), p, 17.8285, -17.8066, criteria);
+  CHECK(sol.status == Status::converged);
+  CHECK(sol.distance == doctest::Approx(0.45797324179528337).epsilon(1e-14));
+  const Orthogonality o = orthogonality(p, sol.jet.s, sol.jet.su, sol.jet.sv);
+  CHECK(std::max(o.relative[0], o.relative[1]) <= 2.0 * o.floor);
+}

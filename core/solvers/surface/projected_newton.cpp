@@ -216,6 +216,7 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     // computed as f(t') - f(t) = ½ (s' - s)·((s' - p) + (s - p)), without the cancellation of two
     // large f for far points. Small convex steps are Newton's local regime: taken as they are.
     bool accepted = false;
+    bool vanishes = false;  // the full step changes no parameter: they are as good as they can be
     double tn[2] = {t[0], t[1]};
     SurfaceJet jn;
     double alpha = 1.0;
@@ -228,7 +229,10 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     for (int ls = 0; ls < kMaxBacktracks && !accepted; ++ls, alpha *= 0.5) {
       for (int i = 0; i < 2; ++i) tn[i] = std::clamp(t[i] + alpha * d[i], lo[i], hi[i]);
       const double dt0 = tn[0] - t[0], dt1 = tn[1] - t[1];
-      if (dt0 == 0.0 && dt1 == 0.0) break;
+      if (dt0 == 0.0 && dt1 == 0.0) {
+        vanishes = ls == 0;
+        break;
+      }
       const double slope = g[0] * dt0 + g[1] * dt1;
       Vec3 sn;
       if (ls == 0 && expand && tn[0] == t[0] + d[0] && tn[1] == t[1] + d[1]) {  // d not clipped
@@ -256,7 +260,9 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
       }
     }
     if (!accepted) {  // no decrease to be had: rounding level, or a descent direction lost to it
-      status = done ? Status::converged : Status::degenerate;
+      // A convex Newton step below the parameters' last bit is convergence whatever the residual
+      // says: it is computed from a jet one rounding away from any other at these parameters.
+      status = done || (vanishes && convex) ? Status::converged : Status::degenerate;
       break;
     }
     const double dt0 = tn[0] - t[0], dt1 = tn[1] - t[1];
