@@ -13,6 +13,11 @@ inline bool is_finite(const SurfaceJet& j) {
   const Vec3 zero = 0.0 * j.s + 0.0 * j.su + 0.0 * j.sv + 0.0 * j.suu + 0.0 * j.suv + 0.0 * j.svv;
   return (zero.x + zero.y) + zero.z == 0.0;
 }
+// s(t + δ) to second order: s + s_u δu + s_v δv + ½ (s_uu δu^2 + 2 s_uv δu δv + s_vv δv^2) (the
+// quadratic model of a cell, a Newton model's foot point, an expanded last Newton step).
+inline Vec3 taylor_point(const SurfaceJet& j, double du, double dv) {
+  return j.s + j.su * du + j.sv * dv + 0.5 * (j.suu * (du * du) + 2.0 * j.suv * (du * dv) + j.svv * (dv * dv));
+}
 struct SurfaceJet3 : SurfaceJet {
   Vec3 suuu, suuv, suvv, svvv;
 };

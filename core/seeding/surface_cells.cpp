@@ -19,9 +19,7 @@ struct Rect {
 // The subdivision as it is built: a binary tree over parameter rectangles. Its leaves are the
 // cells; the search hierarchy (SurfaceCellNodes) is built over their boxes at the end.
 struct BinaryNode {
-  Vec3 lo, hi;  // a leaf: box containing s over the cell's rectangle
   std::int32_t child[2]{-1, -1};
-  std::int32_t cell = -1;  // leaf: index into cells_
 };
 
 struct Evaluated {
@@ -68,8 +66,7 @@ Evaluated evaluate(const SurfaceFormulas& f, const Rect& r) {
   for (int k = 0; k < K; ++k) {
     if (!is_finite(s[k])) continue;
     const Vec3 lin = e.jet.s + e.jet.su * du[k] + e.jet.sv * dv[k];
-    const Vec3 quad =
-        lin + 0.5 * (e.jet.suu * (du[k] * du[k]) + 2.0 * e.jet.suv * (du[k] * dv[k]) + e.jet.svv * (dv[k] * dv[k]));
+    const Vec3 quad = taylor_point(e.jet, du[k], dv[k]);
     const double dl = norm(s[k] - lin);
     dev_lin = std::max(dev_lin, dl);
     dev_quad = std::max(dev_quad, norm(s[k] - quad));
@@ -168,9 +165,10 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
   }
   // the leaves: cells with their rigorous boxes
   cells_.reserve(static_cast<std::size_t>(leaves));
+  std::vector<SpaceLeaf> leaves_in_space;
+  leaves_in_space.reserve(static_cast<std::size_t>(leaves));
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    BinaryNode& node = nodes[i];
-    if (node.child[0] >= 0) continue;
+    if (nodes[i].child[0] >= 0) continue;
     const Rect& r = rects[i];
     const Evaluated& e = evals[i];
     SurfaceCell cell;
@@ -205,19 +203,18 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     formula::Interval out[3];
     formulas.program().intervals(x, out);
     constexpr double inf = std::numeric_limits<double>::infinity();
+    SpaceLeaf leaf;
     for (int k = 0; k < 3; ++k) {
-      node.lo[k] = std::isnan(out[k].lo) ? -inf : out[k].lo;
-      node.hi[k] = std::isnan(out[k].hi) ? inf : out[k].hi;
+      leaf.lo[k] = std::isnan(out[k].lo) ? -inf : out[k].lo;
+      leaf.hi[k] = std::isnan(out[k].hi) ? inf : out[k].hi;
     }
-    node.cell = static_cast<std::int32_t>(cells_.size());
+    leaf.cell = static_cast<std::int32_t>(cells_.size());
+    leaves_in_space.push_back(leaf);
     cells_.push_back(cell);
   }
   // The search hierarchy is built over the cells' boxes in space, not over the parameter
   // subdivision: a surface folded or turned in space puts cells far apart in parameters side by
   // side, and boxes grouped by where they are overlap less. The whole surface's box is the union.
-  std::vector<SpaceLeaf> leaves_in_space;
-  for (const BinaryNode& n : nodes)
-    if (n.cell >= 0) leaves_in_space.push_back({n.lo, n.hi, n.cell});
   lo_ = leaves_in_space[0].lo;
   hi_ = leaves_in_space[0].hi;
   for (const SpaceLeaf& l : leaves_in_space)

@@ -239,8 +239,7 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
         jn.suu = jet.suu, jn.suv = jet.suv, jn.svv = jet.svv;
         jn.su = jet.su + jet.suu * dt0 + jet.suv * dt1;
         jn.sv = jet.sv + jet.suv * dt0 + jet.svv * dt1;
-        jn.s = jet.s + jet.su * dt0 + jet.sv * dt1 +
-               0.5 * (jet.suu * (dt0 * dt0) + 2.0 * jet.suv * (dt0 * dt1) + jet.svv * (dt1 * dt1));
+        jn.s = taylor_point(jet, dt0, dt1);
         sn = jn.s;
         expanded = true;
       } else if (ls == 0) {

@@ -312,9 +312,7 @@ class Search {
       if (has_best_) return;
     }
     if (candidates_count_ == kCandidates) solve_candidates();  // rare: solve what we have first
-    const SurfaceJet& j = c.centre;
-    const Vec3 foot = j.s + j.su * du + j.sv * dv + 0.5 * (j.suu * (du * du) + 2.0 * j.suv * (du * dv) + j.svv * (dv * dv));
-    k.d_model = norm(foot - p_);
+    k.d_model = norm(taylor_point(c.centre, du, dv) - p_);
     k.lb = lb;
     k.u = std::clamp(c.uc() + du, box_.umin, box_.umax);
     k.v = std::clamp(c.vc() + dv, box_.vmin, box_.vmax);
