@@ -155,29 +155,49 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
       break;
     }
     if (sol.iterations >= criteria.max_iterations) break;
-    if (may_stop_early && have_prev && definite) {
-      const double lambda_min = det / (0.5 * (a + c) + std::sqrt(0.25 * (a - c) * (a - c) + b * b));  // det / λ2
-      // the ball around t (or the point t + d) inside the domain
+    // on a face (one parameter held on its bound): the free one and the held one
+    const bool on_face = free_[0] != free_[1];
+    const int fi = free_[0] ? 0 : 1, hj = 1 - fi;
+    if (may_stop_early && have_prev && (definite || (on_face && H[fi][fi] > 0.0))) {
+      // the Newton step on the free parameters (d before the domain-width cap) and the smaller
+      // eigenvalue of H there
+      double delta[2] = {0.0, 0.0}, lambda_min;
+      if (definite) {
+        delta[0] = -(c * g[0] - b * g[1]) / det;
+        delta[1] = -(a * g[1] - b * g[0]) / det;
+        lambda_min = det / (0.5 * (a + c) + std::sqrt(0.25 * (a - c) * (a - c) + b * b));  // det / λ2
+      } else {
+        delta[fi] = -g[fi] / H[fi][fi];
+        lambda_min = H[fi][fi];
+      }
+      // the ball around t (or the point t + δ) inside the domain - on a face, along the free
+      // parameter (the held one is on its bound)
       auto within = [&](double c0, double c1, double radius) {
-        return c0 - radius > lo[0] && c0 + radius < hi[0] && c1 - radius > lo[1] && c1 + radius < hi[1];
+        const bool in0 = c0 - radius > lo[0] && c0 + radius < hi[0], in1 = c1 - radius > lo[1] && c1 + radius < hi[1];
+        return (in0 || !free_[0]) && (in1 || !free_[1]);
       };
-      // the early stop (projected_newton.hpp); d is the full Newton step here (H positive
-      // definite, not shortened: the Kantorovich condition fails for steps that long)
+      // the early stop (projected_newton.hpp)
       const double dt0 = t[0] - t_prev[0], dt1 = t[1] - t_prev[1];
       const double dH0 = H[0][0] - H_prev[0], dH1 = H[0][1] - H_prev[1], dH2 = H[1][1] - H_prev[2];
       const double dH2n = dH0 * dH0 + 2.0 * dH1 * dH1 + dH2 * dH2, dt2 = dt0 * dt0 + dt1 * dt1;
-      const double dn2 = d[0] * d[0] + d[1] * d[1];
+      const double dn2 = delta[0] * delta[0] + delta[1] * delta[1];
       // L |δ| <= λ/4 in squares, the square roots only when it holds
       if (dt2 > 0.0 && kLipschitzSafety * kLipschitzSafety * dH2n * dn2 <= 0.0625 * lambda_min * lambda_min * dt2) {
         const double L = kLipschitzSafety * std::sqrt(dH2n / dt2);
         const double dn = std::sqrt(dn2);
         const double R = 2.0 * dn;  // the ball holding the basin's only stationary point
-        if (within(t[0], t[1], R)) {
+        // on a face, the held parameter's gradient pushes out of the box over the whole ball (it
+        // changes by at most |H_ij| R + L R^2 there), so the solve stays on the face: the 1-D
+        // problem along it is the basin's
+        const bool held = !on_face || std::abs(g[hj]) > std::abs(b) * R + L * R * R;
+        if (held && within(t[0], t[1], R)) {
           for (int i = 0; i < early->minimiser_count; ++i) {
-            const double e0 = early->minimisers[i][0] - t[0], e1 = early->minimisers[i][1] - t[1];
+            const double m0 = early->minimisers[i][0], m1 = early->minimisers[i][1];
+            if (on_face && (hj == 0 ? m0 : m1) != t[hj]) continue;  // not on this face
+            const double e0 = m0 - t[0], e1 = m1 - t[1];
             if (e0 * e0 + e1 * e1 <= R * R) {
-              sol.u = early->minimisers[i][0];
-              sol.v = early->minimisers[i][1];
+              sol.u = m0;
+              sol.v = m1;
               sol.jet = jet;
               sol.distance = std::numeric_limits<double>::infinity();
               sol.abandoned = true;
@@ -185,16 +205,17 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
             }
           }
         }
-        // the predicted minimiser inside the box: the box does not cut the basin off
-        const bool inside = within(t[0] + d[0], t[1] + d[1], 0.0);
+        // the predicted minimiser inside the box (on a face: inside the face): the box does not
+        // cut the basin off
+        const bool inside = held && within(t[0] + delta[0], t[1] + delta[1], 0.0);
         if (inside && early->cutoff < std::numeric_limits<double>::infinity()) {
           // 2 min f >= |r|^2 + <g, δ> - (8/3) L |δ|^3
-          const double low2 = dot(r, r) + (g[0] * d[0] + g[1] * d[1]) - (8.0 / 3.0) * L * dn * dn * dn;
+          const double low2 = dot(r, r) + (g[0] * delta[0] + g[1] * delta[1]) - (8.0 / 3.0) * L * dn * dn * dn;
           const double tie = kTie * early->cutoff +
                              32.0 * std::numeric_limits<double>::epsilon() * (norm_p + norm(jet.s));
           if (low2 >= 0.0 && std::sqrt(low2) >= early->cutoff - tie) {
-            sol.u = t[0] + d[0];
-            sol.v = t[1] + d[1];
+            sol.u = t[0] + delta[0];
+            sol.v = t[1] + delta[1];
             sol.jet = jet;
             sol.distance = std::sqrt(low2);
             sol.abandoned = true;
