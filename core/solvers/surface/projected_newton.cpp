@@ -139,13 +139,28 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     }
 
     const double step_inf = std::max(free_[0] ? std::abs(d[0]) : 0.0, free_[1] ? std::abs(d[1]) : 0.0);
-    const Orthogonality o = orthogonality(p, norm_p, jet.s, jet.su, jet.sv);
-    bool done = test.converged(step_inf, t[0], t[1], o, {free_[0], free_[1]});
+    // The stopping test needs the orthogonality residuals only for a short step, or for a
+    // gradient at its rounding level (a residual at its floor ends the iteration whatever the
+    // step): |g_i| <= 16 eps (|p| + |s|) |s_i| for every free i - tested in squares, with
+    // (|p| + |s|)^2 <= 2 (|p|^2 + |s|^2). Otherwise the step is not settled and nothing ends here.
+    const double step_scale = criteria.step_scale(t[0], t[1]);
+    const bool short_step = step_inf <= std::max(criteria.tolerance, kStagnantStep) * step_scale;
+    constexpr double noise = 16.0 * std::numeric_limits<double>::epsilon();
+    const double floor2 = 2.0 * noise * noise * (norm_p * norm_p + norm2(jet.s));
+    const bool gradient_at_floor = (!free_[0] || !(g[0] * g[0] > floor2 * norm2(jet.su))) &&
+                                   (!free_[1] || !(g[1] * g[1] > floor2 * norm2(jet.sv)));
+    Orthogonality o;
+    bool done = false;
+    if (short_step || gradient_at_floor) {
+      o = orthogonality(p, norm_p, jet.s, jet.su, jet.sv);
+      done = test.converged(step_inf, t[0], t[1], o, {free_[0], free_[1]});
+    } else {
+      test.unsettled();
+    }
     // Newton's steps shrink quadratically; tiny steps that stop shrinking are rounding noise made
     // large by a nearly singular H (p near a centre of curvature): the parameters are as good as
     // the formulas' rounding lets them be.
-    const bool stagnant = step_inf <= kStagnantStep * criteria.step_scale(t[0], t[1]) &&
-                          step_inf > kShrink * last_step_inf;
+    const bool stagnant = step_inf <= kStagnantStep * step_scale && step_inf > kShrink * last_step_inf;
     stagnant_steps = stagnant ? stagnant_steps + 1 : 0;
     last_step_inf = step_inf;
     if (stagnant_steps >= 3 && std::max(free_[0] ? o.relative[0] : 0.0, free_[1] ? o.relative[1] : 0.0) <= kStalledResidual)
@@ -242,7 +257,7 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     SurfaceJet jn;
     double alpha = 1.0;
     const Vec3 r0 = jet.s - p;
-    const double local_step = kLocalStep * criteria.step_scale(t[0], t[1]);
+    const double local_step = kLocalStep * step_scale;
     const bool expand = convex && !expanded &&
                         step_inf * step_inf * std::max({norm2(jet.suu), norm2(jet.suv), norm2(jet.svv)}) <=
                             kTaylorStep * kTaylorStep * std::min(norm2(jet.su), norm2(jet.sv));

@@ -58,6 +58,9 @@ class ConvergenceTest {
   explicit ConvergenceTest(const ConvergenceCriteria& criteria) : criteria_(criteria) {}
   // step_inf = |Δt|∞ of the step just taken (or about to be taken) at (u, v).
   bool converged(double step_inf, double u, double v, const Orthogonality& o, std::array<bool, 2> free = {true, true});
+  // What converged() concludes, without the residuals, for a step above the step bound and a
+  // residual above its floor: not converged, and not stalled either.
+  void unsettled() { stalled_ = 0; }
 
  private:
   const ConvergenceCriteria& criteria_;
