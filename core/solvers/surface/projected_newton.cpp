@@ -126,6 +126,7 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
       d[i] = -g[i] / std::max(std::abs(h), std::numeric_limits<double>::min());
       if (!convex) neg_dir[i] = 1.0;
     }
+    const double newton_step[2] = {d[0], d[1]};  // before the cap below (the early stop's δ)
     // no step longer than the domain
     for (int i = 0; i < 2; ++i)
       if (std::abs(d[i]) > width[i]) {
@@ -174,17 +175,11 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     const bool on_face = free_[0] != free_[1];
     const int fi = free_[0] ? 0 : 1, hj = 1 - fi;
     if (may_stop_early && have_prev && (definite || (on_face && H[fi][fi] > 0.0))) {
-      // the Newton step on the free parameters (d before the domain-width cap) and the smaller
-      // eigenvalue of H there
-      double delta[2] = {0.0, 0.0}, lambda_min;
-      if (definite) {
-        delta[0] = -(c * g[0] - b * g[1]) / det;
-        delta[1] = -(a * g[1] - b * g[0]) / det;
-        lambda_min = det / (0.5 * (a + c) + std::sqrt(0.25 * (a - c) * (a - c) + b * b));  // det / λ2
-      } else {
-        delta[fi] = -g[fi] / H[fi][fi];
-        lambda_min = H[fi][fi];
-      }
+      // the Newton step on the free parameters, and the smaller eigenvalue of H there
+      const double* delta = newton_step;
+      const double lambda_min =
+          definite ? det / (0.5 * (a + c) + std::sqrt(0.25 * (a - c) * (a - c) + b * b))  // det / λ2
+                   : H[fi][fi];
       // the ball around t (or the point t + δ) inside the domain - on a face, along the free
       // parameter (the held one is on its bound)
       auto within = [&](double c0, double c1, double radius) {
