@@ -28,8 +28,9 @@
 // On a face of the box (one parameter held on its bound) the same holds for the 1-D problem along
 // it, with λ = H_ii of the free parameter, provided the held parameter stays held over the ball:
 // its gradient pushes out by more than it can change there, |g_j| > |H_ij| R + L R^2 (R = 2|δ|).
-// Then a known minimiser on the same face in the ball is this basin's (for far points, the cells
-// along an edge all lead to one edge minimum: ~0.7 repeated edge solves per S1 HTTP point).
+// Then a known minimiser on the same face in the ball is this basin's, and the 1-D lower bound
+// applies (for far points the cells along an edge all lead to one edge minimum: ~0.7 repeated
+// edge solves per S1 HTTP bench point answered on an edge, before this).
 #pragma once
 #include <array>
 #include <limits>
