@@ -74,37 +74,3 @@ TEST_CASE("a convex Newton step below the parameters' last bit ends a solve as c
   const Orthogonality o = orthogonality(p, sol.jet.s, sol.jet.su, sol.jet.sv);
   CHECK(std::max(o.relative[0], o.relative[1]) <= 2.0 * o.floor);
 }
-
-TEST_CASE("the early stop on a face: a known minimiser on the same edge ends a solve along it") {
-  // A far point of the HTTP benchmark on S1: its nearest point is on the edge u = 3, and the
-  // cells along that edge all start solves there (the early stop used to need the ball inside
-  // the domain, so each ran to convergence).
-  const auto g = make_surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-3, 3}, {-3, 3});
-  const ConvergenceCriteria criteria = convergence_criteria(Options{}, g->domain(), kLocalMaxIterations);
-  const Vec3 p{9.85065, 2.36607, -1.00025};
-  const LocalSolution first = projected_newton(g->formulas(), g->domain(), p, 3.0, 1.5, criteria);
-  REQUIRE(first.status == Status::converged);
-  REQUIRE(first.u == 3.0);
-  CHECK(first.v == doctest::Approx(1.75518).epsilon(1e-5));
-  const LocalSolution full = projected_newton(g->formulas(), g->domain(), p, 3.0, 2.0625, criteria);
-  REQUIRE(full.status == Status::converged);
-  CHECK(full.v == doctest::Approx(first.v).epsilon(1e-12));
-
-  const std::array<double, 2> known[1] = {{first.u, first.v}};
-  EarlyStop early;
-  early.minimisers = known;
-  early.minimiser_count = 1;
-  const LocalSolution stopped = projected_newton(g->formulas(), g->domain(), p, 3.0, 2.0625, criteria, nullptr, &early);
-  CHECK(stopped.abandoned);
-  CHECK(stopped.u == first.u);
-  CHECK(stopped.v == first.v);
-  CHECK(stopped.iterations < full.iterations);
-
-  // a minimiser just inside the domain is not on the face: the solve goes on to the edge's own
-  const std::array<double, 2> off_face[1] = {{std::nextafter(3.0, 0.0), first.v}};
-  early.minimisers = off_face;
-  const LocalSolution solved = projected_newton(g->formulas(), g->domain(), p, 3.0, 2.0625, criteria, nullptr, &early);
-  CHECK_FALSE(solved.abandoned);
-  CHECK(solved.status == Status::converged);
-  CHECK(solved.v == doctest::Approx(first.v).epsilon(1e-12));
-}
