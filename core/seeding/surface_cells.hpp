@@ -92,10 +92,10 @@ struct SurfaceCorner {
   bool finite = false;
 };
 
-// A node of the search hierarchy: 2-4 children, each a node or a cell (a leaf). The children's boxes are
-// stored in the node, coordinate by coordinate (lo[c][k], hi[c][k] for child k), so that the walk
-// gets all four box distances from one node's memory in a few vector operations. An unused slot
-// has an empty box (lo = +inf, hi = -inf): its distance is infinite.
+// A node of the search hierarchy: 2-4 children, each a node or a cell (a leaf). The children's
+// boxes are stored in the node, coordinate by coordinate (lo[c][k], hi[c][k] for child k), so that
+// the walk gets all four box distances from one node's memory in a few vector operations. An
+// unused slot has an empty box (lo = +inf, hi = -inf): its distance is infinite.
 struct SurfaceCellNode {
   static constexpr int kWidth = 4;
   alignas(32) double lo[3][kWidth];

@@ -146,13 +146,15 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     // (|p| + |s|)^2 <= 2 (|p|^2 + |s|^2). Otherwise the step is not settled and nothing ends here.
     const double step_scale = criteria.step_scale(t[0], t[1]);
     const bool short_step = step_inf <= std::max(criteria.tolerance, kStagnantStep) * step_scale;
-    constexpr double noise = 16.0 * std::numeric_limits<double>::epsilon();
-    const double floor2 = 2.0 * noise * noise * (norm_p * norm_p + norm2(jet.s));
-    const bool gradient_at_floor = (!free_[0] || !(g[0] * g[0] > floor2 * norm2(jet.su))) &&
-                                   (!free_[1] || !(g[1] * g[1] > floor2 * norm2(jet.sv)));
+    auto gradient_at_floor = [&] {
+      constexpr double noise = 16.0 * std::numeric_limits<double>::epsilon();
+      const double floor2 = 2.0 * noise * noise * (norm_p * norm_p + norm2(jet.s));
+      return (!free_[0] || !(g[0] * g[0] > floor2 * norm2(jet.su))) &&
+             (!free_[1] || !(g[1] * g[1] > floor2 * norm2(jet.sv)));
+    };
     Orthogonality o;
     bool done = false;
-    if (short_step || gradient_at_floor) {
+    if (short_step || gradient_at_floor()) {
       o = orthogonality(p, norm_p, jet.s, jet.su, jet.sv);
       done = test.converged(step_inf, t[0], t[1], o, {free_[0], free_[1]});
     } else {

@@ -44,6 +44,14 @@ struct Face {
   bool operator==(const Face&) const = default;
 };
 
+// The face of the domain that a box minimum is on: on the side `side` of the rectangle
+// [lo, hi] where that side is the domain's bound.
+Face face_of(const ParamBox& box, const std::array<int, 2>& side, const std::array<double, 2>& lo,
+             const std::array<double, 2>& hi) {
+  return {side[0] < 0 && lo[0] == box.umin ? -1 : (side[0] > 0 && hi[0] == box.umax ? 1 : 0),
+          side[1] < 0 && lo[1] == box.vmin ? -1 : (side[1] > 0 && hi[1] == box.vmax ? 1 : 0)};
+}
+
 Face face_of(const ParamBox& box, double u, double v) {
   return {u <= box.umin ? -1 : (u >= box.umax ? 1 : 0), v <= box.vmin ? -1 : (v >= box.vmax ? 1 : 0)};
 }
@@ -200,8 +208,7 @@ class Search {
     const double ghi[2] = {std::min(c.u1 + mu, box_.umax), std::min(c.v1 + mv, box_.vmax)};
     const BoxMinimum m = minimize_on_box(q, {glo[0] - uc, glo[1] - vc}, {ghi[0] - uc, ghi[1] - vc});
     const double du = m.delta[0], dv = m.delta[1];
-    const Face model_face{m.side[0] < 0 && glo[0] == box_.umin ? -1 : (m.side[0] > 0 && ghi[0] == box_.umax ? 1 : 0),
-                          m.side[1] < 0 && glo[1] == box_.vmin ? -1 : (m.side[1] > 0 && ghi[1] == box_.vmax ? 1 : 0)};
+    const Face model_face = face_of(box_, m.side, {glo[0], glo[1]}, {ghi[0], ghi[1]});
     // Rule 3: the model's minimum on the grown cell's border, inside the domain, claims that the
     // distance decreases into a neighbour, whose model answers for this cell. Next to the
     // boundary a model can miss an edge or corner minimum (far points see a flat landscape).
@@ -228,21 +235,16 @@ class Search {
       const double lo0 = c.u0 - uc, hi0 = c.u1 - uc, lo1 = c.v0 - vc, hi1 = c.v1 - vc;
       const BoxMinimum own = minimize_on_box(q, {lo0, lo1}, {hi0, hi1});
       if (!(own.value - m.value > model_error)) {
-        const Face own_face{
-            own.side[0] < 0 && c.u0 == box_.umin ? -1 : (own.side[0] > 0 && c.u1 == box_.umax ? 1 : 0),
-            own.side[1] < 0 && c.v0 == box_.vmin ? -1 : (own.side[1] > 0 && c.v1 == box_.vmax ? 1 : 0)};
+        const Face own_face = face_of(box_, own.side, {c.u0, c.v0}, {c.u1, c.v1});
         if (touches_boundary) {
           add_candidate(c, q, own.delta[0], own.delta[1], lb, own_face, c.fine);
           add_boundary_candidates(c, q, lb, m.value + model_error, own_face);
           return;
         }
         if (rr + 2.0 * (own.value - model_error) < bound_ * bound_) {
-          if (c.fine) {
-            add_candidate(c, q, own.delta[0], own.delta[1], lb, own_face);
-          } else {
-            add_candidate(c, q, own.delta[0], own.delta[1], lb, own_face, true,
-                          std::array<double, 4>{glo[0], ghi[0], glo[1], ghi[1]});
-          }
+          const auto grown = std::array<double, 4>{glo[0], ghi[0], glo[1], ghi[1]};
+          add_candidate(c, q, own.delta[0], own.delta[1], lb, own_face, true,
+                        c.fine ? std::nullopt : std::optional{grown});
           return;
         }
       }
@@ -285,8 +287,9 @@ class Search {
       if (!on_boundary) return;
       const BoxMinimum e = minimize_on_box(q, lo, hi);
       if (!(e.value <= threshold)) return;
-      if (f.u == 0) f.u = e.side[0] < 0 && c.u0 == box_.umin ? -1 : (e.side[0] > 0 && c.u1 == box_.umax ? 1 : 0);
-      if (f.v == 0) f.v = e.side[1] < 0 && c.v0 == box_.vmin ? -1 : (e.side[1] > 0 && c.v1 == box_.vmax ? 1 : 0);
+      const Face at = face_of(box_, e.side, {c.u0, c.v0}, {c.u1, c.v1});
+      if (f.u == 0) f.u = at.u;
+      if (f.v == 0) f.v = at.v;
       if (f == except) return;
       add_candidate(c, q, e.delta[0], e.delta[1], lb, f, c.fine);
     };

@@ -17,10 +17,10 @@
 //      claims can lead past the nearest minimum to a worse one or into a neighbour never visited;
 //   4. a minimum already found, no farther than the cell model's foot point (a farther one may be
 //      another, where the model's error is not small next to the distance), lies within a cell's
-//      width of the cell model's minimiser (a coarse cell: in the cell; a coarse cell inside the domain whose claim
-//      failed rule 3's error test: in the cell grown by the margin, where its claim pointed), on
-//      the same face of the domain (interior, the same edge, the same corner) - not for the
-//      candidates of a coarse cell next to the boundary whose claim failed that test.
+//      width of the cell model's minimiser (a coarse cell: in the cell; a coarse cell inside the
+//      domain whose claim failed rule 3's error test: in the cell grown by the margin, where its
+//      claim pointed), on the same face of the domain (interior, the same edge, the same corner) -
+//      not for the candidates of a coarse cell next to the boundary whose claim failed that test.
 //      (Distinct minima are told apart by parameters here, not by 3-D foot points: a surface
 //      folding over itself has distinct minima with feet closer than any model can tell apart.
 //      Periodic and degenerate parametrisations, which reach one foot from many (u, v), cost a
