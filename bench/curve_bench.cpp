@@ -41,7 +41,8 @@ std::vector<double> random_points(int n, int dim, double lo, double hi, unsigned
 
 // Median over runs of the mean time per point of `method` over the points (us), and the share
 // of converged results.
-double per_point_us(const CompiledGeometry& g, const std::vector<double>& points, const char* method, double& converged) {
+double per_point_us(const CompiledGeometry& g, const std::vector<double>& points, const char* method,
+                    double& converged) {
   const int dim = g.point_dim();
   const std::size_t n = points.size() / static_cast<std::size_t>(dim);
   std::size_t ok = 0;
@@ -90,15 +91,15 @@ int main() {
     const GeometryDefinition def = implicit(e.f1, e.f2, 300.0);
     std::shared_ptr<const CompiledGeometry> g;
     const double compile_ms = 1e3 * median([&] {
-      const auto t0 = std::chrono::steady_clock::now();
-      g = compile_implicit_curve(def, {});
-      return seconds_since(t0);
-    });
+                                const auto t0 = std::chrono::steady_clock::now();
+                                g = compile_implicit_curve(def, {});
+                                return seconds_since(t0);
+                              });
     const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
     double converged = 0.0;
     const double us = per_point_us(*g, far, "auto", converged);
-    std::printf("%-34s %12.2f %10zu %14.2f %9.1f%%\n", e.name, compile_ms, curve.discovery().samples.size(), us,
-                100.0 * converged);
+    std::printf("%-34s %12.2f %10zu %14.2f %9.1f%%\n", e.name, compile_ms, curve.discovery().samples.size(),
+                us, 100.0 * converged);
     const std::vector<double> few(far.begin(), far.begin() + 3 * 500);
     for (const char* m : {"simplified", "complete"}) {
       const double paper_us = per_point_us(*g, few, m, converged);
@@ -122,14 +123,15 @@ int main() {
     const GeometryDefinition def = parametric(c.x, c.y, c.z, 0.0, c.t1);
     std::shared_ptr<const CompiledGeometry> g;
     const double compile_ms = 1e3 * median([&] {
-      const auto t0 = std::chrono::steady_clock::now();
-      g = compile_parametric_curve(def, {});
-      return seconds_since(t0);
-    });
+                                const auto t0 = std::chrono::steady_clock::now();
+                                g = compile_parametric_curve(def, {});
+                                return seconds_since(t0);
+                              });
     const auto& curve = dynamic_cast<const ParametricCurve&>(*g);
     double converged = 0.0;
     const double us = per_point_us(*g, near, "auto", converged);
-    std::printf("%-34s %12.2f %10zu %14.2f %9.1f%%\n", c.name, compile_ms, curve.samples().size(), us, 100.0 * converged);
+    std::printf("%-34s %12.2f %10zu %14.2f %9.1f%%\n", c.name, compile_ms, curve.samples().size(), us,
+                100.0 * converged);
   }
   return 0;
 }

@@ -76,7 +76,8 @@ std::vector<ProjectionResult> read_replay(const std::string& path) {
   return results;
 }
 
-ApiResponse echo(const RouteMatch& match, std::string_view body, std::size_t max_points, const Replays& replays) {
+ApiResponse echo(const RouteMatch& match, std::string_view body, std::size_t max_points,
+                 const Replays& replays) {
   try {
     const bool inline_geometry = match.route == Route::project;
     const ProjectRequest request = read_project_request(body, inline_geometry, max_points);
@@ -104,8 +105,9 @@ ApiResponse echo(const RouteMatch& match, std::string_view body, std::size_t max
       }
     }
     ApiResponse response;
-    response.body = project_response(inline_geometry ? "8ca9f0e028af69e7a85f954715c1f082" : std::string(match.id),
-                                     results, request.single, false, false, 0.0);
+    response.body =
+        project_response(inline_geometry ? "8ca9f0e028af69e7a85f954715c1f082" : std::string(match.id),
+                         results, request.single, false, false, 0.0);
     response.points = results.size();
     return response;
   } catch (const ApiError& e) {
@@ -141,10 +143,12 @@ int main(int argc, char** argv) {
     }
   }
   ServerConfig config;
-  const int exit_code = configure_from_command_line(static_cast<int>(args.size()), args.data(), "echo_server_bench", config);
+  const int exit_code =
+      configure_from_command_line(static_cast<int>(args.size()), args.data(), "echo_server_bench", config);
   if (exit_code >= 0) return exit_code;
   HttpServer* self = nullptr;
-  HttpServer server(config, [&self, &config, &replays](const RouteMatch& m, std::string_view method, std::string_view body) {
+  HttpServer server(config, [&self, &config, &replays](const RouteMatch& m, std::string_view method,
+                                                       std::string_view body) {
     if (m.route == Route::project || m.route == Route::geometry_project)
       return echo(m, body, config.max_points, replays);
     return self->api().handle(m, method, body);

@@ -86,7 +86,8 @@ int main() {
       p.jets2<2>(q, out);
       return out[0].h[0][1] + out[1].g[0] + out[2].v;
     });
-    std::printf("%-36s %11.1f ns %11.1f ns %11.1f ns %9.2fx\n", s.name, mu_ns, val_ns, jet_ns, jet_ns / mu_ns);
+    std::printf("%-36s %11.1f ns %11.1f ns %11.1f ns %9.2fx\n", s.name, mu_ns, val_ns, jet_ns,
+                jet_ns / mu_ns);
   }
   return 0;
 }

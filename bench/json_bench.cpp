@@ -29,7 +29,8 @@ double median_ns_per_point(F&& f, std::size_t points, int runs = 31) {
   for (int r = 0; r < runs; ++r) {
     const auto start = Clock::now();
     f();
-    t.push_back(std::chrono::duration<double, std::nano>(Clock::now() - start).count() / static_cast<double>(points));
+    t.push_back(std::chrono::duration<double, std::nano>(Clock::now() - start).count() /
+                static_cast<double>(points));
   }
   std::nth_element(t.begin(), t.begin() + runs / 2, t.end());
   return t[runs / 2];
@@ -73,26 +74,32 @@ int main(int argc, char** argv) {
     r.summary.location = Location::interior;
   }
 
-  const double parse = median_ns_per_point([&] { sink = read_project_request(body, false, n).coords.size(); }, n);
+  const double parse =
+      median_ns_per_point([&] { sink = read_project_request(body, false, n).coords.size(); }, n);
   std::size_t response_bytes = 0;
   const double write = median_ns_per_point(
       [&] {
-        const std::string out = project_response("8ca9f0e028af69e7a85f954715c1f082", results, false, false, false, 1.0);
+        const std::string out =
+            project_response("8ca9f0e028af69e7a85f954715c1f082", results, false, false, false, 1.0);
         response_bytes = out.size();
         sink = out.size();
       },
       n);
-  const std::string response = project_response("8ca9f0e028af69e7a85f954715c1f082", results, false, false, false, 1.0);
-  const double dom_parse = median_ns_per_point([&] { sink = nlohmann::json::parse(body)["points"].size(); }, n, 11);
-  const double dom_write = median_ns_per_point([&] { sink = nlohmann::json::parse(response).dump().size(); }, n, 11) -
-                           median_ns_per_point([&] { sink = nlohmann::json::parse(response).size(); }, n, 11);
+  const std::string response =
+      project_response("8ca9f0e028af69e7a85f954715c1f082", results, false, false, false, 1.0);
+  const double dom_parse =
+      median_ns_per_point([&] { sink = nlohmann::json::parse(body)["points"].size(); }, n, 11);
+  const double dom_write =
+      median_ns_per_point([&] { sink = nlohmann::json::parse(response).dump().size(); }, n, 11) -
+      median_ns_per_point([&] { sink = nlohmann::json::parse(response).size(); }, n, 11);
 
-  std::printf("json_bench: %zu points, request %zu bytes, response %zu bytes (medians of 31 runs)\n", n, body.size(),
-              response_bytes);
+  std::printf("json_bench: %zu points, request %zu bytes, response %zu bytes (medians of 31 runs)\n", n,
+              body.size(), response_bytes);
   std::printf("  parse request  (pull reader + from_chars): %7.1f ns/point\n", parse);
   std::printf("  write response (direct writer + to_chars): %7.1f ns/point\n", write);
-  std::printf("  parse + write                            : %7.1f ns/point  (target <= 1000)\n", parse + write);
-  std::printf("  reference, nlohmann DOM: parse request %.1f ns/point, dump response %.1f ns/point\n", dom_parse,
-              dom_write);
+  std::printf("  parse + write                            : %7.1f ns/point  (target <= 1000)\n",
+              parse + write);
+  std::printf("  reference, nlohmann DOM: parse request %.1f ns/point, dump response %.1f ns/point\n",
+              dom_parse, dom_write);
   return parse + write <= 1000.0 ? 0 : 1;
 }

@@ -163,7 +163,8 @@ PointSets make_points(const ParametricSurface& g, int n, unsigned seed) {
   Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (int i = 0; i <= 200; ++i)
     for (int j = 0; j <= 200; ++j) {
-      const Vec3 s = g.formulas().point(b.umin + (b.umax - b.umin) * i / 200.0, b.vmin + (b.vmax - b.vmin) * j / 200.0);
+      const Vec3 s =
+          g.formulas().point(b.umin + (b.umax - b.umin) * i / 200.0, b.vmin + (b.vmax - b.vmin) * j / 200.0);
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], s[k]), hi[k] = std::max(hi[k], s[k]);
     }
   std::mt19937_64 rng(seed);
@@ -177,7 +178,8 @@ PointSets make_points(const ParametricSurface& g, int n, unsigned seed) {
   ps.size = norm(hi - lo);
   std::normal_distribution<double> N(0.0, 1.0);
   for (int i = 0; i < n / 2; ++i) {
-    const Vec3 s = g.formulas().point(b.umin + (b.umax - b.umin) * U(rng), b.vmin + (b.vmax - b.vmin) * U(rng));
+    const Vec3 s =
+        g.formulas().point(b.umin + (b.umax - b.umin) * U(rng), b.vmin + (b.vmax - b.vmin) * U(rng));
     Vec3 d{N(rng), N(rng), N(rng)};
     ps.near.push_back(s + d * (0.01 * ps.size * U(rng) / norm(d)));
   }
@@ -207,8 +209,9 @@ void print_tail(const char* label, const Timed& t, double size) {
     a.where[r.summary.location == Location::corner ? 2 : (r.summary.location == Location::edge ? 1 : 0)]++;
   }
   auto show = [](const char* name, const Acc& a) {
-    std::printf("%s %5.1f starts, d/size %.2f, interior/edge/corner %3.0f/%3.0f/%3.0f%%", name, a.starts / a.n,
-                a.dist / a.n, 100.0 * a.where[0] / a.n, 100.0 * a.where[1] / a.n, 100.0 * a.where[2] / a.n);
+    std::printf("%s %5.1f starts, d/size %.2f, interior/edge/corner %3.0f/%3.0f/%3.0f%%", name,
+                a.starts / a.n, a.dist / a.n, 100.0 * a.where[0] / a.n, 100.0 * a.where[1] / a.n,
+                100.0 * a.where[2] / a.n);
   };
   std::printf("     %-26s", label);
   show("slowest 5%:", slow);
@@ -239,8 +242,9 @@ const PaperCase kPaperCases[] = {
 void section_auto(const std::vector<std::shared_ptr<const ParametricSurface>>& surfaces,
                   const std::vector<PointSets>& sets, const std::vector<double>& compile_ms, int runs,
                   double overhead) {
-  std::printf("1. auto (global), CPU time per point     median    mean   batch     p90     p99"
-              "    cells  memory  compile\n");
+  std::printf(
+      "1. auto (global), CPU time per point     median    mean   batch     p90     p99"
+      "    cells  memory  compile\n");
   std::vector<std::string> tails;
   for (std::size_t k = 0; k < surfaces.size(); ++k) {
     const ParametricSurface& g = *surfaces[k];
@@ -248,7 +252,8 @@ void section_auto(const std::vector<std::shared_ptr<const ParametricSurface>>& s
     const Timed box = time_points(g, sets[k].box, "auto", {}, runs, overhead);
     const Timed near = time_points(g, sets[k].near, "auto", {}, runs, overhead);
     print_row((name + " box  (2x bounding box)").c_str(), box);
-    std::printf("  %6zu %5zu KB %5.1f ms\n", g.cells().cells().size(), g.memory_bytes() / 1024, compile_ms[k]);
+    std::printf("  %6zu %5zu KB %5.1f ms\n", g.cells().cells().size(), g.memory_bytes() / 1024,
+                compile_ms[k]);
     print_row((name + " near (within 1%)").c_str(), near);
     std::printf("\n");
     print_tail((name + " box").c_str(), box, sets[k].size);
@@ -267,16 +272,19 @@ void section_from_start(const std::vector<std::shared_ptr<const ParametricSurfac
       const double q[3] = {p.x, p.y, p.z};
       const ProjectionResult r = g.project(q, "auto", Options{});
       Options o;
-      o.initial = std::array<double, 3>{r.params[0] + 0.01 * (b.umax - b.umin), r.params[1] - 0.01 * (b.vmax - b.vmin), 0};
+      o.initial = std::array<double, 3>{r.params[0] + 0.01 * (b.umax - b.umin),
+                                        r.params[1] - 0.01 * (b.vmax - b.vmin), 0};
       starts.push_back(o);
     }
     for (const char* m : {"newton", "gsa"}) {
       const Timed t = time_points(g, sets[k].near, m, starts, runs, overhead);
       std::vector<double> its;
       for (const ProjectionResult& r : t.results) its.push_back(r.summary.iterations);
-      std::printf("   %s %-7s median %6.2f µs  mean %6.2f µs  batch mean %6.2f µs  iterations median %2.0f mean %5.1f\n",
-                  kSurfaces[k].name.c_str(), m, median(t.ns) / 1e3, mean(t.ns) / 1e3, t.batch_ns / 1e3, median(its),
-                  mean(its));
+      std::printf(
+          "   %s %-7s median %6.2f µs  mean %6.2f µs  batch mean %6.2f µs  iterations median %2.0f mean "
+          "%5.1f\n",
+          kSurfaces[k].name.c_str(), m, median(t.ns) / 1e3, mean(t.ns) / 1e3, t.batch_ns / 1e3, median(its),
+          mean(its));
     }
   }
 }
@@ -296,7 +304,8 @@ void section_papers(int runs, double overhead) {
       const Timed t = time_points(*g, {Vec3{c.p[0], c.p[1], c.p[2]}}, m, {o}, std::max(runs, 5), overhead);
       const ProjectionResult& r = t.results[0];
       char cell[64];
-      std::snprintf(cell, sizeof cell, "%4d %-14s %6.2f", std::string(m) == "auto" ? r.summary.starts : r.summary.iterations,
+      std::snprintf(cell, sizeof cell, "%4d %-14s %6.2f",
+                    std::string(m) == "auto" ? r.summary.starts : r.summary.iterations,
                     to_string(r.summary.status), t.ns[0] / 1e3);
       std::printf(" | %-26s", cell);
     }
@@ -327,8 +336,8 @@ void section_batch(const ParametricSurface& g) {
       if (results.size() != count) std::abort();
     }
     rate[threads] = static_cast<double>(count) / median(walls);
-    std::printf("   %u thread%s: %8.0f points/s (%.2f µs/point)\n", threads, threads > 1 ? "s" : " ", rate[threads],
-                1e6 / rate[threads]);
+    std::printf("   %u thread%s: %8.0f points/s (%.2f µs/point)\n", threads, threads > 1 ? "s" : " ",
+                rate[threads], 1e6 / rate[threads]);
   }
   std::printf("   speed-up 2 threads / 1 thread: %.2fx\n", rate[2] / rate[1]);
 }
@@ -344,8 +353,10 @@ std::vector<Vec3> http_points(int n, unsigned seed) {
 
 void section_http(const std::vector<std::shared_ptr<const ParametricSurface>>& surfaces, int n, int runs,
                   double overhead) {
-  std::printf("5. auto, http_bench's points (x in [-20,20], y in [-3,3], z in [-1.5,1.5]), CPU time per point\n"
-              "                                     median    mean   batch     p90     p99  solves mean median max\n");
+  std::printf(
+      "5. auto, http_bench's points (x in [-20,20], y in [-3,3], z in [-1.5,1.5]), CPU time per point\n"
+      "                                     median    mean   batch     p90     p99  solves mean median "
+      "max\n");
   const std::vector<Vec3> points = http_points(n, 4242);
   for (std::size_t k : {std::size_t{3}, std::size_t{0}}) {  // A1, S1
     const Timed t = time_points(*surfaces[k], points, "auto", {}, runs, overhead);
@@ -406,13 +417,15 @@ int peer_mode(const std::string& dir, int reps, std::vector<std::string> keys) {
   const auto surfaces = read_peer_surfaces(dir + "/surfaces.txt");
   const std::string data = dir + "/build/data";
   const double overhead = timer_overhead();
-  std::printf("footpoint auto on the peer's point sets (%s), %d runs; CPU-timer overhead %.0f ns (subtracted); %s\n",
-              data.c_str(), reps, overhead, load_average().c_str());
+  std::printf(
+      "footpoint auto on the peer's point sets (%s), %d runs; CPU-timer overhead %.0f ns (subtracted); %s\n",
+      data.c_str(), reps, overhead, load_average().c_str());
   for (const std::string& key : keys) {
     // "S3n" is the near set of S3
-    const std::string base = key.size() > 1 && key.back() == 'n' && surfaces.count(key.substr(0, key.size() - 1))
-                                 ? key.substr(0, key.size() - 1)
-                                 : key;
+    const std::string base =
+        key.size() > 1 && key.back() == 'n' && surfaces.count(key.substr(0, key.size() - 1))
+            ? key.substr(0, key.size() - 1)
+            : key;
     if (!surfaces.count(base)) {
       std::fprintf(stderr, "no surface %s in surfaces.txt\n", base.c_str());
       return 1;
@@ -438,10 +451,11 @@ int peer_mode(const std::string& dir, int reps, std::vector<std::string> keys) {
     const std::string res = data + "/res_footpoint-auto_" + key + ".txt";
     FILE* f = std::fopen(res.c_str(), "w");
     if (!f) throw std::runtime_error("cannot write " + res);
-    std::fprintf(f,
-                 "# footpoint auto on %s (%zu cells, compiled in %.1f ms); per-point time = median of %d repetitions "
-                 "(thread CPU time; wall in last column)\n# idx ok time_ns d u v wall_ns\n",
-                 key.c_str(), g->cells().cells().size(), compile_ms, reps);
+    std::fprintf(
+        f,
+        "# footpoint auto on %s (%zu cells, compiled in %.1f ms); per-point time = median of %d repetitions "
+        "(thread CPU time; wall in last column)\n# idx ok time_ns d u v wall_ns\n",
+        key.c_str(), g->cells().cells().size(), compile_ms, reps);
     int failed = 0;
     for (std::size_t i = 0; i < points.size(); ++i) {
       const ProjectionResult& r = t.results[i];
@@ -456,9 +470,10 @@ int peer_mode(const std::string& dir, int reps, std::vector<std::string> keys) {
       std::fprintf(fb, "%.1f %.1f %.1f\n", batch[batch.size() / 2], batch.front(), batch.back());
       std::fclose(fb);
     }
-    std::printf("   %-4s %5zu points: median %6.2f µs, mean %6.2f µs, batch mean %6.2f µs, not converged %d -> %s\n",
-                key.c_str(), points.size(), median(t.ns) / 1e3, mean(t.ns) / 1e3, batch[batch.size() / 2] / 1e3, failed,
-                res.c_str());
+    std::printf(
+        "   %-4s %5zu points: median %6.2f µs, mean %6.2f µs, batch mean %6.2f µs, not converged %d -> %s\n",
+        key.c_str(), points.size(), median(t.ns) / 1e3, mean(t.ns) / 1e3, batch[batch.size() / 2] / 1e3,
+        failed, res.c_str());
   }
   std::printf("   %s\n", load_average().c_str());
   return 0;
@@ -486,9 +501,10 @@ int main(int argc, char** argv) {
   const int n = positional.size() > 0 ? std::atoi(positional[0].c_str()) : 2000;
   const int runs = positional.size() > 1 ? std::atoi(positional[1].c_str()) : 5;
   const double overhead = timer_overhead();
-  std::printf("surface_bench: %d box points + %d near points per surface, %d runs, single thread; "
-              "CPU-timer overhead %.0f ns (subtracted)\n",
-              n, n / 2, runs, overhead);
+  std::printf(
+      "surface_bench: %d box points + %d near points per surface, %d runs, single thread; "
+      "CPU-timer overhead %.0f ns (subtracted)\n",
+      n, n / 2, runs, overhead);
 
   std::vector<std::shared_ptr<const ParametricSurface>> surfaces;
   std::vector<PointSets> sets;

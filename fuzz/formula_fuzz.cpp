@@ -40,8 +40,8 @@ using footpoint::formula::Program;
 
 [[noreturn]] void fail(const char* what, const std::vector<NamedFormula>& formulas, std::size_t k, double u,
                        double v, double a, double b) {
-  std::fprintf(stderr, "formula_fuzz: %s in formula %zu at (u, v) = (%.17g, %.17g): %.17g vs %.17g\n", what, k, u, v,
-               a, b);
+  std::fprintf(stderr, "formula_fuzz: %s in formula %zu at (u, v) = (%.17g, %.17g): %.17g vs %.17g\n", what,
+               k, u, v, a, b);
   for (const auto& f : formulas) std::fprintf(stderr, "  %s = %s\n", f.name.c_str(), f.expression.c_str());
   std::abort();
 }
@@ -52,8 +52,9 @@ bool enclosed(double value, const Interval& range) {
 }
 
 bool swallows_nan(std::string_view formula) {
-  return formula.find_first_of("<>=!&|?") != std::string_view::npos || formula.find("min") != std::string_view::npos ||
-         formula.find("max") != std::string_view::npos || formula.find("sign") != std::string_view::npos;
+  return formula.find_first_of("<>=!&|?") != std::string_view::npos ||
+         formula.find("min") != std::string_view::npos || formula.find("max") != std::string_view::npos ||
+         formula.find("sign") != std::string_view::npos;
 }
 
 struct Box {
@@ -86,9 +87,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (program.num_inputs() != 2 || program.num_outputs() != static_cast<int>(formulas.size())) std::abort();
 
   const std::size_t n = formulas.size();
-  const double points[][2] = {{0.0, 0.0}, {0.5, 0.5}, {1.0, -1.0}, {-2.75, 3.25}, {1e-300, -1e-300}, {1e300, -7.0}};
+  const double points[][2] = {{0.0, 0.0},    {0.5, 0.5},        {1.0, -1.0},
+                              {-2.75, 3.25}, {1e-300, -1e-300}, {1e300, -7.0}};
   // Each box holds the points listed after it in `inside`.
-  const Box boxes[] = {{{0.0, 1.0}, {-1.0, 1.0}}, {{-3.0, 3.0}, {-4.0, 4.0}}, {{0.5, 0.5}, {0.5, 0.5}},
+  const Box boxes[] = {{{0.0, 1.0}, {-1.0, 1.0}},
+                       {{-3.0, 3.0}, {-4.0, 4.0}},
+                       {{0.5, 0.5}, {0.5, 0.5}},
                        {{-1e300, 1e300}, {-10.0, 10.0}}};
   const bool inside[4][6] = {{true, true, true, false, true, false},
                              {true, true, true, true, true, false},

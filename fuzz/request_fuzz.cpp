@@ -16,8 +16,8 @@
 #include <string>
 #include <string_view>
 
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "api.hpp"
 #include "request_log.hpp"
@@ -77,11 +77,13 @@ json request_points(std::string_view body) {
 }
 
 void check_result(const json& result, const json& point, std::string_view body, const ApiResponse& response) {
-  if (!result.is_object() || !result.contains("diagnostics")) fail("result without diagnostics", body, response);
+  if (!result.is_object() || !result.contains("diagnostics"))
+    fail("result without diagnostics", body, response);
   const json& d = result["diagnostics"];
   if (!d.contains("status") || !d["status"].is_string()) fail("result without a status", body, response);
   const bool converged = d.value("converged", false);
-  if (converged != (d["status"] == "converged")) fail("`converged` disagrees with the status", body, response);
+  if (converged != (d["status"] == "converged"))
+    fail("`converged` disagrees with the status", body, response);
   const json& distance = result.value("distance", json());
   const json& foot = result.value("foot_point", json());
   if (converged && !distance.is_number()) fail("converged without a distance", body, response);
@@ -100,7 +102,8 @@ void check_result(const json& result, const json& point, std::string_view body, 
   }
   const double expected = scale * std::sqrt(sum), given = distance.get<double>();
   if (!(std::fabs(given - expected) <= 1e-12 * scale + 1e-300))
-    fail("distance " + std::to_string(given) + " is not |p - foot| = " + std::to_string(expected), body, response);
+    fail("distance " + std::to_string(given) + " is not |p - foot| = " + std::to_string(expected), body,
+         response);
 }
 
 }  // namespace
@@ -117,18 +120,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (answer.is_discarded()) fail("the response is not JSON", body, response);
   if (response.status != 200) {
     const json& error = answer.value("error", json());
-    if (!error.is_object() || !error.value("code", json()).is_string() || !error.value("message", json()).is_string())
+    if (!error.is_object() || !error.value("code", json()).is_string() ||
+        !error.value("message", json()).is_string())
       fail("an error response without error.code and error.message", body, response);
     return 0;
   }
-  if (!answer.contains("geometry_id") || !answer.contains("stats")) fail("a 200 without geometry_id/stats", body, response);
+  if (!answer.contains("geometry_id") || !answer.contains("stats"))
+    fail("a 200 without geometry_id/stats", body, response);
   const json points = request_points(body);
   if (!points.is_array()) fail("a 200 for a body without point(s)", body, response);
   if (answer.contains("result")) {
     check_result(answer["result"], points[0], body, response);
   } else {
     const json& results = answer.value("results", json());
-    if (!results.is_array() || results.size() != points.size()) fail("results do not match the points", body, response);
+    if (!results.is_array() || results.size() != points.size())
+      fail("results do not match the points", body, response);
     for (std::size_t i = 0; i < results.size(); ++i) check_result(results[i], points[i], body, response);
   }
   return 0;

@@ -94,11 +94,16 @@ Metrics::Gauges Api::gauges() const {
 ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::string_view body) {
   try {
     switch (match.route) {
-      case Route::healthz: return health();
-      case Route::readyz: return ready();
-      case Route::metrics: return metrics();
-      case Route::openapi: return openapi();
-      case Route::methods: return methods();
+      case Route::healthz:
+        return health();
+      case Route::readyz:
+        return ready();
+      case Route::metrics:
+        return metrics();
+      case Route::openapi:
+        return openapi();
+      case Route::methods:
+        return methods();
       case Route::geometries: {
         InFlight counted(in_flight_);
         return create_geometry(body);
@@ -114,14 +119,16 @@ ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::s
         InFlight counted(in_flight_);
         return project({}, body);
       }
-      case Route::none: break;
+      case Route::none:
+        break;
     }
     return error_response(ApiError(404, "route_not_found", "no such route (see GET /openapi.yaml)"));
   } catch (const ApiError& e) {
     return error_response(e);
   } catch (const std::bad_alloc&) {
     log_event(spdlog::level::err, "out of memory while answering a request");
-    return error_response(ApiError(503, "overloaded", "the server ran out of memory for this request; retry later"));
+    return error_response(
+        ApiError(503, "overloaded", "the server ran out of memory for this request; retry later"));
   } catch (const std::exception& e) {
     log_event(spdlog::level::err, "internal error", {{"what", e.what()}});
     return error_response(ApiError(500, "internal_error", "internal error"));
@@ -131,8 +138,7 @@ ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::s
 ApiResponse Api::health() const { return json_response(200, R"({"status":"ok"})"); }
 
 ApiResponse Api::ready() const {
-  if (shutting_down())
-    return error_response(ApiError(503, "shutting_down", "the server is shutting down"));
+  if (shutting_down()) return error_response(ApiError(503, "shutting_down", "the server is shutting down"));
   return json_response(200, R"({"status":"ready"})");
 }
 
@@ -175,7 +181,8 @@ ApiResponse Api::methods() {
          {def(GeometryType::parametric_curve, {{"x", "t"}, {"y", "t^2"}}, {{"t", {0, 1}}}),
           def(GeometryType::parametric_curve, {{"x", "t"}, {"y", "t^2"}, {"z", "t^3"}}, {{"t", {0, 1}}})}},
         {GeometryType::implicit_curve,
-         {def(GeometryType::implicit_curve, {{"equations[0]", "x^2+y^2-1"}}, {{"x", {-2, 2}}, {"y", {-2, 2}}}),
+         {def(GeometryType::implicit_curve, {{"equations[0]", "x^2+y^2-1"}},
+              {{"x", {-2, 2}}, {"y", {-2, 2}}}),
           def(GeometryType::implicit_curve, {{"equations[0]", "x^2+y^2+z^2-4"}, {"equations[1]", "z-1"}},
               {{"x", {-3, 3}}, {"y", {-3, 3}}, {"z", {-3, 3}}})}},
     };
@@ -233,7 +240,8 @@ GeometryCache::Lookup Api::compile(const GeometryDefinition& def, const std::str
     if (lookup.compiled) metrics_.observe_compile(lookup.compile_time.count());
     return lookup;
   } catch (const GeometryError& e) {
-    throw ApiError(422, e.code, e.what(), e.field.empty() ? std::string() : field_prefix + e.field, e.position);
+    throw ApiError(422, e.code, e.what(), e.field.empty() ? std::string() : field_prefix + e.field,
+                   e.position);
   }
 }
 
@@ -347,9 +355,9 @@ ApiResponse Api::project(std::string_view id, std::string_view body) {
   for (const auto& r : results) ++by_status[static_cast<std::size_t>(reported_status(r))];
   metrics_.add_projections(by_status);
 
-  ApiResponse r = json_response(
-      200, project_response(geometry->id(), results, request.single, request.options.all_minima,
-                            request.options.trace, elapsed_ms));
+  ApiResponse r =
+      json_response(200, project_response(geometry->id(), results, request.single, request.options.all_minima,
+                                          request.options.trace, elapsed_ms));
   r.points = results.size();
   return r;
 }

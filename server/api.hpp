@@ -22,9 +22,9 @@ struct ApiResponse {
   int status = 200;
   std::string content_type = "application/json";
   std::string body;
-  std::string location;     // Location header (201 Created), empty otherwise
-  std::size_t points = 0;   // points projected (for the request log)
-  int retry_after_s = 0;    // Retry-After header (503 overloaded), 0: none
+  std::string location;    // Location header (201 Created), empty otherwise
+  std::size_t points = 0;  // points projected (for the request log)
+  int retry_after_s = 0;   // Retry-After header (503 overloaded), 0: none
 };
 
 class Api {

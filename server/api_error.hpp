@@ -14,12 +14,15 @@ namespace footpoint::server {
 
 struct ApiError : std::runtime_error {
   ApiError(int status, std::string code, std::string message, std::string field = {}, long position = -1)
-      : std::runtime_error(std::move(message)), status(status), code(std::move(code)),
-        field(std::move(field)), position(position) {}
+      : std::runtime_error(std::move(message)),
+        status(status),
+        code(std::move(code)),
+        field(std::move(field)),
+        position(position) {}
   int status;
   std::string code;
-  std::string field;   // empty when the error is not about one field
-  long position;       // -1 when there is no position
+  std::string field;  // empty when the error is not about one field
+  long position;      // -1 when there is no position
 };
 
 // A JSON reading problem at `field` as a 400: malformed_json (syntax; no field), wrong_type or

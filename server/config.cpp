@@ -15,8 +15,8 @@ T parse_integer(const std::string& name, const std::string& text, T min, T max) 
   T value{};
   const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
   if (r.ec != std::errc() || r.ptr != text.data() + text.size() || value < min || value > max)
-    throw ConfigError(name + ": expected an integer in [" + std::to_string(min) + ", " +
-                      std::to_string(max) + "], got '" + text + "'");
+    throw ConfigError(name + ": expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
+                      "], got '" + text + "'");
   return value;
 }
 
@@ -39,20 +39,28 @@ const std::vector<Setting>& settings() {
        },
        [](const ServerConfig& c) { return c.host; }},
       {"port", "FOOTPOINT_PORT", "TCP port (0: any free port)",
-       [](ServerConfig& c, const std::string& n, const std::string& v) { c.port = parse_integer<int>(n, v, 0, 65535); },
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.port = parse_integer<int>(n, v, 0, 65535);
+       },
        [](const ServerConfig& c) { return std::to_string(c.port); }},
       {"threads", "FOOTPOINT_THREADS", "numerical worker threads (0: hardware threads)",
-       [](ServerConfig& c, const std::string& n, const std::string& v) { c.threads = parse_integer<unsigned>(n, v, 0, 1024); },
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.threads = parse_integer<unsigned>(n, v, 0, 1024);
+       },
        [](const ServerConfig& c) { return std::to_string(c.threads); }},
       {"connection-threads", "FOOTPOINT_CONNECTION_THREADS", "HTTP connections served at once",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
          c.connection_threads = parse_integer<unsigned>(n, v, 2, 16384);
        },
        [](const ServerConfig& c) { return std::to_string(c.connection_threads); }},
-      {"max-inflight", "FOOTPOINT_MAX_INFLIGHT", "API requests answered at once before 503 overloaded (0: 7/8 of connection threads)",
-       [](ServerConfig& c, const std::string& n, const std::string& v) { c.max_inflight = parse_integer<unsigned>(n, v, 0, 1u << 20); },
+      {"max-inflight", "FOOTPOINT_MAX_INFLIGHT",
+       "API requests answered at once before 503 overloaded (0: 7/8 of connection threads)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.max_inflight = parse_integer<unsigned>(n, v, 0, 1u << 20);
+       },
        [](const ServerConfig& c) { return std::to_string(c.max_inflight); }},
-      {"max-inflight-points", "FOOTPOINT_MAX_INFLIGHT_POINTS", "points being projected at once before 503 overloaded",
+      {"max-inflight-points", "FOOTPOINT_MAX_INFLIGHT_POINTS",
+       "points being projected at once before 503 overloaded",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
          c.max_inflight_points = parse_integer<std::size_t>(n, v, 1, std::size_t{1} << 40);
        },
@@ -104,10 +112,14 @@ const std::vector<Setting>& settings() {
        },
        [](const ServerConfig& c) { return std::to_string(c.keep_alive_max); }},
       {"io-timeout-s", "FOOTPOINT_IO_TIMEOUT_S", "socket read/write timeout in seconds",
-       [](ServerConfig& c, const std::string& n, const std::string& v) { c.io_timeout_s = parse_integer<int>(n, v, 1, 3600); },
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.io_timeout_s = parse_integer<int>(n, v, 1, 3600);
+       },
        [](const ServerConfig& c) { return std::to_string(c.io_timeout_s); }},
       {"backlog", "FOOTPOINT_BACKLOG", "listen queue length",
-       [](ServerConfig& c, const std::string& n, const std::string& v) { c.backlog = parse_integer<int>(n, v, 1, 65535); },
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.backlog = parse_integer<int>(n, v, 1, 65535);
+       },
        [](const ServerConfig& c) { return std::to_string(c.backlog); }},
       {"log-level", "FOOTPOINT_LOG_LEVEL", "trace, debug, info, warn, error, critical or off",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
@@ -179,10 +191,12 @@ std::string usage() {
   return text;
 }
 
-int configure_from_command_line(int argc, const char* const* argv, const char* program, ServerConfig& config) {
+int configure_from_command_line(int argc, const char* const* argv, const char* program,
+                                ServerConfig& config) {
   try {
     bool help = false;
-    config = load_config(argc, argv, [](const char* name) { return std::getenv(name); }, help);
+    config = load_config(
+        argc, argv, [](const char* name) { return std::getenv(name); }, help);
     if (help) {
       std::fputs(usage().c_str(), stdout);
       return 0;

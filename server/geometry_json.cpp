@@ -141,7 +141,8 @@ GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
       throw ApiError(400, "unknown_field", prefix + name + " is not a field of " + type, prefix + name);
   };
   auto require = [&](const std::optional<std::string>& formula, const char* name) {
-    if (!formula) throw ApiError(400, "missing_field", prefix + name + " is required for " + type, prefix + name);
+    if (!formula)
+      throw ApiError(400, "missing_field", prefix + name + " is required for " + type, prefix + name);
     def.formulas.push_back({name, *formula});
   };
   if (type == "parametric_surface") {
@@ -164,7 +165,8 @@ GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
     forbid(raw.y.has_value(), "y");
     forbid(raw.z.has_value(), "z");
     if (!raw.equations)
-      throw ApiError(400, "missing_field", prefix + "equations is required for implicit_curve", prefix + "equations");
+      throw ApiError(400, "missing_field", prefix + "equations is required for implicit_curve",
+                     prefix + "equations");
     if (raw.equations->empty())
       throw ApiError(400, "wrong_shape", prefix + "equations holds one equation (planar) or two (spatial)",
                      prefix + "equations");
@@ -173,9 +175,10 @@ GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
     names = raw.equations->size() == 1 ? std::vector<std::string>{"x", "y"}
                                        : std::vector<std::string>{"x", "y", "z"};
   } else {
-    throw ApiError(400, "unknown_geometry_type",
-                   "unknown geometry type '" + type + "' (parametric_surface, parametric_curve, implicit_curve)",
-                   prefix + "type");
+    throw ApiError(
+        400, "unknown_geometry_type",
+        "unknown geometry type '" + type + "' (parametric_surface, parametric_curve, implicit_curve)",
+        prefix + "type");
   }
 
   if (!raw.domain) throw ApiError(400, "missing_field", prefix + "domain is required", prefix + "domain");

@@ -80,13 +80,20 @@ httplib::Server::HandlerResponse reject(httplib::Response& res, const ApiError& 
 // The JSON error for a status httplib set itself.
 ApiError http_error(int status) {
   switch (status) {
-    case 400: return ApiError(400, "bad_request", "malformed HTTP request");
-    case 404: return ApiError(404, "route_not_found", "no such route (see GET /openapi.yaml)");
-    case 408: return ApiError(408, "request_timeout", "the request was not received in time");
-    case 413: return ApiError(413, "body_too_large", "the body is over the size limit");
-    case 414: return ApiError(414, "uri_too_long", "the request URI is too long");
-    case 416: return ApiError(416, "range_not_satisfiable", "ranges are not supported");
-    default: return ApiError(status, "http_error", "HTTP error " + std::to_string(status));
+    case 400:
+      return ApiError(400, "bad_request", "malformed HTTP request");
+    case 404:
+      return ApiError(404, "route_not_found", "no such route (see GET /openapi.yaml)");
+    case 408:
+      return ApiError(408, "request_timeout", "the request was not received in time");
+    case 413:
+      return ApiError(413, "body_too_large", "the body is over the size limit");
+    case 414:
+      return ApiError(414, "uri_too_long", "the request URI is too long");
+    case 416:
+      return ApiError(416, "range_not_satisfiable", "ranges are not supported");
+    default:
+      return ApiError(status, "http_error", "HTTP error " + std::to_string(status));
   }
 }
 
@@ -153,19 +160,20 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     const bool has_body = chunked || length > 0;
 
     if (api_.shutting_down())
-      return reject(res, ApiError(503, "shutting_down", "the server is shutting down; retry on another replica"),
-                    true);
+      return reject(
+          res, ApiError(503, "shutting_down", "the server is shutting down; retry on another replica"), true);
     const RouteMatch match = match_route(req.method, req.path);
     ctx.route = match.route;
     if (match.route == Route::none)
-      return reject(res, ApiError(404, "route_not_found", "no route " + req.path + " (see GET /openapi.yaml)"),
+      return reject(res,
+                    ApiError(404, "route_not_found", "no route " + req.path + " (see GET /openapi.yaml)"),
                     has_body);
     if (!match.method_allowed) {
       res.set_header("Allow", match.allow);
       return reject(res,
                     ApiError(405, "method_not_allowed",
-                             req.method + " is not allowed on " + route_template(match.route) + " (allowed: " +
-                                 match.allow + ")"),
+                             req.method + " is not allowed on " + route_template(match.route) +
+                                 " (allowed: " + match.allow + ")"),
                     has_body);
     }
     if (chunked)
@@ -174,7 +182,8 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
                              "send the body with a Content-Length (Transfer-Encoding is not accepted)"),
                     true);
     if (req.method != "POST") {
-      if (has_body) return reject(res, ApiError(400, "body_not_allowed", req.method + " takes no body"), true);
+      if (has_body)
+        return reject(res, ApiError(400, "body_not_allowed", req.method + " takes no body"), true);
       return httplib::Server::HandlerResponse::Unhandled;
     }
     if (!has_length)
@@ -192,10 +201,10 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
                              "Content-Encoding " + encoding + " is not accepted; send the JSON uncompressed"),
                     true);
     if (media_type(req.get_header_value("Content-Type")) != "application/json")
-      return reject(res,
-                    ApiError(415, "unsupported_media_type",
-                             "the body must be JSON (Content-Type: application/json)"),
-                    true);
+      return reject(
+          res,
+          ApiError(415, "unsupported_media_type", "the body must be JSON (Content-Type: application/json)"),
+          true);
     if (is_compute_route(match.route) && api_.in_flight() >= config_.effective_max_inflight())
       return reject(res, ApiError(503, "overloaded", "too many requests in progress; retry shortly"), true);
     return httplib::Server::HandlerResponse::Unhandled;
@@ -227,19 +236,19 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
 
   // Called for every status >= 400. Errors httplib answers itself (malformed request line or
   // headers, URI too long, a body that could not be read) get the same JSON error shape.
-  http.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request& req,
-                                                                   httplib::Response& res) {
-    // "Handled" also makes httplib set Content-Length on a response it would otherwise send
-    // without one (an answer to "Expect: 100-continue").
-    const_cast<httplib::Request&>(req).headers.erase("Accept-Encoding");
-    if (!res.has_header("X-Request-Id"))
-      res.set_header("X-Request-Id", t_request.active ? t_request.request_id : make_request_id());
-    if (res.body.empty()) {
-      res.body = error_body(http_error(res.status));
-      res.set_header("Content-Type", "application/json");
-    }
-    return httplib::Server::HandlerResponse::Handled;
-  }));
+  http.set_error_handler(
+      httplib::Server::HandlerWithResponse([](const httplib::Request& req, httplib::Response& res) {
+        // "Handled" also makes httplib set Content-Length on a response it would otherwise send
+        // without one (an answer to "Expect: 100-continue").
+        const_cast<httplib::Request&>(req).headers.erase("Accept-Encoding");
+        if (!res.has_header("X-Request-Id"))
+          res.set_header("X-Request-Id", t_request.active ? t_request.request_id : make_request_id());
+        if (res.body.empty()) {
+          res.body = error_body(http_error(res.status));
+          res.set_header("Content-Type", "application/json");
+        }
+        return httplib::Server::HandlerResponse::Handled;
+      }));
 
   // Without this, httplib would put the exception text in a response header.
   http.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {

@@ -4,10 +4,10 @@
 // Every request first passes a pre-routing check that needs no body: shutting down (503),
 // unknown route (404), method (405), framing (411 for chunked or missing Content-Length, 413 over
 // the body limit, 415 for Content-Encoding or a non-JSON Content-Type) and load (503 beyond
-// --max-inflight; the Api also sheds beyond --max-inflight-points once the body is read). Responses are never compressed (clients' Accept-Encoding is ignored), byte
-// ranges are ignored. One JSON log line and the metrics are recorded per request.
-// Graceful shutdown: stop accepting, answer 503 to requests arriving on open connections, let
-// in-flight requests finish; run() returns when every connection is closed.
+// --max-inflight; the Api also sheds beyond --max-inflight-points once the body is read). Responses are never
+// compressed (clients' Accept-Encoding is ignored), byte ranges are ignored. One JSON log line and the
+// metrics are recorded per request. Graceful shutdown: stop accepting, answer 503 to requests arriving on
+// open connections, let in-flight requests finish; run() returns when every connection is closed.
 #pragma once
 #include <atomic>
 #include <functional>
@@ -27,7 +27,8 @@ class HttpServer {
  public:
   // Answers a request whose route and method passed the pre-routing checks. The default is the
   // Api; benchmarks substitute their own (e.g. an echo) to measure the HTTP and JSON layers.
-  using Handler = std::function<ApiResponse(const RouteMatch&, std::string_view method, std::string_view body)>;
+  using Handler =
+      std::function<ApiResponse(const RouteMatch&, std::string_view method, std::string_view body)>;
 
   explicit HttpServer(ServerConfig config, Handler handler = nullptr);
   ~HttpServer();

@@ -43,12 +43,18 @@ JsonReader::JsonReader(std::string_view text, int max_depth) : text_(text), max_
 
 const char* JsonReader::name(Type type) {
   switch (type) {
-    case Type::object: return "an object";
-    case Type::array: return "an array";
-    case Type::string: return "a string";
-    case Type::number: return "a number";
-    case Type::boolean: return "a boolean";
-    case Type::null: return "null";
+    case Type::object:
+      return "an object";
+    case Type::array:
+      return "an array";
+    case Type::string:
+      return "a string";
+    case Type::number:
+      return "a number";
+    case Type::boolean:
+      return "a boolean";
+    case Type::null:
+      return "null";
   }
   return "a value";
 }
@@ -76,12 +82,17 @@ JsonReader::Type JsonReader::peek() {
   if (pos_ >= text_.size()) syntax_error("unexpected end of input");
   const char c = text_[pos_];
   switch (c) {
-    case '{': return Type::object;
-    case '[': return Type::array;
-    case '"': return Type::string;
+    case '{':
+      return Type::object;
+    case '[':
+      return Type::array;
+    case '"':
+      return Type::string;
     case 't':
-    case 'f': return Type::boolean;
-    case 'n': return Type::null;
+    case 'f':
+      return Type::boolean;
+    case 'n':
+      return Type::null;
     default:
       if (c == '-' || is_digit(c)) return Type::number;
   }
@@ -214,16 +225,34 @@ void JsonReader::parse_string_into(std::string* out) {
       const char e = text_[pos_ + 1];
       char plain = 0;
       switch (e) {
-        case '"': plain = '"'; break;
-        case '\\': plain = '\\'; break;
-        case '/': plain = '/'; break;
-        case 'b': plain = '\b'; break;
-        case 'f': plain = '\f'; break;
-        case 'n': plain = '\n'; break;
-        case 'r': plain = '\r'; break;
-        case 't': plain = '\t'; break;
-        case 'u': break;
-        default: syntax_error("invalid escape in a string");
+        case '"':
+          plain = '"';
+          break;
+        case '\\':
+          plain = '\\';
+          break;
+        case '/':
+          plain = '/';
+          break;
+        case 'b':
+          plain = '\b';
+          break;
+        case 'f':
+          plain = '\f';
+          break;
+        case 'n':
+          plain = '\n';
+          break;
+        case 'r':
+          plain = '\r';
+          break;
+        case 't':
+          plain = '\t';
+          break;
+        case 'u':
+          break;
+        default:
+          syntax_error("invalid escape in a string");
       }
       if (plain) {
         if (out) *out += plain;
@@ -323,10 +352,18 @@ void JsonReader::skip() {
       begin_array();
       while (next_element()) skip();
       return;
-    case Type::string: parse_string_into(nullptr); return;
-    case Type::number: scan_number(); return;
-    case Type::boolean: boolean(); return;
-    case Type::null: literal("null"); return;
+    case Type::string:
+      parse_string_into(nullptr);
+      return;
+    case Type::number:
+      scan_number();
+      return;
+    case Type::boolean:
+      boolean();
+      return;
+    case Type::null:
+      literal("null");
+      return;
   }
 }
 

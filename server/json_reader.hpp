@@ -45,7 +45,7 @@ class JsonReader {
   std::string string();
   bool boolean();
   void null();
-  void skip();      // any one value, fully validated
+  void skip();  // any one value, fully validated
   // Only whitespace may remain.
   void finish();
 

@@ -102,15 +102,18 @@ std::string Metrics::render(const Gauges& g) const {
   header(out, "footpoint_points_in_flight", "gauge", "Points of the requests being projected now.");
   line(out, "footpoint_points_in_flight", "", static_cast<double>(g.in_flight_points));
   header(out, "footpoint_points_projected_total", "counter", "Points projected (every status).");
-  line(out, "footpoint_points_projected_total", "", static_cast<double>(points_.load(std::memory_order_relaxed)));
+  line(out, "footpoint_points_projected_total", "",
+       static_cast<double>(points_.load(std::memory_order_relaxed)));
   header(out, "footpoint_projections_total", "counter", "Projections by solver status.");
   for (int s = 0; s < kStatusCount; ++s)
-    line(out, "footpoint_projections_total", std::string("status=\"") + to_string(static_cast<Status>(s)) + "\"",
+    line(out, "footpoint_projections_total",
+         std::string("status=\"") + to_string(static_cast<Status>(s)) + "\"",
          static_cast<double>(projections_[s].load(std::memory_order_relaxed)));
   header(out, "footpoint_geometry_compile_seconds", "histogram", "Time to compile a new geometry.");
   histogram_lines(out, "footpoint_geometry_compile_seconds", "", compile_, kCompileBuckets);
   header(out, "footpoint_geometry_compilations_total", "counter", "Geometry compilations, by result.");
-  line(out, "footpoint_geometry_compilations_total", "result=\"ok\"", static_cast<double>(g.cache.compilations));
+  line(out, "footpoint_geometry_compilations_total", "result=\"ok\"",
+       static_cast<double>(g.cache.compilations));
   line(out, "footpoint_geometry_compilations_total", "result=\"error\"",
        static_cast<double>(g.cache.failed_compilations));
   header(out, "footpoint_geometry_cache_entries", "gauge", "Compiled geometries held by the cache.");
@@ -121,7 +124,8 @@ std::string Metrics::render(const Gauges& g) const {
   line(out, "footpoint_geometry_cache_hits_total", "", static_cast<double>(g.cache.hits));
   header(out, "footpoint_geometry_cache_misses_total", "counter", "Cache lookups that did not.");
   line(out, "footpoint_geometry_cache_misses_total", "", static_cast<double>(g.cache.misses));
-  header(out, "footpoint_geometry_cache_evictions_total", "counter", "Geometries evicted to respect the bounds.");
+  header(out, "footpoint_geometry_cache_evictions_total", "counter",
+         "Geometries evicted to respect the bounds.");
   line(out, "footpoint_geometry_cache_evictions_total", "", static_cast<double>(g.cache.evictions));
   header(out, "footpoint_worker_threads", "gauge", "Threads of the numerical pool.");
   line(out, "footpoint_worker_threads", "", g.worker_threads);

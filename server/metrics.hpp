@@ -44,10 +44,10 @@ class Metrics {
   std::string render(const Gauges& gauges) const;
 
   // Latency buckets (upper bounds in seconds) for requests and compilations.
-  static constexpr std::array<double, 14> kRequestBuckets{0.0001, 0.00025, 0.0005, 0.001, 0.0025, 0.005, 0.01,
-                                                          0.025, 0.05, 0.1, 0.25, 1.0, 5.0, 30.0};
+  static constexpr std::array<double, 14> kRequestBuckets{
+      0.0001, 0.00025, 0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 1.0, 5.0, 30.0};
   static constexpr std::array<double, 10> kCompileBuckets{0.0001, 0.0005, 0.001, 0.005, 0.01,
-                                                          0.05, 0.1, 0.5, 1.0, 5.0};
+                                                          0.05,   0.1,    0.5,   1.0,   5.0};
 
  private:
   // Statuses counted by name; anything else lands in "other".

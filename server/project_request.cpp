@@ -10,7 +10,9 @@ namespace footpoint::server {
 
 namespace {
 
-std::string indexed(const char* name, std::size_t i) { return std::string(name) + "[" + std::to_string(i) + "]"; }
+std::string indexed(const char* name, std::size_t i) {
+  return std::string(name) + "[" + std::to_string(i) + "]";
+}
 
 // Points: [[x,y(,z)], ...] appended to request.coords, all of one length (1 to 3 numbers).
 void read_points(JsonReader& r, ProjectRequest& request, std::size_t max_points) {
@@ -35,7 +37,8 @@ void read_points(JsonReader& r, ProjectRequest& request, std::size_t max_points)
         ++j;
       }
       in_point = false;
-      if (j == 0) throw ApiError(400, "wrong_dimension", indexed("points", i) + " is empty", indexed("points", i));
+      if (j == 0)
+        throw ApiError(400, "wrong_dimension", indexed("points", i) + " is empty", indexed("points", i));
       if (i == 0) {
         request.point_length = j;
       } else if (j != request.point_length) {
@@ -47,7 +50,7 @@ void read_points(JsonReader& r, ProjectRequest& request, std::size_t max_points)
       ++i;
     }
   } catch (const JsonReadError& e) {
-    throw request_error(e, !started ? std::string("points")
+    throw request_error(e, !started   ? std::string("points")
                            : in_point ? indexed("points", i) + "[" + std::to_string(j) + "]"
                                       : indexed("points", i));
   }
@@ -96,8 +99,9 @@ void read_initial(JsonReader& r, ProjectRequest& request) {
       const int n = read_start(r, start, item);
       if (request.initial_length == 0) request.initial_length = n;
       if (n != request.initial_length)
-        throw ApiError(400, "wrong_dimension", item + " has " + std::to_string(n) + " numbers, " + field +
-                                                   "[0] has " + std::to_string(request.initial_length),
+        throw ApiError(400, "wrong_dimension",
+                       item + " has " + std::to_string(n) + " numbers, " + field + "[0] has " +
+                           std::to_string(request.initial_length),
                        item);
       request.initials.push_back(start);
     }
@@ -129,13 +133,14 @@ void read_options(JsonReader& r, ProjectRequest& request) {
       if (key == "tolerance") {
         const double t = r.number();
         if (!(t >= 0.0 && t < 1.0))
-          throw ApiError(400, "invalid_option", field + " must be in [0, 1) (0: the method's default)", field);
+          throw ApiError(400, "invalid_option", field + " must be in [0, 1) (0: the method's default)",
+                         field);
         o.tolerance = t;
       } else if (key == "max_iterations") {
         const double n = r.number();
         if (!(n >= 0.0 && n <= 10000.0 && n == std::floor(n)))
-          throw ApiError(400, "invalid_option", field + " must be an integer in [0, 10000] (0: the method's default)",
-                         field);
+          throw ApiError(400, "invalid_option",
+                         field + " must be an integer in [0, 10000] (0: the method's default)", field);
         o.max_iterations = static_cast<int>(n);
       } else if (key == "max_distance") {
         const double d = r.number();
@@ -217,7 +222,8 @@ ProjectRequest read_request(std::string_view body, bool inline_geometry, std::si
     } else {
       throw ApiError(400, "unknown_field",
                      "unknown field " + key +
-                         (inline_geometry ? " (geometry, point, points, method, options)" : " (point, points, method, options)"),
+                         (inline_geometry ? " (geometry, point, points, method, options)"
+                                          : " (point, points, method, options)"),
                      key);
     }
     if (has_point && has_points)
@@ -270,7 +276,10 @@ void check_project_request(const ProjectRequest& request, const CompiledGeometry
     if (request.initial_length != expected)
       throw ApiError(400, "wrong_dimension",
                      "options.initial: a start has " + std::to_string(expected) + " numbers for a " + type +
-                         " (" + (geometry.num_params() == 2 ? "[u, v]" : geometry.num_params() == 1 ? "[t]" : "a point") +
+                         " (" +
+                         (geometry.num_params() == 2   ? "[u, v]"
+                          : geometry.num_params() == 1 ? "[t]"
+                                                       : "a point") +
                          ")",
                      "options.initial");
   }

@@ -16,14 +16,14 @@ namespace footpoint::server {
 
 struct ProjectRequest {
   std::optional<GeometryDefinition> geometry;  // the inline "geometry" (POST /v1/project)
-  bool single = false;                 // "point" was given (answer "result"), else "points"
-  std::vector<double> coords;          // count * point_length coordinates, point after point
+  bool single = false;                         // "point" was given (answer "result"), else "points"
+  std::vector<double> coords;                  // count * point_length coordinates, point after point
   std::size_t count = 0;
-  int point_length = 0;                // coordinates per point (every point has the same)
+  int point_length = 0;  // coordinates per point (every point has the same)
   std::string method = "auto";
-  Options options;                     // options.initial is set when one start serves all points
+  Options options;                              // options.initial is set when one start serves all points
   std::vector<std::array<double, 3>> initials;  // one start per point (options.initial unset)
-  int initial_length = 0;              // numbers per start (0: no start given)
+  int initial_length = 0;                       // numbers per start (0: no start given)
 };
 
 // Reads and checks the shape of a request body; throws ApiError (400 for shapes, 413 for more

@@ -53,7 +53,8 @@ Status write_result(JsonAppender& o, const ProjectionResult& r, bool with_minima
   name(o, s.method);
   o.literal(",\"status\":");
   name(o, to_string(status));
-  o.literal(status == Status::converged ? ",\"converged\":true,\"iterations\":" : ",\"converged\":false,\"iterations\":");
+  o.literal(status == Status::converged ? ",\"converged\":true,\"iterations\":"
+                                        : ",\"converged\":false,\"iterations\":");
   o.integer(s.iterations);
   o.literal(",\"residual\":");
   o.number(s.residual());

@@ -16,7 +16,6 @@ namespace footpoint::server {
 // The status the response reports for r (see above).
 Status reported_status(const ProjectionResult& r);
 
-
 // The whole response body: {"geometry_id", "result" | "results", "stats"}.
 std::string project_response(const std::string& geometry_id, const std::vector<ProjectionResult>& results,
                              bool single, bool with_minima, bool with_trace, double elapsed_ms);

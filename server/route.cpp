@@ -4,16 +4,26 @@ namespace footpoint::server {
 
 const char* route_template(Route route) {
   switch (route) {
-    case Route::healthz: return "/healthz";
-    case Route::readyz: return "/readyz";
-    case Route::metrics: return "/metrics";
-    case Route::openapi: return "/openapi.yaml";
-    case Route::methods: return "/v1/methods";
-    case Route::geometries: return "/v1/geometries";
-    case Route::geometry: return "/v1/geometries/{id}";
-    case Route::geometry_project: return "/v1/geometries/{id}/project";
-    case Route::project: return "/v1/project";
-    case Route::none: return "unmatched";
+    case Route::healthz:
+      return "/healthz";
+    case Route::readyz:
+      return "/readyz";
+    case Route::metrics:
+      return "/metrics";
+    case Route::openapi:
+      return "/openapi.yaml";
+    case Route::methods:
+      return "/v1/methods";
+    case Route::geometries:
+      return "/v1/geometries";
+    case Route::geometry:
+      return "/v1/geometries/{id}";
+    case Route::geometry_project:
+      return "/v1/geometries/{id}/project";
+    case Route::project:
+      return "/v1/project";
+    case Route::none:
+      return "unmatched";
   }
   return "unmatched";
 }

@@ -60,9 +60,9 @@ double cosine(const P3& a, const P3& t) { return std::fabs(dot(a, t)) / (norm(a)
 // Bounds on the answers, relative to the size of the numbers involved (s = max(1, |p|, |foot|)):
 // rounding of a handful of operations on numbers of that size, with room for formulas that
 // cancel (the hybrid paper's degree-6 polynomials).
-constexpr double kSame = 1e-12;        // |s(params) - foot|, |distance - |p - foot||
-constexpr double kOnCurve = 1e-10;     // |f_i(foot)| / |grad f_i(foot)|, a distance to f_i = 0
-constexpr double kOrthogonal = 1e-8;   // the solvers' own largest accepted (stalled) residual
+constexpr double kSame = 1e-12;       // |s(params) - foot|, |distance - |p - foot||
+constexpr double kOnCurve = 1e-10;    // |f_i(foot)| / |grad f_i(foot)|, a distance to f_i = 0
+constexpr double kOrthogonal = 1e-8;  // the solvers' own largest accepted (stalled) residual
 
 // A geometry under test: what the library compiled, the formulas compiled again here, and a dense
 // sampling of its points.
@@ -70,10 +70,10 @@ struct Subject {
   std::string name;
   GeometryDefinition def;
   std::shared_ptr<const CompiledGeometry> compiled;
-  Program program;       // the same formulas, evaluated independently of the solvers
-  int dim = 3;           // point dimension
+  Program program;  // the same formulas, evaluated independently of the solvers
+  int dim = 3;      // point dimension
   std::vector<P3> samples;
-  P3 lo{}, hi{};         // bounding box of the samples
+  P3 lo{}, hi{};  // bounding box of the samples
 };
 
 GeometryDefinition definition(GeometryType type, std::vector<footpoint::formula::NamedFormula> formulas,
@@ -284,9 +284,10 @@ std::vector<Subject> make_subjects() {
     const std::string kind = c["kind"];
     if (kind == "surface") {
       all.push_back(make_subject(
-          c["id"], definition(GeometryType::parametric_surface,
-                              {{"x", c["formulas"]["x"]}, {"y", c["formulas"]["y"]}, {"z", c["formulas"]["z"]}},
-                              {{"u", c["domain"]["u"]}, {"v", c["domain"]["v"]}})));
+          c["id"],
+          definition(GeometryType::parametric_surface,
+                     {{"x", c["formulas"]["x"]}, {"y", c["formulas"]["y"]}, {"z", c["formulas"]["z"]}},
+                     {{"u", c["domain"]["u"]}, {"v", c["domain"]["v"]}})));
     } else if (kind == "curve3d_implicit") {
       all.push_back(make_subject(
           c["id"],
@@ -300,13 +301,15 @@ std::vector<Subject> make_subjects() {
   }
   // The types the public cases lack: a planar spiral (many local minima), a spatial helix, and a
   // planar hyperbola cut by its box (its nearest point can be an end on the box's face).
-  all.push_back(make_subject("spiral", definition(GeometryType::parametric_curve,
-                                                  {{"x", "t*cos(t)"}, {"y", "t*sin(t)"}}, {{"t", {0.0, 12.0}}})));
-  all.push_back(make_subject("helix", definition(GeometryType::parametric_curve,
-                                                 {{"x", "cos(t)"}, {"y", "sin(t)"}, {"z", "0.2*t"}},
-                                                 {{"t", {-10.0, 10.0}}})));
-  all.push_back(make_subject("hyperbola", definition(GeometryType::implicit_curve, {{"equations[0]", "x^2-y^2-1"}},
-                                                     {{"x", {-2.0, 2.0}}, {"y", {-1.5, 1.5}}})));
+  all.push_back(
+      make_subject("spiral", definition(GeometryType::parametric_curve,
+                                        {{"x", "t*cos(t)"}, {"y", "t*sin(t)"}}, {{"t", {0.0, 12.0}}})));
+  all.push_back(make_subject(
+      "helix", definition(GeometryType::parametric_curve, {{"x", "cos(t)"}, {"y", "sin(t)"}, {"z", "0.2*t"}},
+                          {{"t", {-10.0, 10.0}}})));
+  all.push_back(
+      make_subject("hyperbola", definition(GeometryType::implicit_curve, {{"equations[0]", "x^2-y^2-1"}},
+                                           {{"x", {-2.0, 2.0}}, {"y", {-1.5, 1.5}}})));
   return all;
 }
 
@@ -336,9 +339,15 @@ std::vector<P3> points_around(const Subject& s, std::mt19937_64& rng, int count)
     for (int k = 0; k < s.dim; ++k) {
       const double half = std::max((s.hi[k] - s.lo[k]) / 2, 1e-3);
       switch (i % 3) {
-        case 0: p[k] = near[k] + 0.05 * size * unit(rng); break;
-        case 1: p[k] = centre[k] + 1.5 * half * unit(rng); break;
-        default: p[k] = centre[k] + 5.0 * size * unit(rng); break;
+        case 0:
+          p[k] = near[k] + 0.05 * size * unit(rng);
+          break;
+        case 1:
+          p[k] = centre[k] + 1.5 * half * unit(rng);
+          break;
+        default:
+          p[k] = centre[k] + 5.0 * size * unit(rng);
+          break;
       }
     }
     points.push_back(p);
@@ -381,8 +390,8 @@ bool check_honest(const Subject& s, const std::string& method, const P3& p, cons
   CAPTURE(s.name);
   CAPTURE(method);
   INFO("p = " << text(p) << ", foot = " << text(r.foot) << ", distance = " << r.distance << ", status "
-             << std::string(footpoint::to_string(r.summary.status)) << ", residual " << r.summary.residual() << ", location "
-             << std::string(footpoint::to_string(r.summary.location)));
+              << std::string(footpoint::to_string(r.summary.status)) << ", residual " << r.summary.residual()
+              << ", location " << std::string(footpoint::to_string(r.summary.location)));
   CHECK(r.dim == s.dim);
   CHECK(r.summary.converged() == (r.summary.status == Status::converged));
   const bool finite = std::isfinite(r.distance) && std::isfinite(norm(r.foot));

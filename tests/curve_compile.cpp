@@ -38,8 +38,8 @@ TEST_CASE("implicit curves: spatial (two equations) and planar (one)") {
   const auto spatial = compile_implicit_curve(def, {});
   CHECK(spatial->point_dim() == 3);
   CHECK(spatial->num_params() == 0);
-  CHECK(names(*spatial) ==
-        std::vector<std::string>{"auto", "steepest_descent", "foot_point_march", "accelerated", "complete", "simplified"});
+  CHECK(names(*spatial) == std::vector<std::string>{"auto", "steepest_descent", "foot_point_march",
+                                                    "accelerated", "complete", "simplified"});
   CHECK(spatial->memory_bytes() > 0);
 
   def.formulas = {{"equations[0]", "x^2/9+y^2/4-1"}};
@@ -47,7 +47,8 @@ TEST_CASE("implicit curves: spatial (two equations) and planar (one)") {
   const auto planar = compile_implicit_curve(def, {});
   CHECK(planar->point_dim() == 2);
   CHECK(names(*planar) == std::vector<std::string>{"auto", "tangent_foot"});
-  CHECK_THROWS_AS(planar->project(std::array<double, 2>{1.0, 1.0}.data(), "simplified", {}), std::invalid_argument);
+  CHECK_THROWS_AS(planar->project(std::array<double, 2>{1.0, 1.0}.data(), "simplified", {}),
+                  std::invalid_argument);
 }
 
 TEST_CASE("parametric curves: planar and spatial") {
@@ -111,13 +112,16 @@ TEST_CASE("auto is safe to call from several threads on one compiled curve") {
   std::vector<double> points(3 * kPoints);
   for (int i = 0; i < 3 * kPoints; ++i) points[static_cast<std::size_t>(i)] = 300.0 * std::sin(1.7 * i + 0.3);
   std::vector<double> serial(kPoints);
-  for (int i = 0; i < kPoints; ++i) serial[static_cast<std::size_t>(i)] = g->project(&points[3 * static_cast<std::size_t>(i)], "auto", {}).distance;
+  for (int i = 0; i < kPoints; ++i)
+    serial[static_cast<std::size_t>(i)] =
+        g->project(&points[3 * static_cast<std::size_t>(i)], "auto", {}).distance;
   std::vector<double> parallel(kPoints);
   std::vector<std::thread> threads;
   for (int t = 0; t < 4; ++t)
     threads.emplace_back([&, t] {
       for (int i = t; i < kPoints; i += 4)
-        parallel[static_cast<std::size_t>(i)] = g->project(&points[3 * static_cast<std::size_t>(i)], "auto", {}).distance;
+        parallel[static_cast<std::size_t>(i)] =
+            g->project(&points[3 * static_cast<std::size_t>(i)], "auto", {}).distance;
     });
   for (auto& th : threads) th.join();
   CHECK(parallel == serial);

@@ -38,7 +38,8 @@ std::shared_ptr<const CompiledGeometry> compile(const json& c) {
     def.domain = {{"x", {d["x"][0], d["x"][1]}}, {"y", {d["y"][0], d["y"][1]}}};
   } else {
     def.formulas = {{"equations[0]", f["f1"]}, {"equations[1]", f["f2"]}};
-    def.domain = {{"x", {d["x"][0], d["x"][1]}}, {"y", {d["y"][0], d["y"][1]}}, {"z", {d["z"][0], d["z"][1]}}};
+    def.domain = {
+        {"x", {d["x"][0], d["x"][1]}}, {"y", {d["y"][0], d["y"][1]}}, {"z", {d["z"][0], d["z"][1]}}};
   }
   return compile_implicit_curve(def, {});
 }

@@ -50,7 +50,8 @@ void check_records(const std::string& id) {
   const json& c = public_case(cases, id);
   const auto g = compile(c);
   int pinned = 0;  // records whose destination is checked
-  for (const char* method : {"steepest_descent", "foot_point_march", "accelerated", "complete", "simplified"}) {
+  for (const char* method :
+       {"steepest_descent", "foot_point_march", "accelerated", "complete", "simplified"}) {
     const json& rows = records[id][method];
     REQUIRE(rows.size() == c["points"].size());
     for (std::size_t k = 0; k < rows.size(); ++k) {
@@ -71,23 +72,28 @@ void check_records(const std::string& id) {
       // evaluated as (1/9) x^2); for them only the checks below that hold for every run apply.
       auto same_end = [&](const ProjectionResult& other) {
         bool same = other.summary.status == r.summary.status;
-        for (std::size_t i = 0; i < 3; ++i) same = same && std::fabs(r.foot[i] - other.foot[i]) <= 1e-7 * size;
+        for (std::size_t i = 0; i < 3; ++i)
+          same = same && std::fabs(r.foot[i] - other.foot[i]) <= 1e-7 * size;
         return same;
       };
       Options moved;
       moved.initial = std::array<double, 3>{p[0] - 0.1 + 1e-9, p[1] - 0.1 - 1e-9, p[2] - 0.1 + 1e-9};
       const double p_moved[3] = {p[0] * (1 + 1e-13), p[1] * (1 - 1e-13), p[2] * (1 + 1e-13)};
-      const bool reproducible = same_end(g->project(p, method, moved)) && same_end(g->project(p_moved, method, {}));
+      const bool reproducible =
+          same_end(g->project(p, method, moved)) && same_end(g->project(p_moved, method, {}));
       CAPTURE(reproducible);
       if (reproducible) {
         CHECK(std::string(to_string(r.summary.status)) == row["status"].get<std::string>());
         // What it converges to, as recorded (iterates that did not converge: loosely).
         const double tolerance = r.summary.status == Status::converged ? 1e-9 : 1e-6;
-        for (int i = 0; i < 3; ++i) CHECK(std::fabs(r.foot[static_cast<std::size_t>(i)] - row["foot"][i].get<double>()) <= tolerance * size);
+        for (int i = 0; i < 3; ++i)
+          CHECK(std::fabs(r.foot[static_cast<std::size_t>(i)] - row["foot"][i].get<double>()) <=
+                tolerance * size);
         ++pinned;
       }
       // No point of the curve is closer than the global nearest point.
-      const bool on_curve = r.summary.equation_residual[0] <= 1e-12 * size && r.summary.equation_residual[1] <= 1e-12 * size;
+      const bool on_curve =
+          r.summary.equation_residual[0] <= 1e-12 * size && r.summary.equation_residual[1] <= 1e-12 * size;
       if (on_curve) CHECK(r.distance >= global * (1.0 - 1e-12));
       if (r.summary.status == Status::converged) {
         CHECK(on_curve);
@@ -99,7 +105,8 @@ void check_records(const std::string& id) {
         CHECK(on_curve);
         CHECK(r.summary.orthogonality[0] > 1e-12);
       }
-      if (reproducible && row["global"].get<bool>()) CHECK(std::fabs(r.distance - global) <= 1e-12 * global);
+      if (reproducible && row["global"].get<bool>())
+        CHECK(std::fabs(r.distance - global) <= 1e-12 * global);
       else if (reproducible && r.summary.status == Status::converged)
         CHECK(r.distance > global * (1.0 + 1e-9));  // a stationary point that is not the nearest
     }
@@ -129,7 +136,8 @@ TEST_CASE("Algorithm 5 on Example 1 reproduces PAPER_TRACES.md") {
     REQUIRE(r.summary.status == Status::converged);
     const json& published = c["paper_reported"][static_cast<std::size_t>(k - 1)]["foot"];
     double d = 0.0;
-    for (int i = 0; i < 3; ++i) d += std::pow(r.foot[static_cast<std::size_t>(i)] - published[i].get<double>(), 2);
+    for (int i = 0; i < 3; ++i)
+      d += std::pow(r.foot[static_cast<std::size_t>(i)] - published[i].get<double>(), 2);
     CHECK(std::sqrt(d) <= 2e-3);
     // In 10-17 iterations of eq. (20) in PAPER_TRACES (stopping at a step of 1e-14); our stricter
     // stop (1e-15 relative, residuals 1e-12) takes one or two more.

@@ -57,8 +57,10 @@ void check_auto(const std::string& id) {
     CHECK(r.summary.method == "auto");
     CHECK(std::fabs(r.distance - ref) <= 1e-12 * ref);
     const double size = std::max(1.0, std::hypot(r.foot[0], r.foot[1], r.foot[2]));
-    for (int i = 0; i < 3; ++i) CHECK(std::fabs(r.foot[static_cast<std::size_t>(i)] - o["foot"][i].get<double>()) <= 1e-9 * size);
-    CHECK(std::fabs(std::hypot(p[0] - r.foot[0], p[1] - r.foot[1], p[2] - r.foot[2]) - r.distance) <= 1e-13 * r.distance);
+    for (int i = 0; i < 3; ++i)
+      CHECK(std::fabs(r.foot[static_cast<std::size_t>(i)] - o["foot"][i].get<double>()) <= 1e-9 * size);
+    CHECK(std::fabs(std::hypot(p[0] - r.foot[0], p[1] - r.foot[1], p[2] - r.foot[2]) - r.distance) <=
+          1e-13 * r.distance);
     // |f_i| / |grad f_i| and the orthogonality of eq. (7), relative.
     CHECK(r.summary.equation_residual[0] <= 1e-12 * size);
     CHECK(r.summary.equation_residual[1] <= 1e-12 * size);

@@ -16,7 +16,8 @@ using nlohmann::json;
 
 namespace {
 
-std::shared_ptr<const CompiledGeometry> curve(const char* x, const char* y, const char* z, double t0, double t1) {
+std::shared_ptr<const CompiledGeometry> curve(const char* x, const char* y, const char* z, double t0,
+                                              double t1) {
   GeometryDefinition def;
   def.type = GeometryType::parametric_curve;
   def.formulas = {{"x", x}, {"y", y}};

@@ -1,8 +1,8 @@
 // `auto` against reference answers computed independently (../shared/cases/oracle.py, 50-digit):
 // parametric curves (helix, trefoil, planar ellipse, a parabola arc with endpoint answers), planar
 // implicit curves (ellipse, cusp and lemniscate singular points, two components, a clipped
-// parabola, two circles touching at a tacnode) and spatial curves (Viviani's curve with its double point, three circles, Example 1's
-// curve clipped by the box, a helix leaving through the box's z faces).
+// parabola, two circles touching at a tacnode) and spatial curves (Viviani's curve with its double point,
+// three circles, Example 1's curve clipped by the box, a helix leaving through the box's z faces).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -42,7 +42,8 @@ std::shared_ptr<const CompiledGeometry> compile_case(const json& c) {
     def.domain = {{"x", {d["x"][0], d["x"][1]}}, {"y", {d["y"][0], d["y"][1]}}};
   } else {
     def.formulas = {{"equations[0]", f["f1"]}, {"equations[1]", f["f2"]}};
-    def.domain = {{"x", {d["x"][0], d["x"][1]}}, {"y", {d["y"][0], d["y"][1]}}, {"z", {d["z"][0], d["z"][1]}}};
+    def.domain = {
+        {"x", {d["x"][0], d["x"][1]}}, {"y", {d["y"][0], d["y"][1]}}, {"z", {d["z"][0], d["z"][1]}}};
   }
   return compile_implicit_curve(def, {});
 }
@@ -56,7 +57,9 @@ Location expected_location(const std::string& type) {
 
 double dist(const std::array<double, 3>& a, const json& b, int dim) {
   double s = 0.0;
-  for (int k = 0; k < dim; ++k) s += (a[static_cast<std::size_t>(k)] - b[k].get<double>()) * (a[static_cast<std::size_t>(k)] - b[k].get<double>());
+  for (int k = 0; k < dim; ++k)
+    s += (a[static_cast<std::size_t>(k)] - b[k].get<double>()) *
+         (a[static_cast<std::size_t>(k)] - b[k].get<double>());
   return std::sqrt(s);
 }
 
@@ -79,7 +82,8 @@ void check_file(const std::string& name) {
       CHECK(std::fabs(r.distance - ref) <= 1e-12 * ref + 1e-15);
       // |p - foot| is the distance.
       double s = 0.0;
-      for (int i = 0; i < dim; ++i) s += (p[i] - r.foot[static_cast<std::size_t>(i)]) * (p[i] - r.foot[static_cast<std::size_t>(i)]);
+      for (int i = 0; i < dim; ++i)
+        s += (p[i] - r.foot[static_cast<std::size_t>(i)]) * (p[i] - r.foot[static_cast<std::size_t>(i)]);
       CHECK(std::fabs(std::sqrt(s) - r.distance) <= 1e-14 * (1.0 + r.distance));
       // The foot lies on the curve: residuals, and for parametric curves c(t) = foot with t inside.
       CHECK(r.summary.equation_residual[0] <= 1e-12);
@@ -98,9 +102,12 @@ void check_file(const std::string& name) {
         // point of two branches, a tacnode, regular: it is a regular point of either branch).
         bool at_singular = false;
         if (c.contains("curve_info"))
-          for (const json& sp : c["curve_info"]["singular_points"]) at_singular = at_singular || dist(r.foot, sp, dim) <= 1e-6;
-        if (at_singular) CHECK(r.summary.location == Location::singular_point);
-        else CHECK(r.summary.location == expected_location(pt["type"]));
+          for (const json& sp : c["curve_info"]["singular_points"])
+            at_singular = at_singular || dist(r.foot, sp, dim) <= 1e-6;
+        if (at_singular)
+          CHECK(r.summary.location == Location::singular_point);
+        else
+          CHECK(r.summary.location == expected_location(pt["type"]));
       }
     }
   }
@@ -124,12 +131,15 @@ void check_all_minima(const std::string& name) {
       for (int i = 0; i < dim; ++i) p[i] = pt["p"][i];
       const ProjectionResult r = g->project(p, "auto", o);
       REQUIRE(!r.minima.empty());
-      CHECK(std::fabs(r.minima.front().distance - pt["distance"].get<double>()) <= 1e-12 * r.distance + 1e-15);
-      for (std::size_t i = 1; i < r.minima.size(); ++i) CHECK(r.minima[i - 1].distance <= r.minima[i].distance);
+      CHECK(std::fabs(r.minima.front().distance - pt["distance"].get<double>()) <=
+            1e-12 * r.distance + 1e-15);
+      for (std::size_t i = 1; i < r.minima.size(); ++i)
+        CHECK(r.minima[i - 1].distance <= r.minima[i].distance);
       for (const json& m : pt["local_minima"]) {
         const double d = m["distance"];
         bool found = false;
-        for (const Minimum& mine : r.minima) found = found || std::fabs(mine.distance - d) <= 1e-9 * (1.0 + d);
+        for (const Minimum& mine : r.minima)
+          found = found || std::fabs(mine.distance - d) <= 1e-9 * (1.0 + d);
         CHECK_MESSAGE(found, "local minimum at distance ", d, " not returned");
       }
     }

@@ -4,8 +4,8 @@
 
 #include <cmath>
 #include <fstream>
-#include <random>
 #include <nlohmann/json.hpp>
+#include <random>
 
 #include "formula/program.hpp"
 
@@ -62,10 +62,11 @@ TEST_CASE("jets of every function and operator match sympy's exact partials to 1
 
 TEST_CASE("a function composed with its inverse has the jet of its argument") {
   // w = x*y + x has gradient (y+1, x), Hessian [[0,1],[1,0]] and no third derivatives.
-  const char* identities[] = {"asin(sin(x*y+x))", "acos(cos(x*y+x))", "atan(tan(x*y+x))", "asinh(sinh(x*y+x))",
-                              "acosh(cosh(x*y+x))", "atanh(tanh(x*y+x))", "ln(exp(x*y+x))", "exp(ln(x*y+x))",
-                              "sqrt(x*y+x)^2", "2^log2(x*y+x)", "10^log10(x*y+x)", "((x*y+x)^3)^(1/3)",
-                              "abs(-(x*y+x))", "(x*y+x)*(x*y+x)/(x*y+x)"};
+  const char* identities[] = {"asin(sin(x*y+x))",   "acos(cos(x*y+x))",       "atan(tan(x*y+x))",
+                              "asinh(sinh(x*y+x))", "acosh(cosh(x*y+x))",     "atanh(tanh(x*y+x))",
+                              "ln(exp(x*y+x))",     "exp(ln(x*y+x))",         "sqrt(x*y+x)^2",
+                              "2^log2(x*y+x)",      "10^log10(x*y+x)",        "((x*y+x)^3)^(1/3)",
+                              "abs(-(x*y+x))",      "(x*y+x)*(x*y+x)/(x*y+x)"};
   const double pt[2] = {0.35, 0.6};
   for (const char* text : identities) {
     INFO(text);
@@ -134,7 +135,8 @@ TEST_CASE("_pi and _e have full double precision") {
 }
 
 TEST_CASE("several formulas share one tape and common subexpressions") {
-  const Program p = Program::compile({{"x", "u+v"}, {"y", "sin(u)+2*cos(v)"}, {"z", "sin(u+v)"}}, {"u", "v"}, {});
+  const Program p =
+      Program::compile({{"x", "u+v"}, {"y", "sin(u)+2*cos(v)"}, {"z", "sin(u+v)"}}, {"u", "v"}, {});
   CHECK(p.num_outputs() == 3);
   CHECK(p.num_inputs() == 2);
   // u, v, u+v, sin(u), cos(v), 2*cos(v), sin(u)+2cos(v), sin(u+v): u+v appears once and the
@@ -152,13 +154,17 @@ TEST_CASE("two-variable jets (paired arithmetic) agree with the generic third-or
   // jets2<2> runs its own arithmetic on pairs of doubles (program.cpp, Jet2PairArith); jets3 runs
   // the generic rules. Every op on the tape, at many points: value, gradient and Hessian agree to a
   // few ulps of the jet's largest entry, and the Hessian is symmetric.
-  const char* formulas[] = {
-      "x*y - x/y + 3*x - y/4 + 5 - (2 - x)", "x^3*y^-2 + (x*y)^2.5 + 2^x + 7/(1 + x*x)",
-      "sqrt(x*y) + exp(x-y) + ln(x+y) + log2(x*y) + log10(3*x)", "sin(x*y) + cos(x/y) + tan(0.3*x*y)",
-      "asin(0.2*x*y) + acos(0.3*x-0.1*y) + atan(x/y)", "sinh(x-y) + cosh(x*y) + tanh(x/y)",
-      "asinh(x*y) + acosh(1+x*y) + atanh(0.2*x*y)", "abs(x-y)*y + sign(x-y)*x^2 + min(x*y, x+y) + max(x, y^2)",
-      "x > y ? x^2*y : y^3 - x", "(x < y) + (x >= y)*x + (x != y)*y + (x*y > 1 && x < 2)*x*y",
-      "-x*(-y) + -(x/y)"};
+  const char* formulas[] = {"x*y - x/y + 3*x - y/4 + 5 - (2 - x)",
+                            "x^3*y^-2 + (x*y)^2.5 + 2^x + 7/(1 + x*x)",
+                            "sqrt(x*y) + exp(x-y) + ln(x+y) + log2(x*y) + log10(3*x)",
+                            "sin(x*y) + cos(x/y) + tan(0.3*x*y)",
+                            "asin(0.2*x*y) + acos(0.3*x-0.1*y) + atan(x/y)",
+                            "sinh(x-y) + cosh(x*y) + tanh(x/y)",
+                            "asinh(x*y) + acosh(1+x*y) + atanh(0.2*x*y)",
+                            "abs(x-y)*y + sign(x-y)*x^2 + min(x*y, x+y) + max(x, y^2)",
+                            "x > y ? x^2*y : y^3 - x",
+                            "(x < y) + (x >= y)*x + (x != y)*y + (x*y > 1 && x < 2)*x*y",
+                            "-x*(-y) + -(x/y)"};
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> coord(0.2, 1.8);
   for (const char* text : formulas) {

@@ -52,7 +52,8 @@ TEST_CASE("empty, over-long and over-complex formulas are rejected") {
   CHECK(error_of({{"x", ""}}).kind == FormulaError::Kind::empty);
   footpoint::formula::CompileLimits limits;
   limits.max_formula_length = 20;
-  CHECK(error_of({{"x", "u+u+u+u+u+u+u+u+u+u+u+u"}}, {"u", "v"}, {}, limits).kind == FormulaError::Kind::too_long);
+  CHECK(error_of({{"x", "u+u+u+u+u+u+u+u+u+u+u+u"}}, {"u", "v"}, {}, limits).kind ==
+        FormulaError::Kind::too_long);
   limits = {};
   limits.max_nodes = 10;
   std::string big = "u";
@@ -87,7 +88,8 @@ TEST_CASE("assignments, several expressions and bad constants are rejected") {
 }
 
 TEST_CASE("division by zero and domain errors give non-finite values, not crashes") {
-  const Program p = Program::compile({{"a", "1/u"}, {"b", "sqrt(u-1)"}, {"c", "ln(u)"}, {"d", "u^v"}}, {"u", "v"}, {});
+  const Program p =
+      Program::compile({{"a", "1/u"}, {"b", "sqrt(u-1)"}, {"c", "ln(u)"}, {"d", "u^v"}}, {"u", "v"}, {});
   const double pt[2] = {0.0, 0.5};
   double out[4];
   p.values(pt, out);

@@ -17,7 +17,8 @@ namespace {
 double ulps(double got, long double exact) {
   const double rounded = static_cast<double>(exact);
   if (rounded == 0.0) return got == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
-  const double ulp = std::nextafter(std::fabs(rounded), std::numeric_limits<double>::infinity()) - std::fabs(rounded);
+  const double ulp =
+      std::nextafter(std::fabs(rounded), std::numeric_limits<double>::infinity()) - std::fabs(rounded);
   return static_cast<double>(std::fabs(static_cast<long double>(got) - exact)) / ulp;
 }
 

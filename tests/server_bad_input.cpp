@@ -66,7 +66,7 @@ struct Bad {
   std::string body;
   int status;
   const char* code;
-  const char* field;   // nullptr: the error names no field
+  const char* field;  // nullptr: the error names no field
 };
 
 // The answer to the good request, checked against the reference once.
@@ -101,7 +101,8 @@ TEST_CASE("bad-input matrix: exact status and code for each kind, and the server
       // ---- malformed JSON ----
       {"truncated JSON", "POST", "ID", J, R"J({"point":[1,2,)J", 400, "malformed_json", nullptr},
       {"trailing garbage", "POST", "ID", J, R"J({"point":[1,2,2]} x)J", 400, "malformed_json", nullptr},
-      {"two documents", "POST", "ID", J, R"J({"point":[1,2,2]}{"point":[1,2,2]})J", 400, "malformed_json", nullptr},
+      {"two documents", "POST", "ID", J, R"J({"point":[1,2,2]}{"point":[1,2,2]})J", 400, "malformed_json",
+       nullptr},
       {"single quotes", "POST", "ID", J, R"J({'point':[1,2,2]})J", 400, "malformed_json", nullptr},
       {"trailing comma", "POST", "ID", J, R"J({"point":[1,2,2],})J", 400, "malformed_json", nullptr},
       {"comment", "POST", "ID", J, R"J({"point":[1,2,2] /* c */})J", 400, "malformed_json", nullptr},
@@ -112,8 +113,8 @@ TEST_CASE("bad-input matrix: exact status and code for each kind, and the server
       {"byte order mark", "POST", "ID", J, "\xef\xbb\xbf" + kGoodPoint, 400, "malformed_json", nullptr},
       {"empty body", "POST", "/v1/project", J, "", 400, "malformed_json", nullptr},
       // Beyond the reader's nesting limit the body is not JSON it accepts, whatever the shape.
-      {"nesting 5,000 deep", "POST", "ID", J, R"J({"point":)J" + repeat("[", 5000) + repeat("]", 5000) + "}", 400,
-       "malformed_json", nullptr},
+      {"nesting 5,000 deep", "POST", "ID", J, R"J({"point":)J" + repeat("[", 5000) + repeat("]", 5000) + "}",
+       400, "malformed_json", nullptr},
       // ---- numbers JSON cannot hold ----
       {"NaN", "POST", "ID", J, R"J({"point":[1,NaN,2]})J", 400, "malformed_json", nullptr},
       {"Infinity", "POST", "ID", J, R"J({"point":[Infinity,1,2]})J", 400, "malformed_json", nullptr},
@@ -121,8 +122,8 @@ TEST_CASE("bad-input matrix: exact status and code for each kind, and the server
       {"hexadecimal number", "POST", "ID", J, R"J({"point":[0x10,1,2]})J", 400, "malformed_json", nullptr},
       {"leading zero", "POST", "ID", J, R"J({"point":[01,1,2]})J", 400, "malformed_json", nullptr},
       {"1e400", "POST", "ID", J, R"J({"point":[1,2,1e400]})J", 400, "number_out_of_range", "point[2]"},
-      {"-1e400 in a batch", "POST", "ID", J, R"J({"points":[[1,2,2],[-1e400,0,0]]})J", 400, "number_out_of_range",
-       "points[1][0]"},
+      {"-1e400 in a batch", "POST", "ID", J, R"J({"points":[[1,2,2],[-1e400,0,0]]})J", 400,
+       "number_out_of_range", "points[1][0]"},
       {"1e400 in a domain (an infinite domain)", "POST", "/v1/geometries", J,
        R"J({"type":"parametric_surface","x":"u","y":"v","z":"u*v","domain":{"u":[0,1],"v":[0,1e400]}})J", 400,
        "number_out_of_range", "domain.v[1]"},
@@ -131,111 +132,136 @@ TEST_CASE("bad-input matrix: exact status and code for each kind, and the server
       {"coordinate as a string", "POST", "ID", J, R"J({"point":[1,"2",2]})J", 400, "wrong_type", "point[1]"},
       {"point is a number", "POST", "ID", J, R"J({"point":5})J", 400, "wrong_type", "point"},
       {"points is a flat array", "POST", "ID", J, R"J({"points":[1,2,2]})J", 400, "wrong_type", "points[0]"},
-      {"null coordinate in a batch", "POST", "ID", J, R"J({"points":[[1,2,2],[1,null,2]]})J", 400, "wrong_type",
-       "points[1][1]"},
-      {"method is a number", "POST", "ID", J, R"J({"point":[1,2,2],"method":5})J", 400, "wrong_type", "method"},
-      {"options is a number", "POST", "ID", J, R"J({"point":[1,2,2],"options":5})J", 400, "wrong_type", "options"},
-      {"all_minima is a string", "POST", "ID", J, R"J({"point":[1,2,2],"options":{"all_minima":"yes"}})J", 400,
-       "wrong_type", "options.all_minima"},
+      {"null coordinate in a batch", "POST", "ID", J, R"J({"points":[[1,2,2],[1,null,2]]})J", 400,
+       "wrong_type", "points[1][1]"},
+      {"method is a number", "POST", "ID", J, R"J({"point":[1,2,2],"method":5})J", 400, "wrong_type",
+       "method"},
+      {"options is a number", "POST", "ID", J, R"J({"point":[1,2,2],"options":5})J", 400, "wrong_type",
+       "options"},
+      {"all_minima is a string", "POST", "ID", J, R"J({"point":[1,2,2],"options":{"all_minima":"yes"}})J",
+       400, "wrong_type", "options.all_minima"},
       {"geometry is a string", "POST", "/v1/project", J, R"J({"point":[1,2,2],"geometry":"sphere"})J", 400,
        "wrong_type", "geometry"},
-      {"type is a number", "POST", "/v1/geometries", J, with(kSurface, "type", 5).dump(), 400, "wrong_type", "type"},
-      {"formula is a number", "POST", "/v1/project", J, inline_body(with(kSurface, "x", 5), p3), 400, "wrong_type",
-       "geometry.x"},
-      {"constant is a string", "POST", "/v1/geometries", J, with(kSurface, "constants", {{"a", "x"}}).dump(), 400,
-       "wrong_type", "constants.a"},
+      {"type is a number", "POST", "/v1/geometries", J, with(kSurface, "type", 5).dump(), 400, "wrong_type",
+       "type"},
+      {"formula is a number", "POST", "/v1/project", J, inline_body(with(kSurface, "x", 5), p3), 400,
+       "wrong_type", "geometry.x"},
+      {"constant is a string", "POST", "/v1/geometries", J, with(kSurface, "constants", {{"a", "x"}}).dump(),
+       400, "wrong_type", "constants.a"},
       // ---- missing, unknown, duplicate, conflicting fields ----
       {"missing point", "POST", "ID", J, R"J({"method":"auto"})J", 400, "missing_field", "point"},
-      {"missing geometry on /v1/project", "POST", "/v1/project", J, kGoodPoint, 400, "missing_field", "geometry"},
-      {"missing type", "POST", "/v1/geometries", J, [] { json d = kSurface; d.erase("type"); return d.dump(); }(),
+      {"missing geometry on /v1/project", "POST", "/v1/project", J, kGoodPoint, 400, "missing_field",
+       "geometry"},
+      {"missing type", "POST", "/v1/geometries", J,
+       [] {
+         json d = kSurface;
+         d.erase("type");
+         return d.dump();
+       }(),
        400, "missing_field", "type"},
-      {"missing formula z", "POST", "/v1/project", J, inline_body([] { json d = kSurface; d.erase("z"); return d; }(), p3),
+      {"missing formula z", "POST", "/v1/project", J,
+       inline_body(
+           [] {
+             json d = kSurface;
+             d.erase("z");
+             return d;
+           }(),
+           p3),
        400, "missing_field", "geometry.z"},
       {"missing domain v", "POST", "/v1/geometries", J, with(kSurface, "domain", {{"u", {0, 1}}}).dump(), 400,
        "missing_field", "domain.v"},
       {"spatial implicit curve without domain z", "POST", "/v1/geometries", J,
-       with(kSpatialImplicit, "domain", json::parse(R"J({"x":[-3,3],"y":[-3,3]})J")).dump(), 400, "missing_field",
-       "domain.z"},
-      {"unknown top-level field", "POST", "ID", J, R"J({"point":[1,2,2],"pointz":[1]})J", 400, "unknown_field",
-       "pointz"},
-      {"unknown option", "POST", "ID", J, R"J({"point":[1,2,2],"options":{"speed":11}})J", 400, "unknown_field",
-       "options.speed"},
+       with(kSpatialImplicit, "domain", json::parse(R"J({"x":[-3,3],"y":[-3,3]})J")).dump(), 400,
+       "missing_field", "domain.z"},
+      {"unknown top-level field", "POST", "ID", J, R"J({"point":[1,2,2],"pointz":[1]})J", 400,
+       "unknown_field", "pointz"},
+      {"unknown option", "POST", "ID", J, R"J({"point":[1,2,2],"options":{"speed":11}})J", 400,
+       "unknown_field", "options.speed"},
       {"domain variable of another type", "POST", "/v1/geometries", J,
        with(kPlanarCurve, "domain", {{"u", {0, 1}}}).dump(), 400, "unknown_field", "domain.u"},
-      {"duplicate key", "POST", "ID", J, R"J({"point":[1,2,2],"point":[3,4,5]})J", 400, "duplicate_field", "point"},
-      {"point and points", "POST", "ID", J, R"J({"point":[1,2,2],"points":[[1,2,2]]})J", 400, "conflicting_fields",
-       "points"},
-      {"unknown geometry type", "POST", "/v1/geometries", J, R"J({"type":"torus"})J", 400, "unknown_geometry_type",
-       "type"},
+      {"duplicate key", "POST", "ID", J, R"J({"point":[1,2,2],"point":[3,4,5]})J", 400, "duplicate_field",
+       "point"},
+      {"point and points", "POST", "ID", J, R"J({"point":[1,2,2],"points":[[1,2,2]]})J", 400,
+       "conflicting_fields", "points"},
+      {"unknown geometry type", "POST", "/v1/geometries", J, R"J({"type":"torus"})J", 400,
+       "unknown_geometry_type", "type"},
       {"three implicit equations", "POST", "/v1/geometries", J,
        with(kSpatialImplicit, "equations", {"x", "y", "z"}).dump(), 400, "wrong_shape", "equations"},
       {"domain with three numbers", "POST", "/v1/geometries", J,
-       with(kSurface, "domain", json::parse(R"J({"u":[0,1,2],"v":[0,1]})J")).dump(), 400, "wrong_shape", "domain.u"},
+       with(kSurface, "domain", json::parse(R"J({"u":[0,1,2],"v":[0,1]})J")).dump(), 400, "wrong_shape",
+       "domain.u"},
       // ---- dimensions and batches ----
       {"2-D point for a surface", "POST", "ID", J, R"J({"point":[1,2]})J", 400, "wrong_dimension", "point"},
       {"4 coordinates", "POST", "ID", J, R"J({"point":[1,2,2,1]})J", 400, "wrong_dimension", "point"},
       {"empty point", "POST", "ID", J, R"J({"point":[]})J", 400, "wrong_dimension", "point"},
-      {"mixed dimensions in a batch", "POST", "ID", J, R"J({"points":[[1,2,2],[1,2]]})J", 400, "wrong_dimension",
-       "points[1]"},
-      {"3-D point for a planar curve", "POST", "/v1/project", J, inline_body(kPlanarCurve, p3), 400, "wrong_dimension",
-       "point"},
+      {"mixed dimensions in a batch", "POST", "ID", J, R"J({"points":[[1,2,2],[1,2]]})J", 400,
+       "wrong_dimension", "points[1]"},
+      {"3-D point for a planar curve", "POST", "/v1/project", J, inline_body(kPlanarCurve, p3), 400,
+       "wrong_dimension", "point"},
       {"3-D points for a planar implicit curve", "POST", "/v1/project", J,
        inline_body(kPlanarImplicit, {{"points", {{1, 2, 2}}}}), 400, "wrong_dimension", "points[0]"},
       {"2-D point for a spatial implicit curve", "POST", "/v1/project", J,
        inline_body(kSpatialImplicit, {{"point", {1, 2}}}), 400, "wrong_dimension", "point"},
       {"empty batch", "POST", "ID", J, R"J({"points":[]})J", 400, "empty_batch", "points"},
       {"huge batch (over --max-points)", "POST", "ID", J, points_body(101), 413, "too_many_points", "points"},
-      {"start of the wrong size", "POST", "ID", J, R"J({"point":[1,2,2],"method":"gsa","options":{"initial":[1]}})J",
-       400, "wrong_dimension", "options.initial"},
+      {"start of the wrong size", "POST", "ID", J,
+       R"J({"point":[1,2,2],"method":"gsa","options":{"initial":[1]}})J", 400, "wrong_dimension",
+       "options.initial"},
       {"fewer starts than points", "POST", "ID", J,
        R"J({"points":[[1,2,2],[0,0,0],[3,3,3]],"method":"gsa","options":{"initial":[[0,0],[1,1]]}})J", 400,
        "wrong_shape", "options.initial"},
       // ---- methods and options ----
-      {"unknown method", "POST", "ID", J, R"J({"point":[1,2,2],"method":"magic"})J", 400, "unknown_method", "method"},
+      {"unknown method", "POST", "ID", J, R"J({"point":[1,2,2],"method":"magic"})J", 400, "unknown_method",
+       "method"},
       {"a surface method for a curve", "POST", "/v1/project", J,
        inline_body(kPlanarCurve, {{"point", {1, 2}}, {"method", "gsa"}}), 400, "unknown_method", "method"},
       {"negative tolerance", "POST", "ID", J, R"J({"point":[1,2,2],"options":{"tolerance":-1}})J", 400,
        "invalid_option", "options.tolerance"},
       {"tolerance of 1 or more", "POST", "ID", J, R"J({"point":[1,2,2],"options":{"tolerance":2}})J", 400,
        "invalid_option", "options.tolerance"},
-      {"absurd max_iterations", "POST", "ID", J, R"J({"point":[1,2,2],"options":{"max_iterations":1e9}})J", 400,
-       "invalid_option", "options.max_iterations"},
-      {"negative max_iterations", "POST", "ID", J, R"J({"point":[1,2,2],"options":{"max_iterations":-3}})J", 400,
-       "invalid_option", "options.max_iterations"},
-      {"fractional max_iterations", "POST", "ID", J, R"J({"point":[1,2,2],"options":{"max_iterations":2.5}})J", 400,
-       "invalid_option", "options.max_iterations"},
-      {"non-positive max_distance", "POST", "ID", J, R"J({"point":[1,2,2],"options":{"max_distance":0}})J", 400,
-       "invalid_option", "options.max_distance"},
+      {"absurd max_iterations", "POST", "ID", J, R"J({"point":[1,2,2],"options":{"max_iterations":1e9}})J",
+       400, "invalid_option", "options.max_iterations"},
+      {"negative max_iterations", "POST", "ID", J, R"J({"point":[1,2,2],"options":{"max_iterations":-3}})J",
+       400, "invalid_option", "options.max_iterations"},
+      {"fractional max_iterations", "POST", "ID", J,
+       R"J({"point":[1,2,2],"options":{"max_iterations":2.5}})J", 400, "invalid_option",
+       "options.max_iterations"},
+      {"non-positive max_distance", "POST", "ID", J, R"J({"point":[1,2,2],"options":{"max_distance":0}})J",
+       400, "invalid_option", "options.max_distance"},
       // ---- definitions that do not compile (422) ----
       {"reversed domain", "POST", "/v1/geometries", J,
-       with(kSurface, "domain", json::parse(R"J({"u":[1,-1],"v":[0,1]})J")).dump(), 422, "bad_domain", "domain.u"},
+       with(kSurface, "domain", json::parse(R"J({"u":[1,-1],"v":[0,1]})J")).dump(), 422, "bad_domain",
+       "domain.u"},
       {"empty domain interval", "POST", "/v1/project", J,
-       inline_body(with(kSurface, "domain", json::parse(R"J({"u":[0,1],"v":[2,2]})J")), p3), 422, "bad_domain",
-       "geometry.domain.v"},
+       inline_body(with(kSurface, "domain", json::parse(R"J({"u":[0,1],"v":[2,2]})J")), p3), 422,
+       "bad_domain", "geometry.domain.v"},
       {"formula syntax", "POST", "/v1/project", J, inline_body(with(kSurface, "z", "sin(u+"), p3), 422,
        "formula_syntax", "geometry.z"},
-      {"unknown variable", "POST", "/v1/geometries", J, with(kSurface, "x", "u+w").dump(), 422, "unknown_variable",
-       "x"},
-      {"unknown function", "POST", "/v1/geometries", J, with(kSurface, "y", "foo(u)").dump(), 422, "unknown_variable",
-       "y"},
-      {"empty formula", "POST", "/v1/geometries", J, with(kSurface, "z", "  ").dump(), 422, "empty_formula", "z"},
+      {"unknown variable", "POST", "/v1/geometries", J, with(kSurface, "x", "u+w").dump(), 422,
+       "unknown_variable", "x"},
+      {"unknown function", "POST", "/v1/geometries", J, with(kSurface, "y", "foo(u)").dump(), 422,
+       "unknown_variable", "y"},
+      {"empty formula", "POST", "/v1/geometries", J, with(kSurface, "z", "  ").dump(), 422, "empty_formula",
+       "z"},
       {"1 MB formula", "POST", "/v1/project", J,
-       inline_body(with(kSurface, "x", repeat("u+", 500000) + "u"), p3), 422, "formula_too_long", "geometry.x"},
-      {"constant named like a variable", "POST", "/v1/geometries", J, with(kSurface, "constants", {{"u", 1}}).dump(),
-       422, "bad_constant", "constants.u"},
-      {"constant redefining _pi", "POST", "/v1/geometries", J, with(kSurface, "constants", {{"_pi", 3}}).dump(), 422,
-       "bad_constant", "constants._pi"},
+       inline_body(with(kSurface, "x", repeat("u+", 500000) + "u"), p3), 422, "formula_too_long",
+       "geometry.x"},
+      {"constant named like a variable", "POST", "/v1/geometries", J,
+       with(kSurface, "constants", {{"u", 1}}).dump(), 422, "bad_constant", "constants.u"},
+      {"constant redefining _pi", "POST", "/v1/geometries", J,
+       with(kSurface, "constants", {{"_pi", 3}}).dump(), 422, "bad_constant", "constants._pi"},
       // ---- routes, methods, media types, sizes ----
-      {"unknown geometry id", "POST", "/v1/geometries/0123456789abcdef0123456789abcdef/project", J, kGoodPoint, 404,
-       "geometry_not_found", "id"},
-      {"DELETE of an unknown id", "DELETE", "/v1/geometries/not-an-id", "", "", 404, "geometry_not_found", "id"},
+      {"unknown geometry id", "POST", "/v1/geometries/0123456789abcdef0123456789abcdef/project", J,
+       kGoodPoint, 404, "geometry_not_found", "id"},
+      {"DELETE of an unknown id", "DELETE", "/v1/geometries/not-an-id", "", "", 404, "geometry_not_found",
+       "id"},
       {"unknown route", "GET", "/v2/project", "", "", 404, "route_not_found", nullptr},
       {"path traversal", "GET", "/v1/geometries/../../etc/passwd", "", "", 404, "route_not_found", nullptr},
       {"GET on a POST route", "GET", "/v1/project", "", "", 405, "method_not_allowed", nullptr},
       {"PUT on a POST route", "PUT", "/v1/project", J, kGoodPoint, 405, "method_not_allowed", nullptr},
       {"text/plain body", "POST", "ID", "text/plain", kGoodPoint, 415, "unsupported_media_type", nullptr},
-      {"form body", "POST", "ID", "application/x-www-form-urlencoded", "point=1,2,2", 415, "unsupported_media_type",
-       nullptr},
+      {"form body", "POST", "ID", "application/x-www-form-urlencoded", "point=1,2,2", 415,
+       "unsupported_media_type", nullptr},
       {"body over the limit", "POST", "/v1/project", J,
        inline_body(with(kSurface, "x", repeat("u+", 1500000) + "u"), p3), 413, "body_too_large", nullptr},
   };
@@ -298,17 +324,20 @@ TEST_CASE("bad-input matrix: exact status and code for each kind, and the server
       {"conflicting Content-Length headers",
        post + "Content-Length: 17\r\nContent-Length: 18\r\nConnection: close\r\n\r\n" + kGoodPoint + " ", 400,
        "bad_request"},
-      {"huge Content-Length, body never sent", post + "Content-Length: 99999999999\r\n\r\n", 413, "body_too_large"},
+      {"huge Content-Length, body never sent", post + "Content-Length: 99999999999\r\n\r\n", 413,
+       "body_too_large"},
       {"gzip body", post + "Content-Encoding: gzip\r\nContent-Length: 17\r\n\r\n" + kGoodPoint, 415,
        "unsupported_content_encoding"},
       {"brotli body", post + "Content-Encoding: br\r\nContent-Length: 17\r\n\r\n" + kGoodPoint, 415,
        "unsupported_content_encoding"},
-      {"no Content-Type", "POST " + project + " HTTP/1.1\r\n" + host + "Content-Length: 17\r\n\r\n" + kGoodPoint, 415,
+      {"no Content-Type",
+       "POST " + project + " HTTP/1.1\r\n" + host + "Content-Length: 17\r\n\r\n" + kGoodPoint, 415,
        "unsupported_media_type"},
       {"GET with a body", "GET /healthz HTTP/1.1\r\n" + host + "Content-Length: 5\r\n\r\nhello", 400,
        "body_not_allowed"},
       {"malformed request line", "GARBAGE\r\n\r\n", 400, "bad_request"},
-      {"URI over the limit", "GET /" + std::string(20000, 'a') + " HTTP/1.1\r\n" + host + "\r\n", 414, "uri_too_long"},
+      {"URI over the limit", "GET /" + std::string(20000, 'a') + " HTTP/1.1\r\n" + host + "\r\n", 414,
+       "uri_too_long"},
   };
   for (const auto& k : raws) {
     INFO(std::string(k.name));
@@ -376,7 +405,8 @@ TEST_CASE("numerically hostile but valid requests: 200 and an honest status for 
        "converged"},
       // NaN on half the domain (sqrt of negative u): auto answers on the defined half.
       {"formula NaN on part of the domain",
-       inline_body(with(with(kSurface, "z", "sqrt(u)"), "domain", json::parse(R"J({"u":[-1,1],"v":[0,1]})J")), p3),
+       inline_body(with(with(kSurface, "z", "sqrt(u)"), "domain", json::parse(R"J({"u":[-1,1],"v":[0,1]})J")),
+                   p3),
        "converged"},
       {"curve undefined on part of its domain (ln t, t < 0)",
        inline_body(json::parse(R"J({"type":"parametric_curve","x":"t","y":"ln(t)","domain":{"t":[-1,2]}})J"),
@@ -385,8 +415,10 @@ TEST_CASE("numerically hostile but valid requests: 200 and an honest status for 
       {"formula NaN on the whole domain", inline_body(with(kSurface, "z", "sqrt(-1-u*u)"), p3), "non_finite"},
       {"coordinates near the largest double", inline_body(kSurface, {{"point", {1e308, -1e308, 1e308}}}),
        "non_finite"},
-      {"one iteration allowed", inline_body(kSurface, {{"point", {1, 2, 2}}, {"method", "gsa"},
-                                                       {"options", {{"max_iterations", 1}, {"initial", {0, 0}}}}}),
+      {"one iteration allowed",
+       inline_body(kSurface, {{"point", {1, 2, 2}},
+                              {"method", "gsa"},
+                              {"options", {{"max_iterations", 1}, {"initial", {0, 0}}}}}),
        "max_iterations"},
   };
   for (const auto& k : cases) {
@@ -414,8 +446,8 @@ TEST_CASE("a batch of expensive solves does not hold the workers past the deadli
       R"J({"type":"implicit_curve","equations":["x^2/9+y^2/16+z^2/9+4*x*y-1","x^2+y^2+x-4*z"],"domain":{"x":[-300,300],"y":[-300,300],"z":[-300,300]}})J");
   json points = json::array();
   for (int i = 0; i < 20000; ++i) points.push_back({-400.0 + i * 0.04, 300.0 - i * 0.03, 350.0 - i * 0.035});
-  const std::string body =
-      inline_body(curve, {{"points", points}, {"method", "complete"}, {"options", {{"max_iterations", 10000}}}});
+  const std::string body = inline_body(
+      curve, {{"points", points}, {"method", "complete"}, {"options", {{"max_iterations", 10000}}}});
   const auto start = std::chrono::steady_clock::now();
   auto r = c->Post("/v1/project", body, "application/json");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -428,8 +460,8 @@ TEST_CASE("a batch of expensive solves does not hold the workers past the deadli
     late += x["diagnostics"]["status"] == "deadline_exceeded";
     check_honest(x, points[i]);
   }
-  MESSAGE("deadline 0.3 s: answered in " << seconds << " s, batch " << answer["stats"]["elapsed_ms"] << " ms, "
-                                        << late << " of 20000 points deadline_exceeded");
+  MESSAGE("deadline 0.3 s: answered in " << seconds << " s, batch " << answer["stats"]["elapsed_ms"]
+                                         << " ms, " << late << " of 20000 points deadline_exceeded");
   CHECK(late > 0);
   // The solving stopped at the deadline, give or take the points already started (one each
   // per worker) and the sanitizers' slowdown.

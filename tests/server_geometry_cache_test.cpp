@@ -143,7 +143,8 @@ TEST_CASE("the cache stays consistent under concurrent mixed use") {
         const auto r = cache.get_or_compile(curve(k));
         if (r.geometry->definition().formulas[1].expression != "t^2+" + std::to_string(k)) ++wrong;
         if (i % 5 == 0) cache.erase(r.geometry->id());
-        if (const auto f = cache.find(curve((k + 1) % 20).id()); f && f->id() != curve((k + 1) % 20).id()) ++wrong;
+        if (const auto f = cache.find(curve((k + 1) % 20).id()); f && f->id() != curve((k + 1) % 20).id())
+          ++wrong;
       }
     });
   for (auto& th : threads) th.join();

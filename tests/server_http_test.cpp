@@ -65,7 +65,8 @@ std::string create(httplib::Client& c, const std::string& definition) {
   return json::parse(r->body)["geometry_id"].get<std::string>();
 }
 
-std::string points_body(const std::vector<std::array<double, 3>>& pts, int dim = 3, const std::string& extra = "") {
+std::string points_body(const std::vector<std::array<double, 3>>& pts, int dim = 3,
+                        const std::string& extra = "") {
   JsonWriter w;
   w.begin_object();
   w.key("points");
@@ -212,12 +213,12 @@ TEST_CASE("every endpoint answers as documented") {
   CHECK(batch["results"][0].contains("trace"));
 
   // An implicit curve (no parameters) and a planar parametric curve (2-D points).
-  const json curve = post_json(*c, "/v1/project",
-                               std::string(R"J({"geometry":)J") + kCurveC1 + R"J(,"point":[217,273,129]})J", 200);
+  const json curve = post_json(
+      *c, "/v1/project", std::string(R"J({"geometry":)J") + kCurveC1 + R"J(,"point":[217,273,129]})J", 200);
   CHECK_FALSE(curve["result"].contains("parameters"));
   CHECK(std::abs(curve["result"]["distance"].get<double>() - 368.57191569417705) <= 1e-9 * 368.6);
-  const json circle =
-      post_json(*c, "/v1/project", std::string(R"J({"geometry":)J") + kPlanarCircle + R"J(,"point":[3,0.5]})J", 200);
+  const json circle = post_json(
+      *c, "/v1/project", std::string(R"J({"geometry":)J") + kPlanarCircle + R"J(,"point":[3,0.5]})J", 200);
   CHECK(circle["result"]["foot_point"].size() == 2);
   CHECK(std::abs(circle["result"]["distance"].get<double>() - (std::hypot(3.0, 0.5) - 2.0)) <= 1e-12);
 
@@ -298,7 +299,8 @@ TEST_CASE("a batch of 10,000 points equals the same points sent one by one") {
 TEST_CASE("results do not depend on the number of worker threads") {
   const auto pts = random_points(2000, 5, -8, 8);
   const std::string body = points_body(pts);
-  const std::string minima_body = points_body(random_points(40, 6, -8, 8), 3, R"J("options":{"all_minima":true})J");
+  const std::string minima_body =
+      points_body(random_points(40, 6, -8, 8), 3, R"J("options":{"all_minima":true})J");
   std::vector<json> answers, minima;
   for (unsigned threads : {1u, 2u, 4u}) {
     ServerConfig config;
@@ -350,22 +352,26 @@ TEST_CASE("every error class: status, code and field, and the server keeps answe
     return b + "]}";
   }();
   const std::vector<Case> cases = {
-      {"malformed JSON", "POST", project, "application/json", R"J({"point":[1,2,)J", 400, "malformed_json", nullptr},
-      {"NaN literal", "POST", project, "application/json", R"J({"point":[1,NaN,2]})J", 400, "malformed_json", nullptr},
-      {"wrong type in a batch", "POST", project, "application/json", R"J({"points":[[1,2,3],[1,2,"x"]]})J", 400,
-       "wrong_type", "points[1][2]"},
+      {"malformed JSON", "POST", project, "application/json", R"J({"point":[1,2,)J", 400, "malformed_json",
+       nullptr},
+      {"NaN literal", "POST", project, "application/json", R"J({"point":[1,NaN,2]})J", 400, "malformed_json",
+       nullptr},
+      {"wrong type in a batch", "POST", project, "application/json", R"J({"points":[[1,2,3],[1,2,"x"]]})J",
+       400, "wrong_type", "points[1][2]"},
       {"1e400", "POST", project, "application/json", R"J({"point":[1,2,1e400]})J", 400, "number_out_of_range",
        "point[2]"},
-      {"2-D point on a surface", "POST", project, "application/json", R"J({"point":[1,2]})J", 400, "wrong_dimension",
+      {"2-D point on a surface", "POST", project, "application/json", R"J({"point":[1,2]})J", 400,
+       "wrong_dimension", "point"},
+      {"mixed dimensions", "POST", project, "application/json", R"J({"points":[[1,2,3],[1,2,3],[1,2]]})J",
+       400, "wrong_dimension", "points[2]"},
+      {"empty batch", "POST", project, "application/json", R"J({"points":[]})J", 400, "empty_batch",
+       "points"},
+      {"missing point", "POST", project, "application/json", R"J({"method":"auto"})J", 400, "missing_field",
        "point"},
-      {"mixed dimensions", "POST", project, "application/json", R"J({"points":[[1,2,3],[1,2,3],[1,2]]})J", 400,
-       "wrong_dimension", "points[2]"},
-      {"empty batch", "POST", project, "application/json", R"J({"points":[]})J", 400, "empty_batch", "points"},
-      {"missing point", "POST", project, "application/json", R"J({"method":"auto"})J", 400, "missing_field", "point"},
       {"unknown method", "POST", project, "application/json", R"J({"point":[1,2,2],"method":"magic"})J", 400,
        "unknown_method", "method"},
-      {"negative tolerance", "POST", project, "application/json", R"J({"point":[1,2,2],"options":{"tolerance":-1}})J",
-       400, "invalid_option", "options.tolerance"},
+      {"negative tolerance", "POST", project, "application/json",
+       R"J({"point":[1,2,2],"options":{"tolerance":-1}})J", 400, "invalid_option", "options.tolerance"},
       {"absurd max_iterations", "POST", project, "application/json",
        R"J({"point":[1,2,2],"options":{"max_iterations":1000000000}})J", 400, "invalid_option",
        "options.max_iterations"},
@@ -375,7 +381,8 @@ TEST_CASE("every error class: status, code and field, and the server keeps answe
        "unknown_geometry_type", "type"},
       {"geometry missing on /v1/project", "POST", "/v1/project", "application/json", good_point, 400,
        "missing_field", "geometry"},
-      {"body is not an object", "POST", "/v1/geometries", "application/json", "[]", 400, "wrong_type", "body"},
+      {"body is not an object", "POST", "/v1/geometries", "application/json", "[]", 400, "wrong_type",
+       "body"},
       {"unknown geometry id", "POST", "/v1/geometries/0123456789abcdef0123456789abcdef/project",
        "application/json", good_point, 404, "geometry_not_found", "id"},
       {"unknown route", "GET", "/v2/nothing", "", "", 404, "route_not_found", nullptr},
@@ -385,8 +392,8 @@ TEST_CASE("every error class: status, code and field, and the server keeps answe
       {"body over the limit", "POST", project, "application/json",
        R"J({"point":[1,2,2],"method":")J" + std::string(70000, 'a') + "\"}", 413, "body_too_large", nullptr},
       {"text/plain body", "POST", project, "text/plain", good_point, 415, "unsupported_media_type", nullptr},
-      {"formula syntax", "POST", "/v1/geometries", "application/json", surface_with("z", R"J("sin(u+")J"), 422,
-       "formula_syntax", "z"},
+      {"formula syntax", "POST", "/v1/geometries", "application/json", surface_with("z", R"J("sin(u+")J"),
+       422, "formula_syntax", "z"},
       {"unknown variable", "POST", "/v1/geometries", "application/json", surface_with("x", R"J("u+w")J"), 422,
        "unknown_variable", "x"},
       {"reversed domain", "POST", "/v1/geometries", "application/json",
@@ -416,7 +423,8 @@ TEST_CASE("every error class: status, code and field, and the server keeps answe
     CHECK(r->get_header_value("Content-Type") == "application/json");
     CHECK_FALSE(r->get_header_value("X-Request-Id").empty());
     if (k.status == 405) CHECK_FALSE(r->get_header_value("Allow").empty());
-    if (k.status == 422 && std::string(k.code) == "formula_syntax") CHECK(e["error"]["position"].get<int>() >= 0);
+    if (k.status == 422 && std::string(k.code) == "formula_syntax")
+      CHECK(e["error"]["position"].get<int>() >= 0);
     // The server still answers correctly, on a fresh connection too.
     c = s.client();
     CHECK(post_json(*c, project, good_point, 200)["result"] == good_answer);
@@ -431,19 +439,23 @@ TEST_CASE("every error class: status, code and field, and the server keeps answe
     const char* code;
   };
   const std::vector<Raw> raws = {
-      {"chunked body", "POST " + project + " HTTP/1.1\r\n" + host +
-                           "Content-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n"
-                           "11\r\n{\"point\":[1,2,2]}\r\n0\r\n\r\n",
+      {"chunked body",
+       "POST " + project + " HTTP/1.1\r\n" + host +
+           "Content-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n"
+           "11\r\n{\"point\":[1,2,2]}\r\n0\r\n\r\n",
        411, "length_required"},
-      {"no Content-Length", "POST " + project + " HTTP/1.1\r\n" + host +
-                                "Content-Type: application/json\r\nConnection: close\r\n\r\n" + good_point,
+      {"no Content-Length",
+       "POST " + project + " HTTP/1.1\r\n" + host +
+           "Content-Type: application/json\r\nConnection: close\r\n\r\n" + good_point,
        411, "length_required"},
-      {"gzip body", "POST " + project + " HTTP/1.1\r\n" + host +
-                        "Content-Type: application/json\r\nContent-Encoding: gzip\r\nContent-Length: 17\r\n\r\n" +
-                        good_point,
+      {"gzip body",
+       "POST " + project + " HTTP/1.1\r\n" + host +
+           "Content-Type: application/json\r\nContent-Encoding: gzip\r\nContent-Length: 17\r\n\r\n" +
+           good_point,
        415, "unsupported_content_encoding"},
-      {"huge Content-Length, body never sent", "POST " + project + " HTTP/1.1\r\n" + host +
-                                                    "Content-Type: application/json\r\nContent-Length: 99999999999\r\n\r\n",
+      {"huge Content-Length, body never sent",
+       "POST " + project + " HTTP/1.1\r\n" + host +
+           "Content-Type: application/json\r\nContent-Length: 99999999999\r\n\r\n",
        413, "body_too_large"},
       {"PUT", "PUT /v1/project HTTP/1.1\r\n" + host + "Content-Length: 0\r\nConnection: close\r\n\r\n", 405,
        "method_not_allowed"},
@@ -470,9 +482,10 @@ TEST_CASE("responses are never compressed and X-Request-Id is honoured") {
   const std::string id = create(*c, kParaboloid);
   const std::string body = points_body(random_points(500, 3, -2, 2));
   const std::string response = raw_exchange(
-      s.port(), "POST /v1/geometries/" + id + "/project HTTP/1.1\r\nHost: x\r\nConnection: close\r\n"
-                "Accept-Encoding: br, gzip, deflate\r\nRange: bytes=0-10\r\nX-Request-Id: trace-42\r\n"
-                "Content-Type: application/json; charset=utf-8\r\nContent-Length: " +
+      s.port(), "POST /v1/geometries/" + id +
+                    "/project HTTP/1.1\r\nHost: x\r\nConnection: close\r\n"
+                    "Accept-Encoding: br, gzip, deflate\r\nRange: bytes=0-10\r\nX-Request-Id: trace-42\r\n"
+                    "Content-Type: application/json; charset=utf-8\r\nContent-Length: " +
                     std::to_string(body.size()) + "\r\n\r\n" + body);
   CHECK(raw_status(response) == 200);
   CHECK(response.find("Content-Encoding") == std::string::npos);
@@ -489,8 +502,10 @@ TEST_CASE("Expect: 100-continue gets the final answer at once when the request w
   TestServer s;
   auto c = s.client();
   const std::string id = create(*c, kParaboloid);
-  const std::string head = "POST /v1/geometries/" + id + "/project HTTP/1.1\r\nHost: x\r\nExpect: 100-continue\r\n";
-  const std::string refused = raw_exchange(s.port(), head + "Content-Type: text/plain\r\nContent-Length: 17\r\n\r\n");
+  const std::string head =
+      "POST /v1/geometries/" + id + "/project HTTP/1.1\r\nHost: x\r\nExpect: 100-continue\r\n";
+  const std::string refused =
+      raw_exchange(s.port(), head + "Content-Type: text/plain\r\nContent-Length: 17\r\n\r\n");
   CHECK(raw_status(refused) == 415);
   CHECK(refused.find("100 Continue") == std::string::npos);
   CHECK(raw_json(refused)["error"]["code"] == "unsupported_media_type");
@@ -512,8 +527,9 @@ TEST_CASE("the cache evicts by count, keeps serving, and 404s tell the client to
   auto c = s.client();
   const std::string a = create(*c, kSurfaceA1);
   const std::string b = create(*c, kParaboloid);
-  post_json(*c, "/v1/geometries/" + a + "/project", R"J({"point":[1,2,2]})J", 200);  // a is now the most recent
-  const std::string d = create(*c, kCurveC1);                                       // evicts b
+  post_json(*c, "/v1/geometries/" + a + "/project", R"J({"point":[1,2,2]})J",
+            200);                              // a is now the most recent
+  const std::string d = create(*c, kCurveC1);  // evicts b
   CHECK(c->Get(("/v1/geometries/" + a).c_str())->status == 200);
   CHECK(c->Get(("/v1/geometries/" + d).c_str())->status == 200);
   const json lost = post_json(*c, "/v1/geometries/" + b + "/project", R"J({"point":[0,0,3]})J", 404);
@@ -525,7 +541,8 @@ TEST_CASE("the cache evicts by count, keeps serving, and 404s tell the client to
   CHECK(create(*c, kParaboloid) == b);
   // A flood of distinct formulas stays bounded.
   for (int i = 0; i < 20; ++i)
-    create(*c, R"J({"type":"parametric_curve","x":"t","y":"t^2+)J" + std::to_string(i) + R"J(","domain":{"t":[0,1]}})J");
+    create(*c, R"J({"type":"parametric_curve","x":"t","y":"t^2+)J" + std::to_string(i) +
+                   R"J(","domain":{"t":[0,1]}})J");
   CHECK(metric(*c, "footpoint_geometry_cache_entries") == 2);
   CHECK(metric(*c, "footpoint_geometry_cache_evictions_total") == 22);
 }
@@ -538,7 +555,8 @@ TEST_CASE("points not done by the deadline get deadline_exceeded, with null answ
   TestServer s(config);
   auto c = s.client();
   const std::string id = create(*c, kSurfaceA1);
-  const json r = post_json(*c, "/v1/geometries/" + id + "/project", points_body(random_points(50000, 9, -9, 9)), 200);
+  const json r =
+      post_json(*c, "/v1/geometries/" + id + "/project", points_body(random_points(50000, 9, -9, 9)), 200);
   std::size_t late = 0;
   for (const auto& x : r["results"]) {
     if (x["diagnostics"]["status"] != "deadline_exceeded") continue;
@@ -559,13 +577,15 @@ TEST_CASE("beyond --max-inflight, compute requests are shed with 503 overloaded"
   TestServer s(config);
   auto c = s.client();
   const std::string id = create(*c, kSurfaceA1);
-  const std::string heavy = points_body(random_points(100000, 13, -9, 9), 3, R"J("options":{"all_minima":true})J");
+  const std::string heavy =
+      points_body(random_points(100000, 13, -9, 9), 3, R"J("options":{"all_minima":true})J");
   std::thread slow([&] {
     auto c2 = s.client();
     post_json(*c2, "/v1/geometries/" + id + "/project", heavy, 200);
   });
   wait_in_flight(*c, 1);
-  auto r = c->Post(("/v1/geometries/" + id + "/project").c_str(), R"J({"point":[1,2,2]})J", "application/json");
+  auto r =
+      c->Post(("/v1/geometries/" + id + "/project").c_str(), R"J({"point":[1,2,2]})J", "application/json");
   REQUIRE(r);
   CHECK(r->status == 503);
   CHECK(json::parse(r->body)["error"]["code"] == "overloaded");

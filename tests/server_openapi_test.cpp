@@ -125,8 +125,10 @@ TEST_CASE("every response matches openapi.yaml") {
       R"J({"type":"parametric_surface","x":"u+v","y":"sin(u)+2*cos(v)","z":"sin(u+v)","domain":{"u":[-25,25],"v":[-25,25]}})J";
   const std::string curve =
       R"J({"type":"implicit_curve","equations":["x^2/9+y^2/16+z^2/9-1","x^2+y^2-4*z"],"domain":{"x":[-300,300],"y":[-300,300],"z":[-300,300]}})J";
-  const std::string planar = R"J({"type":"implicit_curve","equations":["x^2+y^2/4-1"],"domain":{"x":[-3,3],"y":[-3,3]},"constants":{"k":2}})J";
-  const std::string param = R"J({"type":"parametric_curve","x":"cos(t)","y":"sin(t)","z":"t","domain":{"t":[0,6]}})J";
+  const std::string planar =
+      R"J({"type":"implicit_curve","equations":["x^2+y^2/4-1"],"domain":{"x":[-3,3],"y":[-3,3]},"constants":{"k":2}})J";
+  const std::string param =
+      R"J({"type":"parametric_curve","x":"cos(t)","y":"sin(t)","z":"t","domain":{"t":[0,6]}})J";
 
   for (const char* path : {"/healthz", "/readyz", "/metrics", "/openapi.yaml", "/v1/methods"})
     record("GET", path, c->Get(path));
@@ -140,40 +142,44 @@ TEST_CASE("every response matches openapi.yaml") {
 
   const std::string on = "/v1/geometries/" + id + "/project";
   post(project, on, R"J({"point":[1,2,2]})J");
-  post(project, on, R"J({"points":[[1,2,2],[0,0,3],[5,-1,0.5]],"options":{"all_minima":true,"trace":true}})J");
+  post(project, on,
+       R"J({"points":[[1,2,2],[0,0,3],[5,-1,0.5]],"options":{"all_minima":true,"trace":true}})J");
   post(project, on, R"J({"point":[1,2,2],"method":"gsa","options":{"initial":[0.5,0.7],"trace":true}})J");
   post(project, on, R"J({"point":[100,2,2],"options":{"max_distance":1}})J");
-  post(project, "/v1/geometries/" + curve_id + "/project", R"J({"point":[217,273,129],"options":{"all_minima":true}})J");
+  post(project, "/v1/geometries/" + curve_id + "/project",
+       R"J({"point":[217,273,129],"options":{"all_minima":true}})J");
   {
     std::string big = R"J({"points":[)J";
     for (int i = 0; i < 50; ++i) big += std::string(i ? "," : "") + "[" + std::to_string(i) + ",1,2]";
     post(project, on, big + "]}");  // some points hit the 1 ms deadline
   }
   post("/v1/project", "/v1/project", R"J({"geometry":)J" + planar + R"J(,"points":[[2,2],[0,0]]})J");
-  post("/v1/project", "/v1/project", R"J({"geometry":)J" + param + R"J(,"point":[1,1,1],"options":{"all_minima":true}})J");
+  post("/v1/project", "/v1/project",
+       R"J({"geometry":)J" + param + R"J(,"point":[1,1,1],"options":{"all_minima":true}})J");
 
   // Errors of every class.
-  post(project, on, R"J({"point":[1,2,)J");                                  // 400
-  post(project, on, R"J({"points":[[1,2,3],[1,"x",3]]})J");                  // 400
-  post(project, on, R"J({"point":[1,2,2],"method":"nope"})J");               // 400
-  post("/v1/geometries", "/v1/geometries", R"J({"type":"torus"})J");         // 400
-  post("/v1/project", "/v1/project", R"J({"point":[1,2,3]})J");              // 400
+  post(project, on, R"J({"point":[1,2,)J");                                                            // 400
+  post(project, on, R"J({"points":[[1,2,3],[1,"x",3]]})J");                                            // 400
+  post(project, on, R"J({"point":[1,2,2],"method":"nope"})J");                                         // 400
+  post("/v1/geometries", "/v1/geometries", R"J({"type":"torus"})J");                                   // 400
+  post("/v1/project", "/v1/project", R"J({"point":[1,2,3]})J");                                        // 400
   post(project, "/v1/geometries/00000000000000000000000000000000/project", R"J({"point":[1,2,2]})J");  // 404
-  record("GET", geometry, c->Get("/v1/geometries/00000000000000000000000000000000"));                // 404
-  record("GET", "/v1/project", c->Get("/v1/project"));                                               // 405
-  record("DELETE", "/healthz", c->Delete("/healthz"));                                               // 405
+  record("GET", geometry, c->Get("/v1/geometries/00000000000000000000000000000000"));                  // 404
+  record("GET", "/v1/project", c->Get("/v1/project"));                                                 // 405
+  record("DELETE", "/healthz", c->Delete("/healthz"));                                                 // 405
   {
     std::string big = R"J({"points":[)J";
     for (int i = 0; i < 51; ++i) big += std::string(i ? "," : "") + "[1,2,3]";
     post(project, on, big + "]}");  // 413
   }
-  post(project, on, R"J({"point":[1,2,2]})J", "text/plain");                                           // 415
+  post(project, on, R"J({"point":[1,2,2]})J", "text/plain");  // 415
   post("/v1/geometries", "/v1/geometries",
        R"J({"type":"parametric_surface","x":"u+","y":"v","z":"0","domain":{"u":[0,1],"v":[0,1]}})J");  // 422
-  post("/v1/project", "/v1/project",
-       R"J({"geometry":{"type":"parametric_curve","x":"t","y":"t","domain":{"t":[1,0]}},"point":[1,2]})J");  // 422
-  record("DELETE", geometry, c->Delete(("/v1/geometries/" + id).c_str()));                           // 204
-  record("DELETE", geometry, c->Delete(("/v1/geometries/" + id).c_str()));                           // 404
+  post(
+      "/v1/project", "/v1/project",
+      R"J({"geometry":{"type":"parametric_curve","x":"t","y":"t","domain":{"t":[1,0]}},"point":[1,2]})J");  // 422
+  record("DELETE", geometry, c->Delete(("/v1/geometries/" + id).c_str()));  // 204
+  record("DELETE", geometry, c->Delete(("/v1/geometries/" + id).c_str()));  // 404
 
   // 503 while shutting down, on a connection opened before. httplib closes a connection that
   // is between two requests when the shutdown starts, so let it settle into its keep-alive wait.
@@ -184,15 +190,19 @@ TEST_CASE("every response matches openapi.yaml") {
 
   json out = json::array();
   for (const auto& x : samples)
-    out.push_back({{"method", x.method}, {"template", x.template_path}, {"status", x.status},
-                   {"content_type", x.content_type}, {"body", x.body}, {"request", x.request}});
+    out.push_back({{"method", x.method},
+                   {"template", x.template_path},
+                   {"status", x.status},
+                   {"content_type", x.content_type},
+                   {"body", x.body},
+                   {"request", x.request}});
   const std::string dir = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp");
   const std::string samples_file = dir + "/footpoint_openapi_samples_" + std::to_string(s.port()) + ".json";
   const std::string script_file = dir + "/footpoint_openapi_check_" + std::to_string(s.port()) + ".py";
   std::ofstream(samples_file) << out.dump();
   std::ofstream(script_file) << kValidator;
-  const std::string command = "/usr/bin/python3 " + script_file + " " FOOTPOINT_SOURCE_DIR "/openapi.yaml " +
-                              samples_file + " 2>&1";
+  const std::string command =
+      "/usr/bin/python3 " + script_file + " " FOOTPOINT_SOURCE_DIR "/openapi.yaml " + samples_file + " 2>&1";
   std::string output;
   FILE* pipe = popen(command.c_str(), "r");
   REQUIRE(pipe);

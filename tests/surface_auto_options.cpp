@@ -41,7 +41,8 @@ TEST_CASE("all_minima finds every local minimum the oracle lists, best first, to
         INFO("oracle minimum d = " << d << " (" << m.at("type").get<std::string>() << ")");
         bool found = false;
         for (const Minimum& ours : r.minima)
-          if (std::abs(ours.distance - d) <= 1e-10 * std::max(1.0, d) && dist3(ours.foot, foot) <= 1e-8 * std::max(1.0, d)) {
+          if (std::abs(ours.distance - d) <= 1e-10 * std::max(1.0, d) &&
+              dist3(ours.foot, foot) <= 1e-8 * std::max(1.0, d)) {
             found = true;
             CHECK(m.at("type").get<std::string>().rfind(location_prefix(ours.location), 0) == 0);
           }
@@ -156,8 +157,8 @@ TEST_CASE("methods(), and an unknown method") {
 }
 
 TEST_CASE("failures are reported through the status") {
-  const auto sphere =
-      make_surface("cos(u)*cos(v)", "sin(u)*cos(v)", "sin(v)", {0, 6.283185307179586}, {-1.5707963267948966, 1.5707963267948966});
+  const auto sphere = make_surface("cos(u)*cos(v)", "sin(u)*cos(v)", "sin(v)", {0, 6.283185307179586},
+                                   {-1.5707963267948966, 1.5707963267948966});
   // GSA and the first-order method need s_u x s_v, which vanishes at a cone's apex (v = 0)
   const auto cone = make_surface("v*cos(u)", "v*sin(u)", "v", {0, 6.283185307179586}, {0, 1});
   for (const char* m : {"gsa", "first_order"}) {

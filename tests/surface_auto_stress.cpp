@@ -33,7 +33,7 @@ struct Spec {
   const char *x, *y, *z;
 };
 
-constexpr int kGrid = 240;    // grid steps per parameter
+constexpr int kGrid = 240;  // grid steps per parameter
 // Points per surface and kind (box, near): 150, or FOOTPOINT_STRESS_POINTS for a longer sweep
 // (e.g. FOOTPOINT_STRESS_POINTS=2000 build/tests/test_surface -tc='*brute-force*': ~40 s).
 int points_per_kind() {
@@ -58,10 +58,12 @@ double brute_force(const ParametricSurface& g, const std::vector<Vec3>& grid, co
       for (int di = -1; di <= 1 && local_minimum; ++di)
         for (int dj = -1; dj <= 1 && local_minimum; ++dj) {
           const int a = i + di, b = j + dj;
-          if ((di || dj) && a >= 0 && a <= kGrid && b >= 0 && b <= kGrid && at(a, b) < at(i, j)) local_minimum = false;
+          if ((di || dj) && a >= 0 && a <= kGrid && b >= 0 && b <= kGrid && at(a, b) < at(i, j))
+            local_minimum = false;
         }
       if (!local_minimum) continue;
-      const double u = box.umin + (box.umax - box.umin) * i / kGrid, v = box.vmin + (box.vmax - box.vmin) * j / kGrid;
+      const double u = box.umin + (box.umax - box.umin) * i / kGrid,
+                   v = box.vmin + (box.vmax - box.vmin) * j / kGrid;
       const auto s = surface::projected_newton(g.formulas(), box, p, u, v, criteria);
       if (std::isfinite(s.distance)) best = std::min(best, s.distance);
     }
@@ -74,10 +76,17 @@ TEST_CASE("auto is never farther than a brute-force grid search on random points
   const Spec specs[] = {
       {"S1", {-3, 3}, {-3, 3}, "u+v", "sin(u)+2*cos(v)", "sin(u+v)"},
       {"S2", {-2, 2}, {-2, 2}, "u^4*v^3+u*v+u", "u^3+v^3", "u+v"},
-      {"S3", {0, 2}, {0, 2}, "u^6+u^5*v+v^6-u^2*v^3+u*v^4-v^5+u^4+u^3*v+v^4+u^3-u*v^2+v^3+u*v+v^2+1",
+      {"S3",
+       {0, 2},
+       {0, 2},
+       "u^6+u^5*v+v^6-u^2*v^3+u*v^4-v^5+u^4+u^3*v+v^4+u^3-u*v^2+v^3+u*v+v^2+1",
        "u^6+2*u^4*v^2-v^6+u^5+u^2*v^3+v^5+u^4-u*v^3+u^3-2*u*v^2+v^3+4*u*v+2*v^2+2*u+2*v+1",
        "u^6+u*v^5+u^4*v+u^2*v^3+u^3*v+2*u^2*v^2+v^4+u^3+2*u*v+u"},
-      {"torus", {0, 6.283185307179586}, {0, 6.283185307179586}, "(2+0.5*cos(v))*cos(u)", "(2+0.5*cos(v))*sin(u)",
+      {"torus",
+       {0, 6.283185307179586},
+       {0, 6.283185307179586},
+       "(2+0.5*cos(v))*cos(u)",
+       "(2+0.5*cos(v))*sin(u)",
        "0.5*sin(v)"},
       {"A1", {-25, 25}, {-25, 25}, "u+v", "sin(u)+2*cos(v)", "sin(u+v)"},
       // folded sheets (s_u x s_v = 0 along curves; tests/data/surface_fold*.json)
@@ -88,7 +97,11 @@ TEST_CASE("auto is never farther than a brute-force grid search on random points
       {"wavy", {-4, 4}, {-4, 4}, "u", "v", "0.2*sin(7*u)*sin(5*v)"},
       {"ripple", {-1, 1}, {-1, 1}, "u", "v", "0.05*sin(20*u)*sin(17*v)"},
       {"cone", {0, 6.283185307179586}, {0, 1}, "v*cos(u)", "v*sin(u)", "v"},
-      {"sphere", {0, 6.283185307179586}, {-1.5707963267948966, 1.5707963267948966}, "cos(u)*cos(v)", "sin(u)*cos(v)",
+      {"sphere",
+       {0, 6.283185307179586},
+       {-1.5707963267948966, 1.5707963267948966},
+       "cos(u)*cos(v)",
+       "sin(u)*cos(v)",
        "sin(v)"},
       {"saddle", {-2, 2}, {-2, 2}, "u", "v", "u*u*u-3*u*v*v+0.5*sin(4*u*v)"},
       {"enneper", {-2, 2}, {-2, 2}, "u-u^3/3+u*v^2", "v-v^3/3+v*u^2", "u^2-v^2"},
@@ -134,8 +147,8 @@ TEST_CASE("auto is never farther than a brute-force grid search on random points
             MESSAGE(where << std::setprecision(17) << " p = (" << p.x << ", " << p.y << ", " << p.z
                           << "): auto " << r.distance << ", brute force " << reference);
           }
-          INFO(std::string(spec.name) << std::setprecision(17) << " p = (" << p.x << ", " << p.y << ", " << p.z << "): status "
-                         << std::string(to_string(r.summary.status)));
+          INFO(std::string(spec.name) << std::setprecision(17) << " p = (" << p.x << ", " << p.y << ", "
+                                      << p.z << "): status " << std::string(to_string(r.summary.status)));
           CHECK(r.summary.status == Status::converged);
         }
       CHECK(farther == 0);

@@ -18,7 +18,8 @@ constexpr double kTwoPi = 6.283185307179586;
 
 // A torus covered twice in u: s(u + 2π, v) = s(u, v), so every foot has two parameter pairs.
 std::shared_ptr<const ParametricSurface> double_torus() {
-  return make_surface("(2+0.5*cos(v))*cos(u)", "(2+0.5*cos(v))*sin(u)", "0.5*sin(v)", {0, 2 * kTwoPi}, {0, kTwoPi});
+  return make_surface("(2+0.5*cos(v))*cos(u)", "(2+0.5*cos(v))*sin(u)", "0.5*sin(v)", {0, 2 * kTwoPi},
+                      {0, kTwoPi});
 }
 
 ConvergenceCriteria criteria_for(const ParametricSurface& g) {
@@ -66,15 +67,16 @@ TEST_CASE("a solve in a known minimiser's basin is abandoned; one in another bas
   EarlyStop early;  // no cutoff: only the minimiser test
   early.minimisers = known;
   early.minimiser_count = 1;
-  const LocalSolution same = projected_newton(g->formulas(), g->domain(), p, first.u + 0.1, first.v - 0.1, crit, nullptr, &early);
+  const LocalSolution same =
+      projected_newton(g->formulas(), g->domain(), p, first.u + 0.1, first.v - 0.1, crit, nullptr, &early);
   CHECK(same.abandoned);
   CHECK(same.u == first.u);
   CHECK(same.v == first.v);
   CHECK_FALSE(std::isfinite(same.distance));  // merged, not bounded
 
   // the copy's basin is another one: solved to its end
-  const LocalSolution other =
-      projected_newton(g->formulas(), g->domain(), p, first.u + kTwoPi + 0.1, first.v - 0.1, crit, nullptr, &early);
+  const LocalSolution other = projected_newton(g->formulas(), g->domain(), p, first.u + kTwoPi + 0.1,
+                                               first.v - 0.1, crit, nullptr, &early);
   CHECK_FALSE(other.abandoned);
   CHECK(other.status == Status::converged);
   CHECK(other.u == doctest::Approx(first.u + kTwoPi).epsilon(1e-13));
@@ -97,8 +99,8 @@ TEST_CASE("a worse local minimum is abandoned against the best distance") {
     ++interior_worse;
     EarlyStop early;
     early.cutoff = best.distance;
-    const LocalSolution s = projected_newton(g->formulas(), g->domain(), p, m.params[0] + 0.01, m.params[1] - 0.01, crit,
-                                             nullptr, &early);
+    const LocalSolution s = projected_newton(g->formulas(), g->domain(), p, m.params[0] + 0.01,
+                                             m.params[1] - 0.01, crit, nullptr, &early);
     INFO("worse minimum d = " << m.distance << " at (" << m.params[0] << ", " << m.params[1] << ")");
     CHECK(s.abandoned);
     CHECK(s.distance >= best.distance);
@@ -126,7 +128,8 @@ TEST_CASE("the early stop on a face: a known minimiser on the same edge ends a s
   EarlyStop early;
   early.minimisers = known;
   early.minimiser_count = 1;
-  const LocalSolution stopped = projected_newton(g->formulas(), g->domain(), p, 3.0, 2.0625, criteria, nullptr, &early);
+  const LocalSolution stopped =
+      projected_newton(g->formulas(), g->domain(), p, 3.0, 2.0625, criteria, nullptr, &early);
   CHECK(stopped.abandoned);
   CHECK(stopped.u == first.u);
   CHECK(stopped.v == first.v);
@@ -135,7 +138,8 @@ TEST_CASE("the early stop on a face: a known minimiser on the same edge ends a s
   // a minimiser just inside the domain is not on the face: the solve goes on to the edge's own
   const std::array<double, 2> off_face[1] = {{std::nextafter(3.0, 0.0), first.v}};
   early.minimisers = off_face;
-  const LocalSolution solved = projected_newton(g->formulas(), g->domain(), p, 3.0, 2.0625, criteria, nullptr, &early);
+  const LocalSolution solved =
+      projected_newton(g->formulas(), g->domain(), p, 3.0, 2.0625, criteria, nullptr, &early);
   CHECK_FALSE(solved.abandoned);
   CHECK(solved.status == Status::converged);
   CHECK(solved.v == doctest::Approx(first.v).epsilon(1e-12));

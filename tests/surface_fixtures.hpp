@@ -37,7 +37,8 @@ inline GeometryDefinition example1(double half_width) {
 // uses the defaults).
 inline ParametricSurface compile_with(const GeometryDefinition& def, const SurfaceSeedingOptions& seeding) {
   const auto u = def.domain[0].second, v = def.domain[1].second;
-  return ParametricSurface(def, compile_formulas(def, {"u", "v"}, {}), ParamBox{u[0], u[1], v[0], v[1]}, seeding);
+  return ParametricSurface(def, compile_formulas(def, {"u", "v"}, {}), ParamBox{u[0], u[1], v[0], v[1]},
+                           seeding);
 }
 
 inline ProjectionResult project(const CompiledGeometry& g, std::array<double, 3> p, std::string_view method,
@@ -73,10 +74,14 @@ namespace footpoint::test {
 
 inline const char* location_prefix(Location l) {
   switch (l) {
-    case Location::interior: return "interior";
-    case Location::edge: return "edge";
-    case Location::corner: return "corner";
-    default: return "?";
+    case Location::interior:
+      return "interior";
+    case Location::edge:
+      return "edge";
+    case Location::corner:
+      return "corner";
+    default:
+      return "?";
   }
 }
 
@@ -91,8 +96,8 @@ inline void check_auto_against_oracle(const ParametricSurface& g, const nlohmann
   const ProjectionResult r = g.project(p.data(), "auto", Options{});
   INFO("p = (" << p[0] << ", " << p[1] << ", " << p[2] << "), oracle d = " << d_ref << " type "
                << o.at("type").get<std::string>() << "; auto d = " << r.distance << " at (" << r.params[0]
-               << ", " << r.params[1] << "), status " << std::string(to_string(r.summary.status)) << ", starts "
-               << r.summary.starts);
+               << ", " << r.params[1] << "), status " << std::string(to_string(r.summary.status))
+               << ", starts " << r.summary.starts);
   CHECK(r.summary.status == Status::converged);
   CHECK(r.summary.method == "auto");
   CHECK(std::abs(r.distance - d_ref) <= 1e-12 * std::max(d_ref, 1.0));

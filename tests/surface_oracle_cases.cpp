@@ -22,13 +22,15 @@ using namespace footpoint;
 using namespace footpoint::test;
 
 TEST_CASE("auto against oracle references") {
-  for (const char* name : {"sphere", "torus", "monkey_saddle", "plane", "S1", "S2", "S3", "A1", "fold", "fold_near",
-                           "wavy", "ripple", "cone", "S3_edge"}) {
+  for (const char* name : {"sphere", "torus", "monkey_saddle", "plane", "S1", "S2", "S3", "A1", "fold",
+                           "fold_near", "wavy", "ripple", "cone", "S3_edge"}) {
     SUBCASE(name) {
-      const nlohmann::json c = read_json(std::string(FOOTPOINT_TESTS_DIR) + "/data/surface_" + name + ".json");
+      const nlohmann::json c =
+          read_json(std::string(FOOTPOINT_TESTS_DIR) + "/data/surface_" + name + ".json");
       const auto& f = c.at("formulas");
-      const auto g = make_surface(f.at("x"), f.at("y"), f.at("z"), c.at("domain").at("u").get<std::array<double, 2>>(),
-                                  c.at("domain").at("v").get<std::array<double, 2>>());
+      const auto g =
+          make_surface(f.at("x"), f.at("y"), f.at("z"), c.at("domain").at("u").get<std::array<double, 2>>(),
+                       c.at("domain").at("v").get<std::array<double, 2>>());
       REQUIRE(g);
       REQUIRE(c.at("points").size() >= 7);
       for (const auto& point : c.at("points")) check_auto_against_oracle(*g, point);

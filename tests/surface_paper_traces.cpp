@@ -54,16 +54,16 @@ TEST_CASE("first_order reproduces Table 4 (Example 1 from (1, 2)) and reaches th
   const ProjectionResult r = project(*g, {1, 2, 2}, "first_order", traced_from(1, 2));
   // Steps 275 and 281 are printed with a minus sign, and so they come out: near 1e-10 the
   // iterate overshoots now and then.
-  check_rows(r, {{1, -6.51e-1, -1.29e0},  {10, 1.02e-1, 6.40e-2},  {20, 4.48e-2, 2.83e-2},
-                 {30, 2.07e-2, 1.31e-2},  {40, 9.64e-3, 6.09e-3},  {50, 4.50e-3, 2.85e-3},
-                 {60, 2.10e-3, 1.33e-3},  {70, 9.84e-4, 6.22e-4},  {80, 4.60e-4, 2.91e-4},
-                 {90, 2.15e-4, 1.36e-4},  {100, 1.01e-4, 6.36e-5}, {110, 4.70e-5, 2.97e-5},
-                 {120, 2.20e-5, 1.39e-5}, {130, 1.03e-5, 6.50e-6}, {140, 4.80e-6, 3.04e-6},
-                 {150, 2.25e-6, 1.42e-6}, {160, 1.05e-6, 6.64e-7}, {170, 4.91e-7, 3.11e-7},
-                 {180, 2.30e-7, 1.45e-7}, {190, 1.07e-7, 6.79e-8}, {200, 5.02e-8, 3.17e-8},
-                 {210, 2.35e-8, 1.48e-8}, {220, 1.10e-8, 6.94e-9}, {230, 5.13e-9, 3.24e-9},
-                 {240, 2.40e-9, 1.52e-9}, {250, 1.12e-9, 7.09e-10}, {260, 5.24e-10, 3.32e-10},
-                 {270, 2.45e-10, 1.55e-10}, {275, -1.67e-10, -1.06e-10}, {280, 1.15e-10, 7.25e-11},
+  check_rows(r, {{1, -6.51e-1, -1.29e0},      {10, 1.02e-1, 6.40e-2},      {20, 4.48e-2, 2.83e-2},
+                 {30, 2.07e-2, 1.31e-2},      {40, 9.64e-3, 6.09e-3},      {50, 4.50e-3, 2.85e-3},
+                 {60, 2.10e-3, 1.33e-3},      {70, 9.84e-4, 6.22e-4},      {80, 4.60e-4, 2.91e-4},
+                 {90, 2.15e-4, 1.36e-4},      {100, 1.01e-4, 6.36e-5},     {110, 4.70e-5, 2.97e-5},
+                 {120, 2.20e-5, 1.39e-5},     {130, 1.03e-5, 6.50e-6},     {140, 4.80e-6, 3.04e-6},
+                 {150, 2.25e-6, 1.42e-6},     {160, 1.05e-6, 6.64e-7},     {170, 4.91e-7, 3.11e-7},
+                 {180, 2.30e-7, 1.45e-7},     {190, 1.07e-7, 6.79e-8},     {200, 5.02e-8, 3.17e-8},
+                 {210, 2.35e-8, 1.48e-8},     {220, 1.10e-8, 6.94e-9},     {230, 5.13e-9, 3.24e-9},
+                 {240, 2.40e-9, 1.52e-9},     {250, 1.12e-9, 7.09e-10},    {260, 5.24e-10, 3.32e-10},
+                 {270, 2.45e-10, 1.55e-10},   {275, -1.67e-10, -1.06e-10}, {280, 1.15e-10, 7.25e-11},
                  {281, -1.06e-10, -6.72e-11}, {282, 9.84e-11, 6.22e-11}});
   CHECK(r.summary.status == Status::converged);
   CHECK(r.summary.method == "first_order");
@@ -97,14 +97,27 @@ TEST_CASE("first_order reproduces Table 8 (Example 2 from (2, -2)): a local mini
   const ProjectionResult r = project(*g, {3, 4, 5}, "first_order", traced_from(2, -2));
   // Rows 20-22 (increments of a few dozen ulps of u) to 5%; rows 23-25 (1e-16 .. 1e-15) are
   // rounding noise, not compared.
-  check_rows(r, {{1, -1.38e-1, 5.03e-1},   {2, -1.25e-1, 4.03e-1},   {3, -7.54e-2, 3.79e-1},
-                 {4, -2.79e-2, 4.00e-1},   {5, -2.52e-2, 7.64e-1},   {6, -1.71e-2, 1.04e-1},
-                 {7, -1.77e-4, -2.69e-2},  {8, -8.13e-5, 3.36e-3},   {9, 1.14e-5, -5.81e-4},
-                 {10, -1.96e-6, 9.73e-5},  {11, 3.29e-7, -1.64e-5},  {12, -5.54e-8, 2.75e-6},
-                 {13, 9.31e-9, -4.63e-7},  {14, -1.57e-9, 7.79e-8},  {15, 2.63e-10, -1.31e-8},
-                 {16, -4.43e-11, 2.20e-9}, {17, 7.45e-12, -3.71e-10}, {18, -1.25e-12, 6.23e-11},
+  check_rows(r, {{1, -1.38e-1, 5.03e-1},
+                 {2, -1.25e-1, 4.03e-1},
+                 {3, -7.54e-2, 3.79e-1},
+                 {4, -2.79e-2, 4.00e-1},
+                 {5, -2.52e-2, 7.64e-1},
+                 {6, -1.71e-2, 1.04e-1},
+                 {7, -1.77e-4, -2.69e-2},
+                 {8, -8.13e-5, 3.36e-3},
+                 {9, 1.14e-5, -5.81e-4},
+                 {10, -1.96e-6, 9.73e-5},
+                 {11, 3.29e-7, -1.64e-5},
+                 {12, -5.54e-8, 2.75e-6},
+                 {13, 9.31e-9, -4.63e-7},
+                 {14, -1.57e-9, 7.79e-8},
+                 {15, 2.63e-10, -1.31e-8},
+                 {16, -4.43e-11, 2.20e-9},
+                 {17, 7.45e-12, -3.71e-10},
+                 {18, -1.25e-12, 6.23e-11},
                  {19, 2.11e-13, -1.05e-11}});
-  const std::vector<Row> noisy = {{20, -3.53e-14, 1.76e-12}, {21, 5.90e-15, -2.96e-13}, {22, -1.20e-15, 4.98e-14}};
+  const std::vector<Row> noisy = {
+      {20, -3.53e-14, 1.76e-12}, {21, 5.90e-15, -2.96e-13}, {22, -1.20e-15, 4.98e-14}};
   for (const Row& row : noisy) {
     INFO("step " << row.step);
     REQUIRE(static_cast<int>(r.trace.size()) >= row.step);
@@ -124,16 +137,16 @@ TEST_CASE("newton reproduces Table 9 (Example 2 from (2, -2)), printed negated; 
   const ProjectionResult r = project(*g, {3, 4, 5}, "newton", traced_from(2, -2));
   // Table 9 prints -Δ (its step 6 is (-5.59, -9.17); the update is (+5.59, +9.17)): compared with
   // sign -1. Rows 27, 29, 31 are not printed; row 35 (5e-17) is rounding noise.
-  check_rows(r,
-             {{1, 1.62e-1, -1.50e-1}, {2, 1.56e-1, -1.33e-1}, {3, 1.57e-1, -1.11e-1}, {4, 1.75e-1, -6.95e-2},
-              {5, 2.51e-1, 5.23e-2},  {6, -5.59e0, -9.17e0},  {7, 5.14e-1, 5.84e-1},  {8, 4.75e-1, 5.39e-1},
-              {9, 4.38e-1, 4.97e-1},  {10, 4.05e-1, 4.59e-1}, {11, 3.74e-1, 4.24e-1}, {12, 3.45e-1, 3.91e-1},
-              {13, 3.18e-1, 3.61e-1}, {14, 2.94e-1, 3.33e-1}, {15, 2.71e-1, 3.08e-1}, {16, 2.51e-1, 2.84e-1},
-              {17, 2.31e-1, 2.62e-1}, {18, 2.14e-1, 2.42e-1}, {19, 1.98e-1, 2.24e-1}, {20, 1.83e-1, 2.07e-1},
-              {21, 1.69e-1, 1.91e-1}, {22, 1.57e-1, 1.76e-1}, {23, 1.46e-1, 1.63e-1}, {24, 1.35e-1, 1.50e-1},
-              {25, 1.26e-1, 1.38e-1}, {26, 1.14e-1, 1.29e-1}, {28, 6.61e-2, 1.34e-1}, {30, -1.02e-2, 1.02e-1},
-              {32, -2.17e-4, 1.31e-3}, {33, -5.28e-7, 3.08e-6}, {34, -3.03e-12, 1.70e-11}},
-             -1.0);
+  check_rows(
+      r, {{1, 1.62e-1, -1.50e-1},  {2, 1.56e-1, -1.33e-1},  {3, 1.57e-1, -1.11e-1},   {4, 1.75e-1, -6.95e-2},
+          {5, 2.51e-1, 5.23e-2},   {6, -5.59e0, -9.17e0},   {7, 5.14e-1, 5.84e-1},    {8, 4.75e-1, 5.39e-1},
+          {9, 4.38e-1, 4.97e-1},   {10, 4.05e-1, 4.59e-1},  {11, 3.74e-1, 4.24e-1},   {12, 3.45e-1, 3.91e-1},
+          {13, 3.18e-1, 3.61e-1},  {14, 2.94e-1, 3.33e-1},  {15, 2.71e-1, 3.08e-1},   {16, 2.51e-1, 2.84e-1},
+          {17, 2.31e-1, 2.62e-1},  {18, 2.14e-1, 2.42e-1},  {19, 1.98e-1, 2.24e-1},   {20, 1.83e-1, 2.07e-1},
+          {21, 1.69e-1, 1.91e-1},  {22, 1.57e-1, 1.76e-1},  {23, 1.46e-1, 1.63e-1},   {24, 1.35e-1, 1.50e-1},
+          {25, 1.26e-1, 1.38e-1},  {26, 1.14e-1, 1.29e-1},  {28, 6.61e-2, 1.34e-1},   {30, -1.02e-2, 1.02e-1},
+          {32, -2.17e-4, 1.31e-3}, {33, -5.28e-7, 3.08e-6}, {34, -3.03e-12, 1.70e-11}},
+      -1.0);
   CHECK(r.summary.status == Status::converged);
   // A stationary point that is not a minimum (PAPER_TRACES.md): converged, d = 3.3785099546.
   CHECK(r.params[0] == doctest::Approx(1.1644202).epsilon(1e-7));
@@ -141,11 +154,12 @@ TEST_CASE("newton reproduces Table 9 (Example 2 from (2, -2)), printed negated; 
   CHECK(r.distance == doctest::Approx(3.3785099546).epsilon(1e-10));
 }
 
-TEST_CASE("gsa reproduces Table 10's first rows (Example 2 from (2, -2)) and ends at the same local minimum") {
+TEST_CASE(
+    "gsa reproduces Table 10's first rows (Example 2 from (2, -2)) and ends at the same local minimum") {
   const auto g = example2();
   const ProjectionResult r = project(*g, {3, 4, 5}, "gsa", traced_from(2, -2));
-  const std::vector<Row> rows = {{1, -1.38e-1, 5.03e-1}, {2, -1.25e-1, 4.04e-1}, {3, -7.57e-2, 3.82e-1},
-                                 {4, -2.90e-2, 4.21e-1}};
+  const std::vector<Row> rows = {
+      {1, -1.38e-1, 5.03e-1}, {2, -1.25e-1, 4.04e-1}, {3, -7.57e-2, 3.82e-1}, {4, -2.90e-2, 4.21e-1}};
   for (const Row& row : rows) {  // "to 2-3 digits" (PAPER_TRACES.md)
     INFO("step " << row.step);
     REQUIRE(static_cast<int>(r.trace.size()) >= row.step);
@@ -160,7 +174,9 @@ TEST_CASE("gsa reproduces Table 10's first rows (Example 2 from (2, -2)) and end
   CHECK(r.params[1] == doctest::Approx(0.5302255).epsilon(1e-6));
 }
 
-TEST_CASE("Table 3: from Example 1's starts newton converges, mostly to stationary points that are not the nearest") {
+TEST_CASE(
+    "Table 3: from Example 1's starts newton converges, mostly to stationary points that are not the "
+    "nearest") {
   // The paper prints NC (no convergence) for Newton. It does converge, but from most starts to a
   // stationary point that is not the nearest (PAPER_TRACES.md: 6 of the 7, at d = 1.4456513076
   // or 4.7432376769). Five starts get there in 5-14 steps (`reached`, 0 for the other two); the
@@ -204,8 +220,8 @@ struct Counterexample {
   std::array<double, 3> p;
   std::array<double, 2> hybrid_params;  // where the unconstrained hybrid method converges
   bool hybrid_inside;
-  bool hybrid_chaotic;  // the first-order phase wanders: where it switches depends on rounding
-  std::array<double, 2> auto_params;    // the global nearest point (public_cases.json)
+  bool hybrid_chaotic;                // the first-order phase wanders: where it switches depends on rounding
+  std::array<double, 2> auto_params;  // the global nearest point (public_cases.json)
   Location auto_location;
 };
 }  // namespace
@@ -213,16 +229,38 @@ struct Counterexample {
 TEST_CASE("hybrid paper counterexamples C1-C5 from (1, 1)") {
   const Counterexample cases[] = {
       {"C1", "1+u^2+v^2", {-2, 2}, {0, 0, 0}, {0, 0}, true, false, {0, 0}, Location::interior},
-      {"C2", "sin(u+v)", {0, 2}, {3, 4, 5}, {0.5921398354615897, 1.5921398354615897}, true, false,
-       {0.5921398354615897, 1.5921398354615897}, Location::interior},
+      {"C2",
+       "sin(u+v)",
+       {0, 2},
+       {3, 4, 5},
+       {0.5921398354615897, 1.5921398354615897},
+       true,
+       false,
+       {0.5921398354615897, 1.5921398354615897},
+       Location::interior},
       // C3: the paper's answer (0.8318, 1.8318) is a saddle; the hybrid method ends at another
       // stationary point, outside [0,2]^2; the nearest point is the corner (2, 2).
       {"C3", "cos(u+v)", {0, 2}, {4, 5, 6}, {-0.0680926, 0.9319074}, false, false, {2, 2}, Location::corner},
       // C4: the paper's answer is an interior local minimum; the nearest point is on the edge v = 2.
       // The hybrid run is chaotic: see the test below.
-      {"C4", "sin(u^2+v^2)", {0, 2}, {4, 5, 6}, {14.54, 18.18}, false, true, {1.98876365798384944, 2}, Location::edge},
+      {"C4",
+       "sin(u^2+v^2)",
+       {0, 2},
+       {4, 5, 6},
+       {14.54, 18.18},
+       false,
+       true,
+       {1.98876365798384944, 2},
+       Location::edge},
       // C5: the paper's answer is a saddle; the nearest point is an interior minimum.
-      {"C5", "cos(u^2+v^2)", {0, 2}, {4, 5, 6}, {4.697, 5.871}, false, false, {1.584784242500877372, 1.980980303126096715},
+      {"C5",
+       "cos(u^2+v^2)",
+       {0, 2},
+       {4, 5, 6},
+       {4.697, 5.871},
+       false,
+       false,
+       {1.584784242500877372, 1.980980303126096715},
        Location::interior},
   };
   for (const Counterexample& c : cases) {
@@ -274,7 +312,8 @@ TEST_CASE("hybrid paper counterexamples C1-C5 from (1, 1)") {
         const Status st = hy.summary.status;
         CHECK((st == Status::converged || st == Status::outside_domain || st == Status::max_iterations));
         if (st != Status::max_iterations) {
-          CHECK(std::max(hy.summary.orthogonality[0], hy.summary.orthogonality[1]) <= surface::kStalledResidual);
+          CHECK(std::max(hy.summary.orthogonality[0], hy.summary.orthogonality[1]) <=
+                surface::kStalledResidual);
           const bool inside = g->domain().contains(hy.params[0], hy.params[1]);
           CHECK((st == Status::outside_domain) == !inside);
           if (inside) CHECK(hy.distance >= au.distance * (1.0 - 1e-12));

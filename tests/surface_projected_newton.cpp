@@ -22,7 +22,8 @@ TEST_CASE("a solve ends with the formulas' jet at its parameters, expanded or ev
   };
   const Surface surfaces[] = {
       {"S1", make_surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-3, 3}, {-3, 3})},
-      {"torus", make_surface("(2+0.5*cos(v))*cos(u)", "(2+0.5*cos(v))*sin(u)", "0.5*sin(v)", {0, 6.3}, {0, 6.3})},
+      {"torus",
+       make_surface("(2+0.5*cos(v))*cos(u)", "(2+0.5*cos(v))*sin(u)", "0.5*sin(v)", {0, 6.3}, {0, 6.3})},
       // partials changing over a length of 1/20 in the parameters
       {"ripple", make_surface("u", "v", "0.05*sin(20*u)*cos(20*v)", {-1, 1}, {-1, 1})},
       {"S2", make_surface("u^4*v^3+u*v+u", "u^3+v^3", "u+v", {-2, 2}, {-2, 2})},
@@ -52,7 +53,8 @@ TEST_CASE("a solve ends with the formulas' jet at its parameters, expanded or ev
       CHECK(norm(sol.jet.su - fresh.su) <= 64 * eps * norm(fresh.su));
       CHECK(norm(sol.jet.sv - fresh.sv) <= 64 * eps * norm(fresh.sv));
       CHECK(sol.distance == doctest::Approx(norm(p - fresh.s)).epsilon(1e-12));
-      if (norm2(sol.jet.s - fresh.s) + norm2(sol.jet.su - fresh.su) + norm2(sol.jet.sv - fresh.sv) > 0.0) ++expanded;
+      if (norm2(sol.jet.s - fresh.s) + norm2(sol.jet.su - fresh.su) + norm2(sol.jet.sv - fresh.sv) > 0.0)
+        ++expanded;
     }
     INFO(surface.name);
     CHECK(converged >= 300);

@@ -14,8 +14,9 @@ TEST_CASE("auto answers every surface case of public_cases.json") {
     if (c.at("kind") != "surface") continue;
     SUBCASE(c.at("id").get<std::string>().c_str()) {
       const auto& f = c.at("formulas");
-      const auto g = make_surface(f.at("x"), f.at("y"), f.at("z"), c.at("domain").at("u").get<std::array<double, 2>>(),
-                                  c.at("domain").at("v").get<std::array<double, 2>>());
+      const auto g =
+          make_surface(f.at("x"), f.at("y"), f.at("z"), c.at("domain").at("u").get<std::array<double, 2>>(),
+                       c.at("domain").at("v").get<std::array<double, 2>>());
       REQUIRE(g);
       for (const auto& point : c.at("points")) {
         check_auto_against_oracle(*g, point);

@@ -29,11 +29,18 @@ TEST_CASE("minimize_on_box is the minimum over the rectangle") {
     q.g = {3.0 * U(rng), 3.0 * U(rng)};
     const double a = U(rng), b = U(rng), c = U(rng);
     switch (trial % 3) {
-      case 0: q.H = {{{a * a + 0.1, a * b}, {a * b, b * b + c * c + 0.1}}}; break;  // positive definite
-      case 1: q.H = {{{a, b}, {b, c}}}; break;                                       // any
-      default: q.H = {{{a * a, a * b}, {a * b, b * b}}}; break;                       // singular
+      case 0:
+        q.H = {{{a * a + 0.1, a * b}, {a * b, b * b + c * c + 0.1}}};
+        break;  // positive definite
+      case 1:
+        q.H = {{{a, b}, {b, c}}};
+        break;  // any
+      default:
+        q.H = {{{a * a, a * b}, {a * b, b * b}}};
+        break;  // singular
     }
-    const std::array<double, 2> lo{-std::abs(U(rng)), -std::abs(U(rng))}, hi{std::abs(U(rng)), std::abs(U(rng))};
+    const std::array<double, 2> lo{-std::abs(U(rng)), -std::abs(U(rng))},
+        hi{std::abs(U(rng)), std::abs(U(rng))};
     const surface::BoxMinimum m = surface::minimize_on_box(q, lo, hi);
     CHECK(m.delta[0] >= lo[0]);
     CHECK(m.delta[0] <= hi[0]);
@@ -44,7 +51,8 @@ TEST_CASE("minimize_on_box is the minimum over the rectangle") {
     constexpr int n = 60;
     for (int i = 0; i <= n; ++i)
       for (int j = 0; j <= n; ++j)
-        grid_min = std::min(grid_min, q.value(lo[0] + (hi[0] - lo[0]) * i / n, lo[1] + (hi[1] - lo[1]) * j / n));
+        grid_min =
+            std::min(grid_min, q.value(lo[0] + (hi[0] - lo[0]) * i / n, lo[1] + (hi[1] - lo[1]) * j / n));
     CHECK(m.value <= grid_min + 1e-12);
     for (int k = 0; k < 2; ++k) {
       const int side = m.delta[k] <= lo[k] ? -1 : (m.delta[k] >= hi[k] ? 1 : 0);
@@ -140,7 +148,8 @@ TEST_CASE("a cell lies within rho of the rectangle in its tangent plane") {
     double worst = 0.0;
     for (int i = 0; i <= n; ++i)
       for (int j = 0; j <= n; ++j) {
-        const Vec3 r = g->formulas().point(c.u0 + (c.u1 - c.u0) * i / n, c.v0 + (c.v1 - c.v0) * j / n) - c.centre.s;
+        const Vec3 r =
+            g->formulas().point(c.u0 + (c.u1 - c.u0) * i / n, c.v0 + (c.v1 - c.v0) * j / n) - c.centre.s;
         const double out1 = std::max(std::abs(dot(r, c.e1)) - c.half1, 0.0);
         const double out2 = std::max(std::abs(dot(r, c.e2)) - c.half2, 0.0);
         const double h = dot(r, c.unit_normal);
@@ -162,7 +171,8 @@ TEST_CASE("trees of a single cell and of a few cells answer as the full one") {
     CAPTURE(cap);
     CHECK(g.cells().cells().size() == cap);
     CHECK(g.cells().nodes().empty() == (cap == 1));
-    for (const std::array<double, 3>& p : {std::array<double, 3>{0.3, 0.5, 0.2}, {9.0, -2.0, 1.0}, {-1.0, 2.5, -0.5}}) {
+    for (const std::array<double, 3>& p :
+         {std::array<double, 3>{0.3, 0.5, 0.2}, {9.0, -2.0, 1.0}, {-1.0, 2.5, -0.5}}) {
       const ProjectionResult r = project(g, p, "auto");
       CHECK(r.summary.status == Status::converged);
       CHECK(r.distance == doctest::Approx(project(*full, p, "auto").distance).epsilon(1e-12));

@@ -16,10 +16,10 @@ namespace footpoint {
 struct BatchRequest {
   const CompiledGeometry* geometry = nullptr;
   std::string method = "auto";
-  Options options;                                   // shared by all points
-  const double* points = nullptr;                    // count * geometry->point_dim() coordinates
+  Options options;                 // shared by all points
+  const double* points = nullptr;  // count * geometry->point_dim() coordinates
   std::size_t count = 0;
-  std::vector<std::array<double, 3>> initials;       // empty, or one start per point
+  std::vector<std::array<double, 3>> initials;  // empty, or one start per point
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
 };
 

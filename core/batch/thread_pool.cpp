@@ -73,8 +73,10 @@ void ThreadPool::parallel_for(std::size_t n, std::size_t chunk,
     std::lock_guard lock(mutex_);
     jobs_.push_back(job);
   }
-  if (job->chunks == 1) cv_.notify_one();
-  else cv_.notify_all();
+  if (job->chunks == 1)
+    cv_.notify_one();
+  else
+    cv_.notify_all();
   std::unique_lock lock(job->mutex);
   job->done.wait(lock, [&] { return job->remaining == 0; });
   if (job->error) std::rethrow_exception(job->error);

@@ -7,7 +7,7 @@ namespace footpoint {
 GeometryCache::GeometryCache(GeometryCacheOptions options) : options_(options) {}
 
 GeometryCache::Lookup GeometryCache::get_or_compile(const GeometryDefinition& def,
-                                                     const formula::CompileLimits& limits) {
+                                                    const formula::CompileLimits& limits) {
   const std::string id = def.id();
   std::shared_ptr<Pending> pending;
   {

@@ -31,12 +31,12 @@ struct GeometryCacheOptions {
 };
 
 struct GeometryCacheStats {
-  std::size_t size = 0;              // geometries held
-  std::size_t bytes = 0;             // sum of their memory_bytes()
-  std::uint64_t hits = 0;            // lookups answered by a held (or in-progress) geometry
-  std::uint64_t misses = 0;          // lookups that found nothing or had to compile
-  std::uint64_t evictions = 0;       // geometries dropped to respect the bounds
-  std::uint64_t compilations = 0;    // successful compilations
+  std::size_t size = 0;            // geometries held
+  std::size_t bytes = 0;           // sum of their memory_bytes()
+  std::uint64_t hits = 0;          // lookups answered by a held (or in-progress) geometry
+  std::uint64_t misses = 0;        // lookups that found nothing or had to compile
+  std::uint64_t evictions = 0;     // geometries dropped to respect the bounds
+  std::uint64_t compilations = 0;  // successful compilations
   std::uint64_t failed_compilations = 0;
 };
 
@@ -64,8 +64,8 @@ class GeometryCache {
   bool erase(const std::string& id);
 
   struct EntryStats {
-    std::uint64_t hits = 0;   // lookups it answered since it was inserted
-    std::size_t bytes = 0;    // its memory_bytes()
+    std::uint64_t hits = 0;  // lookups it answered since it was inserted
+    std::size_t bytes = 0;   // its memory_bytes()
   };
   // Statistics of one held geometry, without touching its recency or the counters.
   std::optional<EntryStats> entry_stats(const std::string& id) const;

@@ -84,16 +84,21 @@ NodeForm read_node(const Node& node, const std::vector<NodeForm>& forms) {
   const NodeForm* a = node.a >= 0 ? &forms[node.a] : nullptr;
   const NodeForm* b = node.b >= 0 ? &forms[node.b] : nullptr;
   switch (node.op) {
-    case Op::constant: return term_form(constant_term(node.k));
+    case Op::constant:
+      return term_form(constant_term(node.k));
     case Op::variable: {
       Monomial m = constant_term(1.0);
       m.e[static_cast<int>(node.k)] = 1;
       return term_form(m);
     }
-    case Op::add: return sum_form(*a, node.a, *b, node.b, 1.0);
-    case Op::sub: return sum_form(*a, node.a, *b, node.b, -1.0);
-    case Op::add_k: return sum_form(*a, node.a, term_form(constant_term(node.k)), -1, 1.0);
-    case Op::rsub_k: return sum_form(term_form(constant_term(node.k)), -1, *a, node.a, -1.0);
+    case Op::add:
+      return sum_form(*a, node.a, *b, node.b, 1.0);
+    case Op::sub:
+      return sum_form(*a, node.a, *b, node.b, -1.0);
+    case Op::add_k:
+      return sum_form(*a, node.a, term_form(constant_term(node.k)), -1, 1.0);
+    case Op::rsub_k:
+      return sum_form(term_form(constant_term(node.k)), -1, *a, node.a, -1.0);
     case Op::neg:
       if (a->kind == K::term) return term_form(scaled(a->term, -1.0));
       if (a->kind == K::sum) {
@@ -104,9 +109,12 @@ NodeForm read_node(const Node& node, const std::vector<NodeForm>& forms) {
         return f;
       }
       return {};
-    case Op::mul_k: return a->kind == K::term ? term_form(scaled(a->term, node.k)) : NodeForm{};
-    case Op::div_k: return a->kind == K::term ? term_form(scaled(a->term, 1.0 / node.k)) : NodeForm{};
-    case Op::mul: return a->kind == K::term && b->kind == K::term ? term_form(product(a->term, b->term)) : NodeForm{};
+    case Op::mul_k:
+      return a->kind == K::term ? term_form(scaled(a->term, node.k)) : NodeForm{};
+    case Op::div_k:
+      return a->kind == K::term ? term_form(scaled(a->term, 1.0 / node.k)) : NodeForm{};
+    case Op::mul:
+      return a->kind == K::term && b->kind == K::term ? term_form(product(a->term, b->term)) : NodeForm{};
     case Op::pow_int: {
       if (a->kind != K::term || node.k < 0 || node.k > PolynomialForm::kMaxDegree) return {};
       Monomial m = a->term;
@@ -115,7 +123,8 @@ NodeForm read_node(const Node& node, const std::vector<NodeForm>& forms) {
       for (auto& e : m.e) e = static_cast<std::int16_t>(e * k);
       return term_form(m);
     }
-    default: return {};
+    default:
+      return {};
   }
 }
 
@@ -153,7 +162,8 @@ std::optional<PolynomialForm> polynomial_form(const Program::Tape& tape) {
     for (int j = 0; j < 3; ++j) {
       poly.max_degree[j] = std::max<int>(poly.max_degree[j], m.e[j]);
       m.ce[j] = m.c * m.e[j];
-      for (int k = 0; k < 3; ++k) m.cee[j][k] = m.c * (j == k ? m.e[j] * (m.e[j] - 1.0) : 1.0 * m.e[j] * m.e[k]);
+      for (int k = 0; k < 3; ++k)
+        m.cee[j][k] = m.c * (j == k ? m.e[j] * (m.e[j] - 1.0) : 1.0 * m.e[j] * m.e[k]);
     }
     m.pairs = {m.c, m.cee[0][1], m.ce[0], m.ce[1], m.cee[0][0], m.cee[1][1]};
   }
@@ -195,7 +205,8 @@ void polynomial_jets2_any(const PolynomialForm& poly, const double* x, Jet2<N>* 
       for (int j = 0; j < N; ++j) term.g[j] = m.ce[j] * (p1[j] * others(j, j));
       for (int j = 0; j < N; ++j) {
         term.h[j][j] = m.cee[j][j] * (p2[j] * others(j, j));
-        for (int l = j + 1; l < N; ++l) term.h[j][l] = term.h[l][j] = m.cee[j][l] * (p1[j] * p1[l] * others(j, l));
+        for (int l = j + 1; l < N; ++l)
+          term.h[j][l] = term.h[l][j] = m.cee[j][l] * (p1[j] * p1[l] * others(j, l));
       }
       acc.v += term.v;  // from +0: 0 + t is t, and a zero term stays +0
       for (int j = 0; j < N; ++j) acc.g[j] += term.g[j];
@@ -263,8 +274,10 @@ void polynomial_jets2_uv(const PolynomialForm& poly, const double* x, Jet2<2>* o
 
 template <int N>
 void polynomial_jets2(const PolynomialForm& poly, const double* x, Jet2<N>* out) {
-  if constexpr (N == 2) polynomial_jets2_uv(poly, x, out);
-  else polynomial_jets2_any<N>(poly, x, out);
+  if constexpr (N == 2)
+    polynomial_jets2_uv(poly, x, out);
+  else
+    polynomial_jets2_any<N>(poly, x, out);
 }
 
 template void polynomial_jets2<1>(const PolynomialForm&, const double*, Jet2<1>*);

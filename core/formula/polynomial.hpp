@@ -21,9 +21,9 @@
 namespace footpoint::formula {
 
 struct Monomial {
-  double c = 0.0;                   // coefficient
-  std::array<std::int16_t, 3> e{};  // exponent of each variable
-  std::array<double, 3> ce{};       // c e_j: the gradient's coefficients
+  double c = 0.0;                              // coefficient
+  std::array<std::int16_t, 3> e{};             // exponent of each variable
+  std::array<double, 3> ce{};                  // c e_j: the gradient's coefficients
   std::array<std::array<double, 3>, 3> cee{};  // c e_j e_k (j != k), c e_j (e_j - 1): the Hessian's
   // With two variables, the coefficients in the pairs the evaluation multiplies:
   // (c, c e_0 e_1), (c e_0, c e_1), (c e_0 (e_0 - 1), c e_1 (e_1 - 1)).
@@ -31,11 +31,11 @@ struct Monomial {
 };
 
 struct PolynomialForm {
-  static constexpr int kMaxDegree = 64;     // per variable; higher powers stay on the tape
+  static constexpr int kMaxDegree = 64;  // per variable; higher powers stay on the tape
   static constexpr std::size_t kMaxTerms = 4096;
-  std::vector<Monomial> terms;              // the terms of formula k: [first[k], first[k+1])
+  std::vector<Monomial> terms;  // the terms of formula k: [first[k], first[k+1])
   std::vector<std::uint32_t> first;
-  std::array<int, 3> max_degree{};          // highest exponent of each variable
+  std::array<int, 3> max_degree{};  // highest exponent of each variable
   std::size_t memory_bytes() const { return terms.capacity() * sizeof(Monomial) + first.capacity() * 4; }
 };
 

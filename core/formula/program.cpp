@@ -71,7 +71,10 @@ struct Jet2Arith : JetLeaves<Jet2<N>, N> {
   [[gnu::always_inline]] static T unary(Op op, const T& a, double k) {
     T r;
     switch (op) {  // linear ops with a constant: every derivative scales or passes through
-      case Op::add_k: r = a; r.v += k; return r;
+      case Op::add_k:
+        r = a;
+        r.v += k;
+        return r;
       case Op::mul_k:
       case Op::div_k:
       case Op::rsub_k:
@@ -109,16 +112,20 @@ struct Jet2Arith : JetLeaves<Jet2<N>, N> {
           for (int j = i; j < N; ++j)
             r.h[j][i] = r.h[i][j] = a.h[i][j] * b.v + a.g[i] * b.g[j] + a.g[j] * b.g[i] + a.v * b.h[i][j];
         return r;
-      case Op::div:  // q = a/b from a = q b:  q_i = (a_i - q b_i)/b,  q_ij = (a_ij - q_i b_j - q_j b_i - q b_ij)/b
+      case Op::div:  // q = a/b from a = q b:  q_i = (a_i - q b_i)/b,  q_ij = (a_ij - q_i b_j - q_j b_i - q
+                     // b_ij)/b
         r.v = a.v / b.v;
         for (int i = 0; i < N; ++i) r.g[i] = (a.g[i] - r.v * b.g[i]) / b.v;
         for (int i = 0; i < N; ++i)
           for (int j = i; j < N; ++j)
             r.h[j][i] = r.h[i][j] = (a.h[i][j] - r.g[i] * b.g[j] - r.g[j] * b.g[i] - r.v * b.h[i][j]) / b.v;
         return r;
-      case Op::min: return a.v <= b.v ? a : b;
-      case Op::max: return a.v >= b.v ? a : b;
-      default: return constant(binary_value(op, a.v, b.v));
+      case Op::min:
+        return a.v <= b.v ? a : b;
+      case Op::max:
+        return a.v >= b.v ? a : b;
+      default:
+        return constant(binary_value(op, a.v, b.v));
     }
   }
   static const T& select(const T& c, const T& a, const T& b) { return c.v != 0.0 ? a : b; }
@@ -168,11 +175,16 @@ struct Jet2PairArith {
   }
   [[gnu::always_inline]] static T unary(Op op, const T& a, double k) {
     switch (op) {
-      case Op::add_k: return {value(a.v[0] + k), a.g, a.h0, a.h1};
-      case Op::mul_k: return scaled(a, k, a.v[0] * k);
-      case Op::div_k: return scaled(a, 1.0 / k, a.v[0] / k);
-      case Op::rsub_k: return scaled(a, -1.0, k - a.v[0]);
-      case Op::neg: return scaled(a, -1.0, -a.v[0]);
+      case Op::add_k:
+        return {value(a.v[0] + k), a.g, a.h0, a.h1};
+      case Op::mul_k:
+        return scaled(a, k, a.v[0] * k);
+      case Op::div_k:
+        return scaled(a, 1.0 / k, a.v[0] / k);
+      case Op::rsub_k:
+        return scaled(a, -1.0, k - a.v[0]);
+      case Op::neg:
+        return scaled(a, -1.0, -a.v[0]);
       default: {
         double d[4];
         unary_derivatives(op, a.v[0], k, 2, d);
@@ -182,8 +194,10 @@ struct Jet2PairArith {
   }
   [[gnu::always_inline]] static T binary(Op op, const T& a, const T& b) {
     switch (op) {
-      case Op::add: return {a.v + b.v, a.g + b.g, a.h0 + b.h0, a.h1 + b.h1};
-      case Op::sub: return {a.v - b.v, a.g - b.g, a.h0 - b.h0, a.h1 - b.h1};
+      case Op::add:
+        return {a.v + b.v, a.g + b.g, a.h0 + b.h0, a.h1 + b.h1};
+      case Op::sub:
+        return {a.v - b.v, a.g - b.g, a.h0 - b.h0, a.h1 - b.h1};
       case Op::mul: {  // Leibniz: (ab)_ij = a_ij b + a_i b_j + a_j b_i + a b_ij
         const Pair av = splat(a.v[0]), bv = splat(b.v[0]);
         const Pair h0 = a.h0 * bv + splat(a.g[0]) * b.g + a.g * splat(b.g[0]) + av * b.h0;
@@ -198,9 +212,12 @@ struct Jet2PairArith {
         const Pair h1 = (a.h1 - splat(g[1]) * b.g - g * splat(b.g[1]) - qv * b.h1) / bv;
         return {value(q), g, h0, mirror(h0, h1)};
       }
-      case Op::min: return a.v[0] <= b.v[0] ? a : b;
-      case Op::max: return a.v[0] >= b.v[0] ? a : b;
-      default: return constant(binary_value(op, a.v[0], b.v[0]));
+      case Op::min:
+        return a.v[0] <= b.v[0] ? a : b;
+      case Op::max:
+        return a.v[0] >= b.v[0] ? a : b;
+      default:
+        return constant(binary_value(op, a.v[0], b.v[0]));
     }
   }
   static const T& select(const T& c, const T& a, const T& b) { return c.v[0] != 0.0 ? a : b; }
@@ -276,9 +293,12 @@ struct Jet3Arith : JetLeaves<Jet3<N>, N> {
             }
         return r;
       }
-      case Op::min: return a.v <= b.v ? a : b;
-      case Op::max: return a.v >= b.v ? a : b;
-      default: return constant(binary_value(op, a.v, b.v));
+      case Op::min:
+        return a.v <= b.v ? a : b;
+      case Op::max:
+        return a.v >= b.v ? a : b;
+      default:
+        return constant(binary_value(op, a.v, b.v));
     }
   }
   static const T& select(const T& c, const T& a, const T& b) { return c.v != 0.0 ? a : b; }
@@ -382,13 +402,20 @@ struct IntervalArith {
   static T unary_defined(Op op, const T& a, double k) {
     if (bad(a)) return empty();
     switch (op) {
-      case Op::neg: return {-a.hi, -a.lo};
-      case Op::add_k: return widen(a.lo + k, a.hi + k);
-      case Op::mul_k: return mul(a, constant(k));
-      case Op::div_k: return div(a, constant(k));
-      case Op::rsub_k: return widen(k - a.hi, k - a.lo);
-      case Op::rdiv_k: return div(constant(k), a);
-      case Op::pow_int: return pow_int(a, static_cast<int>(k));
+      case Op::neg:
+        return {-a.hi, -a.lo};
+      case Op::add_k:
+        return widen(a.lo + k, a.hi + k);
+      case Op::mul_k:
+        return mul(a, constant(k));
+      case Op::div_k:
+        return div(a, constant(k));
+      case Op::rsub_k:
+        return widen(k - a.hi, k - a.lo);
+      case Op::rdiv_k:
+        return div(constant(k), a);
+      case Op::pow_int:
+        return pow_int(a, static_cast<int>(k));
       case Op::pow_real:
         if (!std::isfinite(k)) return {-kInf, kInf, true};  // x^(+-inf): 0, 1, inf or NaN by |x|
         if (k == std::floor(k)) {  // integral exponents beyond pow_int's range: the power rule's parity
@@ -396,35 +423,66 @@ struct IntervalArith {
           if (k < 0) return div(constant(1.0), unary(Op::pow_real, a, -k));
           return std::fmod(k, 2.0) == 0.0 ? even(a, f) : increasing(a, f);
         }
-        if (k > 0) return increasing(a, [k](double x) { return std::pow(x, k); }, 0.0);
-        return decreasing(a, [k](double x) { return std::pow(x, k); }, 0.0);
-      case Op::sqrt: return increasing(a, [](double x) { return std::sqrt(x); }, 0.0);
-      case Op::exp: return increasing(a, [](double x) { return std::exp(x); });
-      case Op::ln: return increasing(a, [](double x) { return std::log(x); }, 0.0);
-      case Op::log2: return increasing(a, [](double x) { return std::log2(x); }, 0.0);
-      case Op::log10: return increasing(a, [](double x) { return std::log10(x); }, 0.0);
-      case Op::sin: return periodic(a.lo, a.hi, [](double x) { return std::sin(x); }, 0.5 * std::numbers::pi);
-      case Op::cos: return periodic(a.lo, a.hi, [](double x) { return std::cos(x); }, 0.0);
+        if (k > 0)
+          return increasing(
+              a, [k](double x) { return std::pow(x, k); }, 0.0);
+        return decreasing(
+            a, [k](double x) { return std::pow(x, k); }, 0.0);
+      case Op::sqrt:
+        return increasing(
+            a, [](double x) { return std::sqrt(x); }, 0.0);
+      case Op::exp:
+        return increasing(a, [](double x) { return std::exp(x); });
+      case Op::ln:
+        return increasing(
+            a, [](double x) { return std::log(x); }, 0.0);
+      case Op::log2:
+        return increasing(
+            a, [](double x) { return std::log2(x); }, 0.0);
+      case Op::log10:
+        return increasing(
+            a, [](double x) { return std::log10(x); }, 0.0);
+      case Op::sin:
+        return periodic(
+            a.lo, a.hi, [](double x) { return std::sin(x); }, 0.5 * std::numbers::pi);
+      case Op::cos:
+        return periodic(
+            a.lo, a.hi, [](double x) { return std::cos(x); }, 0.0);
       case Op::tan: {
         // A pole pi/2 + k pi inside the interval makes the range unbounded.
         const double k0 = std::floor((a.lo - 0.5 * std::numbers::pi) / std::numbers::pi);
         if (0.5 * std::numbers::pi + (k0 + 1.0) * std::numbers::pi <= a.hi + 1e-12) return {-kInf, kInf};
         return increasing(a, [](double x) { return std::tan(x); });
       }
-      case Op::asin: return increasing(a, [](double x) { return std::asin(x); }, -1.0, 1.0);
-      case Op::acos: return decreasing(a, [](double x) { return std::acos(x); }, -1.0, 1.0);
-      case Op::atan: return increasing(a, [](double x) { return std::atan(x); });
-      case Op::sinh: return increasing(a, [](double x) { return std::sinh(x); });
-      case Op::cosh: return even(a, [](double x) { return std::cosh(x); });
-      case Op::tanh: return increasing(a, [](double x) { return std::tanh(x); });
-      case Op::asinh: return increasing(a, [](double x) { return std::asinh(x); });
-      case Op::acosh: return increasing(a, [](double x) { return std::acosh(x); }, 1.0);
-      case Op::atanh: return increasing(a, [](double x) { return std::atanh(x); }, -1.0, 1.0);
-      case Op::abs: return even(a, [](double x) { return std::fabs(x); });
+      case Op::asin:
+        return increasing(
+            a, [](double x) { return std::asin(x); }, -1.0, 1.0);
+      case Op::acos:
+        return decreasing(
+            a, [](double x) { return std::acos(x); }, -1.0, 1.0);
+      case Op::atan:
+        return increasing(a, [](double x) { return std::atan(x); });
+      case Op::sinh:
+        return increasing(a, [](double x) { return std::sinh(x); });
+      case Op::cosh:
+        return even(a, [](double x) { return std::cosh(x); });
+      case Op::tanh:
+        return increasing(a, [](double x) { return std::tanh(x); });
+      case Op::asinh:
+        return increasing(a, [](double x) { return std::asinh(x); });
+      case Op::acosh:
+        return increasing(
+            a, [](double x) { return std::acosh(x); }, 1.0);
+      case Op::atanh:
+        return increasing(
+            a, [](double x) { return std::atanh(x); }, -1.0, 1.0);
+      case Op::abs:
+        return even(a, [](double x) { return std::fabs(x); });
       case Op::sign:  // sign(NaN) is 0
         return {a.partial ? std::min(0.0, sign_of(a.lo)) : sign_of(a.lo),
                 a.partial ? std::max(0.0, sign_of(a.hi)) : sign_of(a.hi), a.partial};
-      default: return empty();
+      default:
+        return empty();
     }
   }
   static bool surely_nonzero(const T& a) { return a.excludes_zero(); }
@@ -445,23 +503,36 @@ struct IntervalArith {
   }
   static T binary_defined(Op op, const T& a, const T& b) {
     switch (op) {
-      case Op::add: return widen(a.lo + b.lo, a.hi + b.hi);
-      case Op::sub: return widen(a.lo - b.hi, a.hi - b.lo);
-      case Op::mul: return mul(a, b);
-      case Op::div: return div(a, b);
-      case Op::min: return {std::min(a.lo, b.lo), std::min(a.hi, b.hi)};
-      case Op::max: return {std::max(a.lo, b.lo), std::max(a.hi, b.hi)};
-      case Op::lt: return truth(a.hi < b.lo, a.lo >= b.hi);
-      case Op::le: return truth(a.hi <= b.lo, a.lo > b.hi);
-      case Op::gt: return truth(a.lo > b.hi, a.hi <= b.lo);
-      case Op::ge: return truth(a.lo >= b.hi, a.hi < b.lo);
-      case Op::eq: return truth(a.lo == a.hi && b.lo == b.hi && a.lo == b.lo, a.hi < b.lo || b.hi < a.lo);
-      case Op::ne: return truth(a.hi < b.lo || b.hi < a.lo, a.lo == a.hi && b.lo == b.hi && a.lo == b.lo);
+      case Op::add:
+        return widen(a.lo + b.lo, a.hi + b.hi);
+      case Op::sub:
+        return widen(a.lo - b.hi, a.hi - b.lo);
+      case Op::mul:
+        return mul(a, b);
+      case Op::div:
+        return div(a, b);
+      case Op::min:
+        return {std::min(a.lo, b.lo), std::min(a.hi, b.hi)};
+      case Op::max:
+        return {std::max(a.lo, b.lo), std::max(a.hi, b.hi)};
+      case Op::lt:
+        return truth(a.hi < b.lo, a.lo >= b.hi);
+      case Op::le:
+        return truth(a.hi <= b.lo, a.lo > b.hi);
+      case Op::gt:
+        return truth(a.lo > b.hi, a.hi <= b.lo);
+      case Op::ge:
+        return truth(a.lo >= b.hi, a.hi < b.lo);
+      case Op::eq:
+        return truth(a.lo == a.hi && b.lo == b.hi && a.lo == b.lo, a.hi < b.lo || b.hi < a.lo);
+      case Op::ne:
+        return truth(a.hi < b.lo || b.hi < a.lo, a.lo == a.hi && b.lo == b.hi && a.lo == b.lo);
       case Op::logical_and:
         return truth(surely_nonzero(a) && surely_nonzero(b), surely_zero(a) || surely_zero(b));
       case Op::logical_or:
         return truth(surely_nonzero(a) || surely_nonzero(b), surely_zero(a) && surely_zero(b));
-      default: return empty();
+      default:
+        return empty();
     }
   }
   static T select(const T& c, const T& a, const T& b) {  // c ? a : b, and NaN ? a : b is a
@@ -483,21 +554,47 @@ void run(const Program::Tape& tape, const typename Arith::Input* inputs, typenam
     // The frequent ops get a case with a constant Op, so that the inlined arithmetic's own switch
     // folds away; the rest share the generic calls.
     switch (node.op) {
-      case Op::constant: regs[i] = Arith::constant(node.k); break;
-      case Op::variable: regs[i] = Arith::variable(inputs, static_cast<int>(node.k)); break;
-      case Op::select: regs[i] = Arith::select(regs[node.c], regs[node.a], regs[node.b]); break;
-      case Op::add: regs[i] = Arith::binary(Op::add, regs[node.a], regs[node.b]); break;
-      case Op::sub: regs[i] = Arith::binary(Op::sub, regs[node.a], regs[node.b]); break;
-      case Op::mul: regs[i] = Arith::binary(Op::mul, regs[node.a], regs[node.b]); break;
-      case Op::div: regs[i] = Arith::binary(Op::div, regs[node.a], regs[node.b]); break;
-      case Op::add_k: regs[i] = Arith::unary(Op::add_k, regs[node.a], node.k); break;
-      case Op::mul_k: regs[i] = Arith::unary(Op::mul_k, regs[node.a], node.k); break;
-      case Op::pow_int: regs[i] = Arith::unary(Op::pow_int, regs[node.a], node.k); break;
-      case Op::sin: regs[i] = Arith::unary(Op::sin, regs[node.a], node.k); break;
-      case Op::cos: regs[i] = Arith::unary(Op::cos, regs[node.a], node.k); break;
+      case Op::constant:
+        regs[i] = Arith::constant(node.k);
+        break;
+      case Op::variable:
+        regs[i] = Arith::variable(inputs, static_cast<int>(node.k));
+        break;
+      case Op::select:
+        regs[i] = Arith::select(regs[node.c], regs[node.a], regs[node.b]);
+        break;
+      case Op::add:
+        regs[i] = Arith::binary(Op::add, regs[node.a], regs[node.b]);
+        break;
+      case Op::sub:
+        regs[i] = Arith::binary(Op::sub, regs[node.a], regs[node.b]);
+        break;
+      case Op::mul:
+        regs[i] = Arith::binary(Op::mul, regs[node.a], regs[node.b]);
+        break;
+      case Op::div:
+        regs[i] = Arith::binary(Op::div, regs[node.a], regs[node.b]);
+        break;
+      case Op::add_k:
+        regs[i] = Arith::unary(Op::add_k, regs[node.a], node.k);
+        break;
+      case Op::mul_k:
+        regs[i] = Arith::unary(Op::mul_k, regs[node.a], node.k);
+        break;
+      case Op::pow_int:
+        regs[i] = Arith::unary(Op::pow_int, regs[node.a], node.k);
+        break;
+      case Op::sin:
+        regs[i] = Arith::unary(Op::sin, regs[node.a], node.k);
+        break;
+      case Op::cos:
+        regs[i] = Arith::unary(Op::cos, regs[node.a], node.k);
+        break;
       default:
-        if (is_binary(node.op)) regs[i] = Arith::binary(node.op, regs[node.a], regs[node.b]);
-        else regs[i] = Arith::unary(node.op, regs[node.a], node.k);
+        if (is_binary(node.op))
+          regs[i] = Arith::binary(node.op, regs[node.a], regs[node.b]);
+        else
+          regs[i] = Arith::unary(node.op, regs[node.a], node.k);
     }
   }
   for (std::size_t k = 0; k < tape.outputs.size(); ++k) outputs[k] = Arith::output(regs[tape.outputs[k]]);
@@ -520,7 +617,8 @@ std::size_t Program::num_nodes() const { return tape_->nodes.size(); }
 bool Program::sum_of_monomials() const { return tape_->polynomial.has_value(); }
 std::size_t Program::memory_bytes() const {
   return sizeof(Tape) + tape_->nodes.capacity() * sizeof(Node) +
-         (tape_->polynomial ? tape_->polynomial->memory_bytes() : 0) + tape_->outputs.capacity() * sizeof(std::int32_t);
+         (tape_->polynomial ? tape_->polynomial->memory_bytes() : 0) +
+         tape_->outputs.capacity() * sizeof(std::int32_t);
 }
 
 void Program::values(const double* x, double* out) const { run<ValueArith>(*tape_, x, out); }
@@ -528,8 +626,10 @@ void Program::values(const double* x, double* out) const { run<ValueArith>(*tape
 template <int N>
 void Program::jets2(const double* x, Jet2<N>* out) const {
   if (tape_->polynomial) return polynomial_jets2<N>(*tape_->polynomial, x, out);
-  if constexpr (N == 2) run<Jet2PairArith>(*tape_, x, out);
-  else run<Jet2Arith<N>>(*tape_, x, out);
+  if constexpr (N == 2)
+    run<Jet2PairArith>(*tape_, x, out);
+  else
+    run<Jet2Arith<N>>(*tape_, x, out);
 }
 
 template <int N>

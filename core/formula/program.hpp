@@ -46,10 +46,8 @@ class Program {
   // Compiles the formulas over the given variable names (in that order: input i of every
   // evaluation is variables[i]). `constants` are user constants (name -> value) usable in the
   // formulas; `_pi` and `_e` are always defined to full double precision. Throws FormulaError.
-  static Program compile(const std::vector<NamedFormula>& formulas,
-                         const std::vector<std::string>& variables,
-                         const std::map<std::string, double>& constants,
-                         const CompileLimits& limits = {});
+  static Program compile(const std::vector<NamedFormula>& formulas, const std::vector<std::string>& variables,
+                         const std::map<std::string, double>& constants, const CompileLimits& limits = {});
 
   int num_inputs() const;
   int num_outputs() const;

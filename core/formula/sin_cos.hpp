@@ -58,24 +58,40 @@ inline void sin_cos(double x, double* sin_x, double* cos_x) {
   // z = r^2 exactly as z + z_lo (Dekker's product)
   const double z = r * r;
   const double z_lo = product_error(r, r, z);
-  const double sin_tail = r * z *
-                          (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 + z * (1.0 / 362880 +
-                          z * (-1.0 / 39916800 + z * (1.0 / 6227020800 + z * (-1.0 / 1307674368000 +
-                          z * (1.0 / 355687428096000))))))));
-  const double cos_tail = z * z *
-                          (1.0 / 24 + z * (-1.0 / 720 + z * (1.0 / 40320 + z * (-1.0 / 3628800 +
-                          z * (1.0 / 479001600 + z * (-1.0 / 87178291200 + z * (1.0 / 20922789888000 +
-                          z * (-1.0 / 6402373705728000))))))));
+  const double sin_tail =
+      r * z *
+      (-1.0 / 6 +
+       z * (1.0 / 120 +
+            z * (-1.0 / 5040 +
+                 z * (1.0 / 362880 +
+                      z * (-1.0 / 39916800 + z * (1.0 / 6227020800 + z * (-1.0 / 1307674368000 +
+                                                                          z * (1.0 / 355687428096000))))))));
+  const double cos_tail =
+      z * z *
+      (1.0 / 24 +
+       z * (-1.0 / 720 +
+            z * (1.0 / 40320 +
+                 z * (-1.0 / 3628800 + z * (1.0 / 479001600 + z * (-1.0 / 87178291200 +
+                                                                   z * (1.0 / 20922789888000 +
+                                                                        z * (-1.0 / 6402373705728000))))))));
   // sin(r + r_lo) = sin r + r_lo cos r: r_lo (1 - z/2) to first order is r_lo within 2^-54
   const double s = r + (r_lo + sin_tail);
   // cos(r + r_lo) = cos r - r_lo sin r; 1 - z/2 as w plus its rounding error
   const double hz = 0.5 * z, w = 1.0 - hz;
   const double c = w + ((((1.0 - w) - hz) - 0.5 * z_lo) + (cos_tail - r * r_lo));
   switch (quadrant) {
-    case 0: *sin_x = s, *cos_x = c; break;
-    case 1: *sin_x = c, *cos_x = -s; break;
-    case 2: *sin_x = -s, *cos_x = -c; break;
-    default: *sin_x = -c, *cos_x = s; break;
+    case 0:
+      *sin_x = s, *cos_x = c;
+      break;
+    case 1:
+      *sin_x = c, *cos_x = -s;
+      break;
+    case 2:
+      *sin_x = -s, *cos_x = -c;
+      break;
+    default:
+      *sin_x = -c, *cos_x = s;
+      break;
   }
 }
 

@@ -12,25 +12,55 @@ namespace footpoint::formula {
 
 enum class Op : std::uint8_t {
   // leaves
-  constant, variable,
+  constant,
+  variable,
   // arithmetic
-  add, sub, mul, div, neg,
+  add,
+  sub,
+  mul,
+  div,
+  neg,
   // arithmetic with a constant operand k (node.k): cheaper jets than the general rules
-  add_k,   // a + k   (a - k is a + (-k), exact)
-  mul_k,   // a * k
-  div_k,   // a / k
-  rsub_k,  // k - a
-  rdiv_k,  // k / a
-  pow,        // a^b while building only: the tape holds pow_int, pow_real or exp(b ln a)
-  pow_int,    // a^k, k integer (node.k): ordinary power rule, fine for a < 0
-  pow_real,   // a^c, c a non-integer constant (node.k)
+  add_k,     // a + k   (a - k is a + (-k), exact)
+  mul_k,     // a * k
+  div_k,     // a / k
+  rsub_k,    // k - a
+  rdiv_k,    // k / a
+  pow,       // a^b while building only: the tape holds pow_int, pow_real or exp(b ln a)
+  pow_int,   // a^k, k integer (node.k): ordinary power rule, fine for a < 0
+  pow_real,  // a^c, c a non-integer constant (node.k)
   // elementary functions of one argument
-  sqrt, exp, ln, log2, log10, sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, asinh, acosh, atanh,
-  abs, sign,
+  sqrt,
+  exp,
+  ln,
+  log2,
+  log10,
+  sin,
+  cos,
+  tan,
+  asin,
+  acos,
+  atan,
+  sinh,
+  cosh,
+  tanh,
+  asinh,
+  acosh,
+  atanh,
+  abs,
+  sign,
   // two arguments, piecewise
-  min, max,
+  min,
+  max,
   // comparisons and logic (value 0 or 1, zero derivatives)
-  lt, le, gt, ge, eq, ne, logical_and, logical_or,
+  lt,
+  le,
+  gt,
+  ge,
+  eq,
+  ne,
+  logical_and,
+  logical_or,
   // c ? a : b
   select,
 };
@@ -38,7 +68,7 @@ enum class Op : std::uint8_t {
 struct Node {
   Op op;
   std::int32_t a = -1, b = -1, c = -1;  // operand node indices
-  double k = 0.0;                      // constant value, variable index or exponent
+  double k = 0.0;                       // constant value, variable index or exponent
 };
 
 struct Program::Tape {

@@ -21,12 +21,18 @@ FormulaError::FormulaError(Kind kind, std::string formula, int position, std::st
 
 const char* to_string(FormulaError::Kind kind) {
   switch (kind) {
-    case FormulaError::Kind::syntax: return "formula_syntax";
-    case FormulaError::Kind::unknown_variable: return "unknown_variable";
-    case FormulaError::Kind::empty: return "empty_formula";
-    case FormulaError::Kind::too_long: return "formula_too_long";
-    case FormulaError::Kind::too_complex: return "formula_too_complex";
-    case FormulaError::Kind::bad_constant: return "bad_constant";
+    case FormulaError::Kind::syntax:
+      return "formula_syntax";
+    case FormulaError::Kind::unknown_variable:
+      return "unknown_variable";
+    case FormulaError::Kind::empty:
+      return "empty_formula";
+    case FormulaError::Kind::too_long:
+      return "formula_too_long";
+    case FormulaError::Kind::too_complex:
+      return "formula_too_complex";
+    case FormulaError::Kind::bad_constant:
+      return "bad_constant";
   }
   return "formula_error";
 }
@@ -91,7 +97,8 @@ class TapeBuilder {
       if (op == Op::mul) return k == 1.0 ? b : add({Op::mul_k, b, -1, -1, k});
       if (op == Op::div) return add({Op::rdiv_k, b, -1, -1, k});
     }
-    if ((op == Op::add || op == Op::mul || op == Op::min || op == Op::max || op == Op::eq || op == Op::ne) && a > b)
+    if ((op == Op::add || op == Op::mul || op == Op::min || op == Op::max || op == Op::eq || op == Op::ne) &&
+        a > b)
       std::swap(a, b);  // commutative: one canonical order, so a+b and b+a share a node
     return add({op, a, b, -1, 0.0});
   }
@@ -181,7 +188,8 @@ class TapeBuilder {
 
 bool is_identifier(const std::string& s) {
   if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
-  return std::all_of(s.begin(), s.end(), [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; });
+  return std::all_of(s.begin(), s.end(),
+                     [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; });
 }
 
 std::string join(const std::vector<std::string>& names) {
@@ -192,20 +200,34 @@ std::string join(const std::vector<std::string>& names) {
 
 Op binary_op_of(mu::ECmdCode code) {
   switch (code) {
-    case mu::cmLE: return Op::le;
-    case mu::cmGE: return Op::ge;
-    case mu::cmNEQ: return Op::ne;
-    case mu::cmEQ: return Op::eq;
-    case mu::cmLT: return Op::lt;
-    case mu::cmGT: return Op::gt;
-    case mu::cmADD: return Op::add;
-    case mu::cmSUB: return Op::sub;
-    case mu::cmMUL: return Op::mul;
-    case mu::cmDIV: return Op::div;
-    case mu::cmPOW: return Op::pow;
-    case mu::cmLAND: return Op::logical_and;
-    case mu::cmLOR: return Op::logical_or;
-    default: return Op::constant;
+    case mu::cmLE:
+      return Op::le;
+    case mu::cmGE:
+      return Op::ge;
+    case mu::cmNEQ:
+      return Op::ne;
+    case mu::cmEQ:
+      return Op::eq;
+    case mu::cmLT:
+      return Op::lt;
+    case mu::cmGT:
+      return Op::gt;
+    case mu::cmADD:
+      return Op::add;
+    case mu::cmSUB:
+      return Op::sub;
+    case mu::cmMUL:
+      return Op::mul;
+    case mu::cmDIV:
+      return Op::div;
+    case mu::cmPOW:
+      return Op::pow;
+    case mu::cmLAND:
+      return Op::logical_and;
+    case mu::cmLOR:
+      return Op::logical_or;
+    default:
+      return Op::constant;
   }
 }
 
@@ -232,11 +254,14 @@ Program::Tape build_tape(const std::vector<NamedFormula>& formulas, const std::v
   for (const auto& formula : formulas) {
     const std::string& text = formula.expression;
     if (text.size() > limits.max_formula_length)
-      throw FormulaError(FormulaError::Kind::too_long, formula.name, static_cast<int>(limits.max_formula_length),
+      throw FormulaError(FormulaError::Kind::too_long, formula.name,
+                         static_cast<int>(limits.max_formula_length),
                          "formula " + formula.name + " has " + std::to_string(text.size()) +
                              " characters; the limit is " + std::to_string(limits.max_formula_length));
-    if (std::all_of(text.begin(), text.end(), [](char ch) { return std::isspace(static_cast<unsigned char>(ch)); }))
-      throw FormulaError(FormulaError::Kind::empty, formula.name, -1, "formula " + formula.name + " is empty");
+    if (std::all_of(text.begin(), text.end(),
+                    [](char ch) { return std::isspace(static_cast<unsigned char>(ch)); }))
+      throw FormulaError(FormulaError::Kind::empty, formula.name, -1,
+                         "formula " + formula.name + " is empty");
 
     mu::Parser parser;
     try {
@@ -249,8 +274,10 @@ Program::Tape build_tape(const std::vector<NamedFormula>& formulas, const std::v
       parser.DefineInfixOprt("+", unary_plus);
       for (const auto& f : kFunctions) {
         void* entry = const_cast<FunctionEntry*>(&f);
-        if (f.arity == 1) parser.DefineFunUserData(f.name, call_unary, entry);
-        else parser.DefineFunUserData(f.name, call_variadic, entry);
+        if (f.arity == 1)
+          parser.DefineFunUserData(f.name, call_unary, entry);
+        else
+          parser.DefineFunUserData(f.name, call_variadic, entry);
       }
       parser.DefineConst("_pi", std::numbers::pi);  // muparser's own _pi has 13 digits only
       parser.DefineConst("_e", std::numbers::e);
@@ -284,7 +311,9 @@ Program::Tape build_tape(const std::vector<NamedFormula>& formulas, const std::v
     for (std::size_t i = 0; i < bytecode.GetSize() && tokens[i].Cmd != mu::cmEND; ++i) {
       const mu::SToken& tok = tokens[i];
       switch (tok.Cmd) {
-        case mu::cmVAL: stack.push_back(builder.constant(tok.Val.data2)); break;
+        case mu::cmVAL:
+          stack.push_back(builder.constant(tok.Val.data2));
+          break;
         case mu::cmVAR: {
           // muparser's variable token means data * var + data2 (1 and 0 with the optimizer off).
           std::int32_t v = variable_of(tok.Val.ptr);
@@ -293,15 +322,22 @@ Program::Tape build_tape(const std::vector<NamedFormula>& formulas, const std::v
           stack.push_back(v);
           break;
         }
-        case mu::cmVARPOW2: case mu::cmVARPOW3: case mu::cmVARPOW4:
-          stack.push_back(builder.unary(Op::pow_int, variable_of(tok.Val.ptr), 2.0 + (tok.Cmd - mu::cmVARPOW2)));
+        case mu::cmVARPOW2:
+        case mu::cmVARPOW3:
+        case mu::cmVARPOW4:
+          stack.push_back(
+              builder.unary(Op::pow_int, variable_of(tok.Val.ptr), 2.0 + (tok.Cmd - mu::cmVARPOW2)));
           break;
         case mu::cmVARMUL:
-          stack.push_back(builder.binary(Op::add, builder.binary(Op::mul, builder.constant(tok.Val.data), variable_of(tok.Val.ptr)),
-                                         builder.constant(tok.Val.data2)));
+          stack.push_back(builder.binary(
+              Op::add, builder.binary(Op::mul, builder.constant(tok.Val.data), variable_of(tok.Val.ptr)),
+              builder.constant(tok.Val.data2)));
           break;
-        case mu::cmIF: conditions.push_back(pop()); break;
-        case mu::cmELSE: break;
+        case mu::cmIF:
+          conditions.push_back(pop());
+          break;
+        case mu::cmELSE:
+          break;
         case mu::cmENDIF: {
           const std::int32_t b = pop(), a = pop(), c = conditions.back();
           conditions.pop_back();
@@ -341,8 +377,9 @@ Program::Tape build_tape(const std::vector<NamedFormula>& formulas, const std::v
         }
       }
       if (builder.full())
-        throw FormulaError(FormulaError::Kind::too_complex, formula.name, -1,
-                           "formulas are too complex: more than " + std::to_string(limits.max_nodes) + " operations");
+        throw FormulaError(
+            FormulaError::Kind::too_complex, formula.name, -1,
+            "formulas are too complex: more than " + std::to_string(limits.max_nodes) + " operations");
     }
     if (stack.size() != 1)
       throw FormulaError(FormulaError::Kind::syntax, formula.name, -1,

@@ -16,9 +16,10 @@ CompileBudget::~CompileBudget() { t_deadline = previous_; }
 void CompileBudget::check() {
   if (t_deadline == clock::time_point::max() || (++t_calls & 63u) != 0) return;
   if (clock::now() >= t_deadline)
-    throw GeometryError("compile_timeout", "", -1,
-                        "building the geometry's search structure did not finish within the request deadline; "
-                        "simplify the formulas or shrink the domain");
+    throw GeometryError(
+        "compile_timeout", "", -1,
+        "building the geometry's search structure did not finish within the request deadline; "
+        "simplify the formulas or shrink the domain");
 }
 
 }  // namespace footpoint

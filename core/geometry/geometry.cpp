@@ -10,9 +10,12 @@ namespace footpoint {
 
 const char* to_string(GeometryType t) {
   switch (t) {
-    case GeometryType::parametric_surface: return "parametric_surface";
-    case GeometryType::parametric_curve: return "parametric_curve";
-    case GeometryType::implicit_curve: return "implicit_curve";
+    case GeometryType::parametric_surface:
+      return "parametric_surface";
+    case GeometryType::parametric_curve:
+      return "parametric_curve";
+    case GeometryType::implicit_curve:
+      return "implicit_curve";
   }
   return "unknown";
 }
@@ -36,7 +39,8 @@ std::string GeometryDefinition::canonical() const {
     for (char ch : f.expression)
       if (!std::isspace(static_cast<unsigned char>(ch))) s += ch;
   }
-  for (const auto& [name, range] : domain) s += ";domain." + name + "=[" + shortest(range[0]) + ',' + shortest(range[1]) + ']';
+  for (const auto& [name, range] : domain)
+    s += ";domain." + name + "=[" + shortest(range[0]) + ',' + shortest(range[1]) + ']';
   for (const auto& [name, value] : constants) s += ";constants." + name + '=' + shortest(value);
   return s;
 }
@@ -59,7 +63,8 @@ formula::Program compile_formulas(const GeometryDefinition& def, const std::vect
 
 void validate_domain(const GeometryDefinition& def, const std::vector<std::string>& names) {
   for (const auto& name : names) {
-    auto it = std::find_if(def.domain.begin(), def.domain.end(), [&](const auto& d) { return d.first == name; });
+    auto it =
+        std::find_if(def.domain.begin(), def.domain.end(), [&](const auto& d) { return d.first == name; });
     if (it == def.domain.end())
       throw GeometryError("bad_domain", "domain." + name, -1, "domain." + name + " is missing");
     const auto [lo, hi] = it->second;

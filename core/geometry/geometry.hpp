@@ -40,7 +40,9 @@ struct GeometryDefinition {
 // names the offending field ("x", "equations[1]", "domain.u"), `position` the character (or -1).
 struct GeometryError : std::runtime_error {
   GeometryError(std::string code, std::string field, int position, std::string message)
-      : std::runtime_error(std::move(message)), code(std::move(code)), field(std::move(field)),
+      : std::runtime_error(std::move(message)),
+        code(std::move(code)),
+        field(std::move(field)),
         position(position) {}
   std::string code;
   std::string field;
@@ -63,8 +65,8 @@ class CompiledGeometry {
   const GeometryDefinition& definition() const { return definition_; }
   const std::string& id() const { return id_; }
 
-  virtual int point_dim() const = 0;    // 3, or 2 for planar curves
-  virtual int num_params() const = 0;   // 2 surfaces, 1 parametric curves, 0 implicit curves
+  virtual int point_dim() const = 0;   // 3, or 2 for planar curves
+  virtual int num_params() const = 0;  // 2 surfaces, 1 parametric curves, 0 implicit curves
   virtual const std::vector<MethodInfo>& methods() const = 0;
   bool has_method(std::string_view name) const;
   // Projects the point p (point_dim() coordinates). `method` must be one of methods().

@@ -68,9 +68,11 @@ const std::vector<MethodInfo>& spatial_methods() {
        "global nearest point in the box: interval subdivision finds every piece of the curve, samples "
        "seed Newton on the Lagrange system; singular points and box-face crossings are candidates",
        ""},
-      {"steepest_descent", "Newton steepest-descent steps alternately onto f1 = 0 and f2 = 0 (lands on the curve)",
+      {"steepest_descent",
+       "Newton steepest-descent steps alternately onto f1 = 0 and f2 = 0 (lands on the curve)",
        "spatial-algebraic-curve (Algorithm 1, eq. (9))"},
-      {"foot_point_march", "Algorithm 1 and the tangent foot point Q alternated until the curve point stops moving",
+      {"foot_point_march",
+       "Algorithm 1 and the tangent foot point Q alternated until the curve point stops moving",
        "spatial-algebraic-curve (Algorithms 1 + 2, eqs. (10)-(13))"},
       {"accelerated", "Algorithm 1, then the accelerating and correcting iteration",
        "spatial-algebraic-curve (Algorithm 3, eqs. (14)-(19))"},
@@ -107,7 +109,8 @@ const std::vector<MethodInfo>& ImplicitCurve::methods() const {
   return equations_.planar() ? planar_methods() : spatial_methods();
 }
 
-ProjectionResult ImplicitCurve::project(const double* p, std::string_view method, const Options& options) const {
+ProjectionResult ImplicitCurve::project(const double* p, std::string_view method,
+                                        const Options& options) const {
   const bool planar = equations_.planar();
   const Vec3 q{p[0], p[1], planar ? 0.0 : p[2]};
   if (method == "auto") return curve::implicit_curve_auto(*this, q, options);
@@ -139,8 +142,8 @@ std::shared_ptr<const CompiledGeometry> compile_implicit_curve(const GeometryDef
       throw GeometryError("wrong_shape", def.formulas[i].name, -1,
                           "implicit curve formulas are named equations[0], equations[1]");
   const bool planar = n == 1;
-  const std::vector<std::string> names = planar ? std::vector<std::string>{"x", "y"}
-                                                : std::vector<std::string>{"x", "y", "z"};
+  const std::vector<std::string> names =
+      planar ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"};
   validate_domain(def, names);
   formula::Program program = compile_formulas(def, names, limits);
   Box3 box;  // planar curves keep lo.z = hi.z = 0

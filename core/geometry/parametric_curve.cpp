@@ -31,7 +31,8 @@ const std::vector<MethodInfo>& ParametricCurve::methods() const {
   return methods;
 }
 
-ProjectionResult ParametricCurve::project(const double* p, std::string_view method, const Options& options) const {
+ProjectionResult ParametricCurve::project(const double* p, std::string_view method,
+                                          const Options& options) const {
   const Vec3 q{p[0], p[1], formulas_.dim() == 3 ? p[2] : 0.0};
   if (method == "auto") return curve::parametric_curve_auto(*this, q, options);
   if (method == "newton") return curve::parametric_newton(*this, q, options);
@@ -48,14 +49,17 @@ std::shared_ptr<const CompiledGeometry> compile_parametric_curve(const GeometryD
   static const char* const names[] = {"x", "y", "z"};
   const std::size_t n = def.formulas.size();
   if (n != 2 && n != 3)
-    throw GeometryError("wrong_shape", "formulas", -1, "a parametric curve has formulas x, y (planar) or x, y, z");
+    throw GeometryError("wrong_shape", "formulas", -1,
+                        "a parametric curve has formulas x, y (planar) or x, y, z");
   for (std::size_t i = 0; i < n; ++i)
     if (def.formulas[i].name != names[i])
-      throw GeometryError("wrong_shape", def.formulas[i].name, -1, "parametric curve formulas are x, y[, z] in order");
+      throw GeometryError("wrong_shape", def.formulas[i].name, -1,
+                          "parametric curve formulas are x, y[, z] in order");
   validate_domain(def, {"t"});
   formula::Program program = compile_formulas(def, {"t"}, limits);
   const auto& range = def.domain.front().second;
-  return std::make_shared<ParametricCurve>(def, CurveFormulas(std::move(program)), ParamInterval{range[0], range[1]});
+  return std::make_shared<ParametricCurve>(def, CurveFormulas(std::move(program)),
+                                           ParamInterval{range[0], range[1]});
 }
 
 }  // namespace footpoint

@@ -20,7 +20,8 @@ struct CurveJet {
 class CurveFormulas {
  public:
   // `program` has the input t and the outputs x, y[, z].
-  explicit CurveFormulas(formula::Program program) : program_(std::move(program)), dim_(program_.num_outputs()) {}
+  explicit CurveFormulas(formula::Program program)
+      : program_(std::move(program)), dim_(program_.num_outputs()) {}
   int dim() const { return dim_; }
   Vec3 point(double t) const {
     double out[3] = {0.0, 0.0, 0.0};

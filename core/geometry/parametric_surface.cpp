@@ -15,8 +15,9 @@ namespace {
 
 const std::vector<MethodInfo>& surface_methods() {
   static const std::vector<MethodInfo> methods = {
-      {"auto", "global nearest point over the closed domain (edges and corners included): cached cell bounds, "
-               "bound-constrained Newton from the surviving cells",
+      {"auto",
+       "global nearest point over the closed domain (edges and corners included): cached cell bounds, "
+       "bound-constrained Newton from the surviving cells",
        ""},
       {"gsa", "Geometric Strategy Algorithm: normal-curvature sphere step, unclamped from a start",
        "gsa-parametric-surface (Algorithm 1, eqs. (3)-(20))"},
@@ -40,11 +41,15 @@ std::array<double, 2> domain_of(const GeometryDefinition& def, const std::string
 
 ParametricSurface::ParametricSurface(GeometryDefinition def, formula::Program program, const ParamBox& box,
                                      const SurfaceSeedingOptions& seeding)
-    : CompiledGeometry(std::move(def)), formulas_(std::move(program)), box_(box), cells_(formulas_, box_, seeding) {}
+    : CompiledGeometry(std::move(def)),
+      formulas_(std::move(program)),
+      box_(box),
+      cells_(formulas_, box_, seeding) {}
 
 const std::vector<MethodInfo>& ParametricSurface::methods() const { return surface_methods(); }
 
-ProjectionResult ParametricSurface::project(const double* p, std::string_view method, const Options& options) const {
+ProjectionResult ParametricSurface::project(const double* p, std::string_view method,
+                                            const Options& options) const {
   const Vec3 point{p[0], p[1], p[2]};
   if (method == "auto") return surface::project_auto(cells_, formulas_, box_, point, options);
   if (method == "gsa") return surface::project_gsa(formulas_, box_, point, options);

@@ -16,7 +16,8 @@ inline bool is_finite(const SurfaceJet& j) {
 // s(t + δ) to second order: s + s_u δu + s_v δv + ½ (s_uu δu^2 + 2 s_uv δu δv + s_vv δv^2) (the
 // quadratic model of a cell, a Newton model's foot point, an expanded last Newton step).
 inline Vec3 taylor_point(const SurfaceJet& j, double du, double dv) {
-  return j.s + j.su * du + j.sv * dv + 0.5 * (j.suu * (du * du) + 2.0 * j.suv * (du * dv) + j.svv * (dv * dv));
+  return j.s + j.su * du + j.sv * dv +
+         0.5 * (j.suu * (du * du) + 2.0 * j.suv * (du * dv) + j.svv * (dv * dv));
 }
 struct SurfaceJet3 : SurfaceJet {
   Vec3 suuu, suuv, suvv, svvv;

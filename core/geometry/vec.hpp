@@ -16,8 +16,14 @@ inline Vec3 operator-(Vec3 a) { return {-a.x, -a.y, -a.z}; }
 inline Vec3 operator*(double s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
 inline Vec3 operator*(Vec3 a, double s) { return s * a; }
 inline Vec3 operator/(Vec3 a, double s) { return {a.x / s, a.y / s, a.z / s}; }
-inline Vec3& operator+=(Vec3& a, Vec3 b) { a = a + b; return a; }
-inline Vec3& operator-=(Vec3& a, Vec3 b) { a = a - b; return a; }
+inline Vec3& operator+=(Vec3& a, Vec3 b) {
+  a = a + b;
+  return a;
+}
+inline Vec3& operator-=(Vec3& a, Vec3 b) {
+  a = a - b;
+  return a;
+}
 inline double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline Vec3 cross(Vec3 a, Vec3 b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};

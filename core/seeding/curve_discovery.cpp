@@ -116,7 +116,8 @@ class Discovery {
     for (int i = 0; i < 2; ++i) {
       double h2 = 0.0;
       for (const Vec3& row : j.hess[i]) h2 += norm2(row);
-      if (std::fabs(j.f[i]) > kModelMargin * (norm(j.grad[i]) * r + 0.5 * std::sqrt(h2) * r * r)) empty = true;
+      if (std::fabs(j.f[i]) > kModelMargin * (norm(j.grad[i]) * r + 0.5 * std::sqrt(h2) * r * r))
+        empty = true;
     }
     if (empty) return false;
     const double g0 = norm(j.grad[0]), g1 = norm(j.grad[1]);
@@ -158,7 +159,8 @@ class Discovery {
     if (occupancy_->near(samples().points, cell.center(), 0.5 * grid_.max_edge())) return;
     Vec3 x = cell.center();
     if (curve::newton_onto_curve(eq_, x) && norm(x - cell.center()) <= cell.diagonal() &&
-        box_.contains(x, 1e-12 * std::max(1.0, norm(x))) && !occupancy_->near(samples().points, x, 0.5 * settings_.max_step))
+        box_.contains(x, 1e-12 * std::max(1.0, norm(x))) &&
+        !occupancy_->near(samples().points, x, 0.5 * settings_.max_step))
       seed(x);
   }
 
@@ -244,7 +246,8 @@ class Discovery {
       samples().link(forward_last, forward.joined_to);
     // The other way; on a loop whose first walk stopped early it closes on that walk's end.
     const Vec3 close_on = samples().points[static_cast<std::size_t>(forward_last)];
-    const TraceOutcome backward = trace_curve(eq_, box_, x, -t, close_on, settings_, *occupancy_, samples(), first);
+    const TraceOutcome backward =
+        trace_curve(eq_, box_, x, -t, close_on, settings_, *occupancy_, samples(), first);
     // Link the backward points before the seed: walking order reversed.
     std::int32_t after = first;
     for (const Vec3& p : backward.points) {
@@ -277,7 +280,8 @@ class Discovery {
     double longest = 0.0;
     Vec3 lo{}, hi{};
     for (std::size_t i = 0; i < s.size(); ++i) {
-      if (s.next[i] >= 0) longest = std::max(longest, norm(s.points[static_cast<std::size_t>(s.next[i])] - s.points[i]));
+      if (s.next[i] >= 0)
+        longest = std::max(longest, norm(s.points[static_cast<std::size_t>(s.next[i])] - s.points[i]));
       for (int k = 0; k < 3; ++k) {
         lo[k] = i == 0 ? s.points[i][k] : std::min(lo[k], s.points[i][k]);
         hi[k] = i == 0 ? s.points[i][k] : std::max(hi[k], s.points[i][k]);

@@ -29,8 +29,8 @@ struct DiscoveryStats {
   int face_crossings = 0;
   int singular_points = 0;
   std::size_t certification_tests = 0;  // jets evaluated to certify kept cells as nearly flat
-  int unresolved_cells = 0;        // cells kept by the enclosure where no curve point was found
-  bool enclosure_truncated = false;  // the enclosure stopped at its cell budget (coarser cells)
+  int unresolved_cells = 0;             // cells kept by the enclosure where no curve point was found
+  bool enclosure_truncated = false;     // the enclosure stopped at its cell budget (coarser cells)
   double seconds = 0.0;
 };
 

@@ -63,8 +63,10 @@ void refine_cell(const ImplicitEquations& equations, const CellGrid& grid, const
     bool valid = true;
     for (int k = 0; k < 3; ++k) {
       const int bit = (m >> k) & 1;
-      if (split[k]) c[k] = 2 * parent[k] + bit;
-      else if (bit) valid = false;
+      if (split[k])
+        c[k] = 2 * parent[k] + bit;
+      else if (bit)
+        valid = false;
     }
     if (!valid) continue;
     ++tests;
@@ -73,7 +75,8 @@ void refine_cell(const ImplicitEquations& equations, const CellGrid& grid, const
   }
 }
 
-CurveEnclosure enclose_curve(const ImplicitEquations& equations, const Box3& box, const EnclosureSettings& settings) {
+CurveEnclosure enclose_curve(const ImplicitEquations& equations, const Box3& box,
+                             const EnclosureSettings& settings) {
   CurveEnclosure e;
   e.grid.box = box;
   ++e.tests;
@@ -89,7 +92,8 @@ CurveEnclosure enclose_curve(const ImplicitEquations& equations, const Box3& box
         bound.hi[k] = std::max(bound.hi[k], b.hi[k]);
       }
     }
-    if (e.grid.max_edge() <= bound.diagonal() / settings.cells_across || e.levels >= settings.max_levels) break;
+    if (e.grid.max_edge() <= bound.diagonal() / settings.cells_across || e.levels >= settings.max_levels)
+      break;
     if (e.cells.size() * 8 > settings.max_cells) {
       e.truncated = true;
       break;

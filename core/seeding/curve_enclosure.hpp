@@ -38,19 +38,20 @@ struct EnclosureSettings {
   // that remain (the curve's size, as far as intervals can tell): fine enough that a cell holds a
   // simple piece of a curve, coarse enough to be cheap.
   double cells_across = 48.0;
-  int max_levels = 21;              // 2^21 cells per axis fit the 21-bit fields of CellGrid::key
-  std::size_t max_cells = 400000;   // budget: stop refining (coarser enclosure) beyond this
+  int max_levels = 21;             // 2^21 cells per axis fit the 21-bit fields of CellGrid::key
+  std::size_t max_cells = 400000;  // budget: stop refining (coarser enclosure) beyond this
 };
 
 struct CurveEnclosure {
   CellGrid grid;
   std::vector<CellIndex> cells;
   int levels = 0;
-  std::size_t tests = 0;     // interval evaluations
-  bool truncated = false;    // stopped by the cell budget, not by the size criterion
+  std::size_t tests = 0;   // interval evaluations
+  bool truncated = false;  // stopped by the cell budget, not by the size criterion
 };
 
-CurveEnclosure enclose_curve(const ImplicitEquations& equations, const Box3& box, const EnclosureSettings& settings = {});
+CurveEnclosure enclose_curve(const ImplicitEquations& equations, const Box3& box,
+                             const EnclosureSettings& settings = {});
 
 // The cells of `grid` one level finer inside `parent`'s cell that may hold curve points.
 void refine_cell(const ImplicitEquations& equations, const CellGrid& grid, const CellIndex& parent,

@@ -54,8 +54,8 @@ CurveSamples sample_parametric_curve(const CurveFormulas& formulas, const ParamI
       const Node m{tm, formulas.jet(tm)};
       const double chord = norm(b.j.c - a.j.c);
       const bool fine = chord <= h_max && turn(a.j.d1, m.j.d1) <= settings.max_turn &&
-                        turn(m.j.d1, b.j.d1) <= settings.max_turn &&
-                        norm(m.j.c - a.j.c) <= h_max && norm(b.j.c - m.j.c) <= h_max;
+                        turn(m.j.d1, b.j.d1) <= settings.max_turn && norm(m.j.c - a.j.c) <= h_max &&
+                        norm(b.j.c - m.j.c) <= h_max;
       if (fine || b.t - a.t <= min_dt || out.size() + stack.size() >= settings.max_samples) {
         out.push_back(b);
         longest = std::max(longest, chord);

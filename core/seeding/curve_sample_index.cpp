@@ -14,7 +14,9 @@ struct PointsAdaptor {
   std::size_t kdtree_get_point_count() const { return points->size(); }
   double kdtree_get_pt(std::size_t i, std::size_t k) const { return (*points)[i][static_cast<int>(k)]; }
   template <class Box>
-  bool kdtree_get_bbox(Box&) const { return false; }
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
 };
 
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointsAdaptor>,
@@ -56,7 +58,8 @@ class LocalMinimaResultSet {
   }
   // Drops the candidates met before the radius shrank to its final value.
   void finish() {
-    while (out_.count > 0 && out_.items[static_cast<std::size_t>(out_.count - 1)].distance2 > radius2_) --out_.count;
+    while (out_.count > 0 && out_.items[static_cast<std::size_t>(out_.count - 1)].distance2 > radius2_)
+      --out_.count;
   }
   std::int32_t nearest() const { return nearest_; }
   double nearest2() const { return nearest2_; }

@@ -25,8 +25,8 @@ struct CurveSamples {
   std::vector<std::int32_t> prev;  // neighbour before along the curve, -1 when none
   std::vector<std::int32_t> next;  // neighbour after along the curve, -1 when none
   std::vector<SampleKind> kind;
-  std::vector<double> params;      // parametric curves: t of each sample; empty for implicit curves
-  double spacing = 0.0;            // h: largest arc length between linked neighbours
+  std::vector<double> params;  // parametric curves: t of each sample; empty for implicit curves
+  double spacing = 0.0;        // h: largest arc length between linked neighbours
 
   std::int32_t add(Vec3 x, SampleKind k = SampleKind::regular) {
     points.push_back(x);

@@ -14,12 +14,14 @@ bool SampleGrid::near(const std::vector<Vec3>& points, Vec3 x, double radius) co
   return any_nearby(x, [&](std::int32_t i) { return norm2(points[static_cast<std::size_t>(i)] - x) <= r2; });
 }
 
-std::int32_t SampleGrid::nearest_end(const CurveSamples& samples, Vec3 x, double radius, std::int32_t below) const {
+std::int32_t SampleGrid::nearest_end(const CurveSamples& samples, Vec3 x, double radius,
+                                     std::int32_t below) const {
   double best = radius * radius;
   std::int32_t found = -1;
   any_nearby(x, [&](std::int32_t i) {
     const auto k = static_cast<std::size_t>(i);
-    if (i >= below || samples.kind[k] != SampleKind::regular || (samples.prev[k] >= 0 && samples.next[k] >= 0))
+    if (i >= below || samples.kind[k] != SampleKind::regular ||
+        (samples.prev[k] >= 0 && samples.next[k] >= 0))
       return false;
     const double d2 = norm2(samples.points[k] - x);
     if (d2 <= best) best = d2, found = i;
@@ -93,8 +95,9 @@ TraceOutcome trace_curve(const ImplicitEquations& equations, const Box3& box, Ve
     }
     // Closing the loop: close_on lies ahead within this step.
     const Vec3 to_close = close_on - x;
-    if (!(out.points.empty() && norm(close_on - start) <= same_point) && norm(to_close) <= 1.05 * chord_length &&
-        norm(to_close) > 0.0 && angle_between(t, to_close) <= settings.max_turn) {
+    if (!(out.points.empty() && norm(close_on - start) <= same_point) &&
+        norm(to_close) <= 1.05 * chord_length && norm(to_close) > 0.0 &&
+        angle_between(t, to_close) <= settings.max_turn) {
       out.end = TraceEnd::closed;
       return out;
     }

@@ -51,8 +51,8 @@ class SampleGrid {
 };
 
 struct TraceSettings {
-  double max_step = 0.0;          // h: the largest step (chord)
-  double min_step = 0.0;          // below this the walk has stalled
+  double max_step = 0.0;  // h: the largest step (chord)
+  double min_step = 0.0;  // below this the walk has stalled
   // 0.15 rad between consecutive tangents: the arc exceeds the chord by at most 1e-3, and a bend
   // of the distance function between two samples is resolved.
   double max_turn = 0.15;
@@ -64,11 +64,11 @@ struct TraceSettings {
 enum class TraceEnd { closed, box_face, singular_point, joined, stalled, budget };
 
 struct TraceOutcome {
-  std::vector<Vec3> points;          // after the start, in walking order
+  std::vector<Vec3> points;  // after the start, in walking order
   TraceEnd end = TraceEnd::stalled;
-  Vec3 end_point;                    // the face crossing or singular point (box_face / singular_point)
-  std::vector<Vec3> singular_points; // singular points passed on the way (refined)
-  std::int32_t joined_to = -1;       // the walk end it ran into (end == joined)
+  Vec3 end_point;                     // the face crossing or singular point (box_face / singular_point)
+  std::vector<Vec3> singular_points;  // singular points passed on the way (refined)
+  std::int32_t joined_to = -1;        // the walk end it ran into (end == joined)
 };
 
 // Walks from `start` (on the curve) along `direction` (+T or -T) until one of the ends above.

@@ -28,8 +28,8 @@ struct Evaluated {
   double rho = 0.0;
   double rho2 = 0.0;
   double extent = 0.0;
-  double score = 0.0;    // rho / extent: how far the cell is from flat
-  bool split_u = true;   // the cell is longer along u on the surface
+  double score = 0.0;   // rho / extent: how far the cell is from flat
+  bool split_u = true;  // the cell is longer along u on the surface
 };
 
 double finite_or_zero(double x) { return std::isfinite(x) ? x : 0.0; }
@@ -45,20 +45,22 @@ Evaluated evaluate(const SurfaceFormulas& f, const Rect& r) {
   // corners, edge midpoints, the centres of the four quarters, and the quarter points of the
   // centre lines
   constexpr int K = 16;
-  const double du[K] = {-hu, hu, -hu, hu, 0, 0, -hu, hu, -0.5 * hu, 0.5 * hu, -0.5 * hu, 0.5 * hu,
-                        -0.5 * hu, 0.5 * hu, 0, 0};
-  const double dv[K] = {-hv, -hv, hv, hv, -hv, hv, 0, 0, -0.5 * hv, -0.5 * hv, 0.5 * hv, 0.5 * hv,
-                        0, 0, -0.5 * hv, 0.5 * hv};
+  const double du[K] = {-hu,       hu,       -hu,       hu,       0,         0,        -hu, hu,
+                        -0.5 * hu, 0.5 * hu, -0.5 * hu, 0.5 * hu, -0.5 * hu, 0.5 * hu, 0,   0};
+  const double dv[K] = {-hv,       -hv,       hv,       hv,       -hv, hv, 0,         0,
+                        -0.5 * hv, -0.5 * hv, 0.5 * hv, 0.5 * hv, 0,   0,  -0.5 * hv, 0.5 * hv};
   Vec3 s[K];
   for (int k = 0; k < K; ++k) s[k] = f.point(uc + du[k], vc + dv[k]);
   // Lengths on the surface along u and v: polylines through the samples (a chord alone is 0 for a
   // closed parameter line, e.g. u over a full period), and |s_u| x width at the centre.
-  const double along_u = std::max({chord(s[0], s[4]) + chord(s[4], s[1]), chord(s[2], s[5]) + chord(s[5], s[3]),
-                                   chord(s[6], s[12]) + chord(s[12], e.jet.s) + chord(e.jet.s, s[13]) + chord(s[13], s[7]),
-                                   finite_or_zero(norm(e.jet.su) * 2.0 * hu)});
-  const double along_v = std::max({chord(s[0], s[6]) + chord(s[6], s[2]), chord(s[1], s[7]) + chord(s[7], s[3]),
-                                   chord(s[4], s[14]) + chord(s[14], e.jet.s) + chord(e.jet.s, s[15]) + chord(s[15], s[5]),
-                                   finite_or_zero(norm(e.jet.sv) * 2.0 * hv)});
+  const double along_u =
+      std::max({chord(s[0], s[4]) + chord(s[4], s[1]), chord(s[2], s[5]) + chord(s[5], s[3]),
+                chord(s[6], s[12]) + chord(s[12], e.jet.s) + chord(e.jet.s, s[13]) + chord(s[13], s[7]),
+                finite_or_zero(norm(e.jet.su) * 2.0 * hu)});
+  const double along_v =
+      std::max({chord(s[0], s[6]) + chord(s[6], s[2]), chord(s[1], s[7]) + chord(s[7], s[3]),
+                chord(s[4], s[14]) + chord(s[14], e.jet.s) + chord(e.jet.s, s[15]) + chord(s[15], s[5]),
+                finite_or_zero(norm(e.jet.sv) * 2.0 * hv)});
   e.extent = std::max({along_u, along_v, chord(s[3], s[0]), chord(s[2], s[1])});
   e.split_u = along_u >= along_v;
   if (!e.finite) return e;  // nothing to model: no error estimate, no refinement by flatness
@@ -89,7 +91,8 @@ Evaluated evaluate(const SurfaceFormulas& f, const Rect& r) {
 
 }  // namespace
 
-SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box, const SurfaceSeedingOptions& options) {
+SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
+                           const SurfaceSeedingOptions& options) {
   for (int k = 0; k < 4; ++k) {
     SurfaceCorner& c = corners_[static_cast<std::size_t>(k)];
     c.u = k % 2 == 0 ? box.umin : box.umax;
@@ -124,7 +127,8 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     return std::pair{ia, ib};
   };
 
-  const int max_cells = static_cast<int>(std::clamp<std::size_t>(options.max_bytes / bytes_per_cell(), 1, 1 << 24));
+  const int max_cells =
+      static_cast<int>(std::clamp<std::size_t>(options.max_bytes / bytes_per_cell(), 1, 1 << 24));
   const int min_cells = std::clamp(options.min_cells, 1, max_cells);
   const int target_cells = std::clamp(options.target_cells, min_cells, max_cells);
   // deeper than this (2^-24 of the domain in both directions) a cell is not split
@@ -230,7 +234,8 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
 // A node over leaves[begin, end): four groups (fewer when there are fewer leaves), by two rounds
 // of median splits of the boxes' centres along their longest spread; a group of one leaf is a
 // leaf child, a larger one a node of its own. Nodes come before their children.
-std::int32_t SurfaceCells::build_space_tree(std::vector<SpaceLeaf>& leaves, std::size_t begin, std::size_t end) {
+std::int32_t SurfaceCells::build_space_tree(std::vector<SpaceLeaf>& leaves, std::size_t begin,
+                                            std::size_t end) {
   const auto index = static_cast<std::int32_t>(nodes_.size());
   nodes_.emplace_back();
   auto centre = [](const SpaceLeaf& l, int c) {
@@ -249,9 +254,10 @@ std::int32_t SurfaceCells::build_space_tree(std::vector<SpaceLeaf>& leaves, std:
     for (int c = 1; c < 3; ++c)
       if (hi[c] - lo[c] > hi[axis] - lo[axis]) axis = c;
     const std::size_t m = b + (e - b) / 2;
-    std::nth_element(leaves.begin() + static_cast<std::ptrdiff_t>(b), leaves.begin() + static_cast<std::ptrdiff_t>(m),
-                     leaves.begin() + static_cast<std::ptrdiff_t>(e),
-                     [&](const SpaceLeaf& x, const SpaceLeaf& y) { return centre(x, axis) < centre(y, axis); });
+    std::nth_element(
+        leaves.begin() + static_cast<std::ptrdiff_t>(b), leaves.begin() + static_cast<std::ptrdiff_t>(m),
+        leaves.begin() + static_cast<std::ptrdiff_t>(e),
+        [&](const SpaceLeaf& x, const SpaceLeaf& y) { return centre(x, axis) < centre(y, axis); });
     return m;
   };
   constexpr int W = SurfaceCellNode::kWidth;
@@ -286,8 +292,9 @@ std::int32_t SurfaceCells::build_space_tree(std::vector<SpaceLeaf>& leaves, std:
       }
   nodes_[static_cast<std::size_t>(index)] = node;
   for (int k = 0; k < groups; ++k) {
-    const std::int32_t child = bounds[k + 1] - bounds[k] == 1 ? ~leaves[bounds[k]].cell
-                                                               : build_space_tree(leaves, bounds[k], bounds[k + 1]);
+    const std::int32_t child = bounds[k + 1] - bounds[k] == 1
+                                   ? ~leaves[bounds[k]].cell
+                                   : build_space_tree(leaves, bounds[k], bounds[k + 1]);
     nodes_[static_cast<std::size_t>(index)].child[k] = child;
   }
   return index;
@@ -303,7 +310,8 @@ double SurfaceCells::root_distance2(const Vec3& p) const {
 }
 
 std::size_t SurfaceCells::memory_bytes() const {
-  return sizeof(*this) + nodes_.capacity() * sizeof(SurfaceCellNode) + cells_.capacity() * sizeof(SurfaceCell);
+  return sizeof(*this) + nodes_.capacity() * sizeof(SurfaceCellNode) +
+         cells_.capacity() * sizeof(SurfaceCell);
 }
 
 }  // namespace footpoint

@@ -69,7 +69,7 @@ struct alignas(64) SurfaceCell {
   // s_u x s_v = 0 (no plane).
   Vec3 e1, e2, unit_normal;
   double half1 = 0.0, half2 = 0.0;
-  double rho = 0.0;                               // tangent-plane model error bound (see above)
+  double rho = 0.0;  // tangent-plane model error bound (see above)
   bool framed = false;
   bool finite = true;                             // the centre jet is finite
   bool resolved = true;                           // ρ <= resolved_flatness x extent
@@ -79,8 +79,8 @@ struct alignas(64) SurfaceCell {
   // The tangent plane's metric at the centre (first fundamental form E, F, G), for the Newton
   // model of every visit past rule 2.
   double E = 0.0, F = 0.0, G = 0.0;
-  double rho2 = 0.0;                              // the same as ρ for the quadratic (Taylor) model
-  double extent = 0.0;                            // largest chord of the cell on the surface
+  double rho2 = 0.0;    // the same as ρ for the quadratic (Taylor) model
+  double extent = 0.0;  // largest chord of the cell on the surface
   double uc() const { return 0.5 * (u0 + u1); }
   double vc() const { return 0.5 * (v0 + v1); }
 };
@@ -107,7 +107,8 @@ struct SurfaceCellNode {
 
 class SurfaceCells {
  public:
-  SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box, const SurfaceSeedingOptions& options = {});
+  SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
+               const SurfaceSeedingOptions& options = {});
 
   // nodes()[0] is the root, unless the tree is a single cell (then nodes() is empty).
   const std::vector<SurfaceCellNode>& nodes() const { return nodes_; }
@@ -125,7 +126,8 @@ class SurfaceCells {
   static constexpr std::size_t bytes_per_cell() { return sizeof(SurfaceCell) + sizeof(SurfaceCellNode); }
 
   // Lower bounds on |p - x|^2 over each child's box of `node` (0 inside it, +inf for an unused slot).
-  static void box_distances2(const SurfaceCellNode& node, const Vec3& p, double out[SurfaceCellNode::kWidth]) {
+  static void box_distances2(const SurfaceCellNode& node, const Vec3& p,
+                             double out[SurfaceCellNode::kWidth]) {
     // GCC/Clang vector extensions, two lanes (one SSE2 register) at a time
     typedef double Pair __attribute__((vector_size(2 * sizeof(double))));
     const Pair zero = {0.0, 0.0};

@@ -6,28 +6,44 @@ namespace footpoint {
 
 const char* to_string(Status s) {
   switch (s) {
-    case Status::converged: return "converged";
-    case Status::max_iterations: return "max_iterations";
-    case Status::diverged: return "diverged";
-    case Status::non_finite: return "non_finite";
-    case Status::degenerate: return "degenerate";
-    case Status::outside_domain: return "outside_domain";
-    case Status::not_orthogonal: return "not_orthogonal";
-    case Status::beyond_max_distance: return "beyond_max_distance";
-    case Status::deadline_exceeded: return "deadline_exceeded";
+    case Status::converged:
+      return "converged";
+    case Status::max_iterations:
+      return "max_iterations";
+    case Status::diverged:
+      return "diverged";
+    case Status::non_finite:
+      return "non_finite";
+    case Status::degenerate:
+      return "degenerate";
+    case Status::outside_domain:
+      return "outside_domain";
+    case Status::not_orthogonal:
+      return "not_orthogonal";
+    case Status::beyond_max_distance:
+      return "beyond_max_distance";
+    case Status::deadline_exceeded:
+      return "deadline_exceeded";
   }
   return "unknown";
 }
 
 const char* to_string(Location l) {
   switch (l) {
-    case Location::interior: return "interior";
-    case Location::edge: return "edge";
-    case Location::corner: return "corner";
-    case Location::endpoint: return "endpoint";
-    case Location::box_face: return "box_face";
-    case Location::singular_point: return "singular_point";
-    case Location::unknown: return "unknown";
+    case Location::interior:
+      return "interior";
+    case Location::edge:
+      return "edge";
+    case Location::corner:
+      return "corner";
+    case Location::endpoint:
+      return "endpoint";
+    case Location::box_face:
+      return "box_face";
+    case Location::singular_point:
+      return "singular_point";
+    case Location::unknown:
+      return "unknown";
   }
   return "unknown";
 }

@@ -28,19 +28,19 @@ enum class Location { interior, edge, corner, endpoint, box_face, singular_point
 const char* to_string(Location l);
 
 struct Summary {
-  std::string method;               // the method that ran ("auto", "gsa", ...)
+  std::string method;  // the method that ran ("auto", "gsa", ...)
   Status status = Status::non_finite;
-  int iterations = 0;               // iterations of the (final) local solve
-  double step_norm = 0.0;           // norm of the last parameter / position increment
+  int iterations = 0;      // iterations of the (final) local solve
+  double step_norm = 0.0;  // norm of the last parameter / position increment
   // Orthogonality residuals: surfaces |<p-s,s_u>|/(|p-s||s_u|), |<p-s,s_v>|/(|p-s||s_v|);
   // parametric curves one entry; implicit curves |<p-X, n1 x n2>|/(|p-X||n1 x n2|).
   std::array<double, 2> orthogonality{0.0, 0.0};
   // Implicit curves: |f1|/|grad f1|, |f2|/|grad f2| at the foot point (0 otherwise).
   std::array<double, 2> equation_residual{0.0, 0.0};
-  int starts = 1;                   // local solves started (auto: seeds tried)
+  int starts = 1;  // local solves started (auto: seeds tried)
   Location location = Location::unknown;
-  bool on_boundary = false;         // foot point on the domain's edge/corner/endpoint/box face
-  double residual() const;          // the largest of orthogonality and equation residuals
+  bool on_boundary = false;  // foot point on the domain's edge/corner/endpoint/box face
+  double residual() const;   // the largest of orthogonality and equation residuals
   bool converged() const { return status == Status::converged; }
 };
 
@@ -53,21 +53,21 @@ struct Minimum {
 };
 
 struct ProjectionResult {
-  int dim = 3;                      // 2 for planar curves, else 3
-  int num_params = 2;               // 2 surfaces, 1 parametric curves, 0 implicit curves
+  int dim = 3;         // 2 for planar curves, else 3
+  int num_params = 2;  // 2 surfaces, 1 parametric curves, 0 implicit curves
   std::array<double, 3> foot{};
   std::array<double, 2> params{};
   double distance = std::numeric_limits<double>::quiet_NaN();
   Summary summary;
-  std::vector<Minimum> minima;                 // with options.all_minima, best first
-  std::vector<std::array<double, 3>> trace;    // with options.trace: per-iteration increments
+  std::vector<Minimum> minima;               // with options.all_minima, best first
+  std::vector<std::array<double, 3>> trace;  // with options.trace: per-iteration increments
 };
 
 struct Options {
   // Convergence tolerance on the relative parameter step (and on the relative residuals).
   // 0 selects the method's default (parameters converged to ~1e-15 relative).
   double tolerance = 0.0;
-  int max_iterations = 0;           // 0 selects the method's default
+  int max_iterations = 0;                        // 0 selects the method's default
   std::optional<std::array<double, 3>> initial;  // a start: (u,v) / (t) / (x,y,z)
   bool all_minima = false;
   bool trace = false;

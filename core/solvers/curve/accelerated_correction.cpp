@@ -59,7 +59,8 @@ bool newton_onto_orthogonality(const ImplicitJet& jz, Vec3 z, Vec3 p, Vec3& u) {
   return true;
 }
 
-Landing accelerate_onto_foot(const ImplicitEquations& equations, Vec3 p, Vec3 x0, const IterationControl& control) {
+Landing accelerate_onto_foot(const ImplicitEquations& equations, Vec3 p, Vec3 x0,
+                             const IterationControl& control) {
   Landing out;
   out.x = x0;
   const double limit = kDivergence * std::max(1.0, norm(x0) + norm(p));
@@ -84,10 +85,12 @@ Landing accelerate_onto_foot(const ImplicitEquations& equations, Vec3 p, Vec3 x0
   }
 }
 
-ProjectionResult accelerated(const ImplicitEquations& equations, const Box3& box, Vec3 p, const Options& options) {
-  return land_then(equations, box, p, options, "accelerated", [&](const Landing& l, const IterationControl& control) {
-    return accelerate_onto_foot(equations, p, l.x, control);
-  });
+ProjectionResult accelerated(const ImplicitEquations& equations, const Box3& box, Vec3 p,
+                             const Options& options) {
+  return land_then(equations, box, p, options, "accelerated",
+                   [&](const Landing& l, const IterationControl& control) {
+                     return accelerate_onto_foot(equations, p, l.x, control);
+                   });
 }
 
 }  // namespace footpoint::curve

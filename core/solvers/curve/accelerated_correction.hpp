@@ -18,11 +18,13 @@ namespace footpoint::curve {
 // Algorithm 3 from the curve point x0 (the output of Algorithm 1): iterate eq. (19) until the step
 // stops moving. When the third row of eq. (18) vanishes (DV = 0 at convergence, or DV parallel to
 // T x c) dV is the minimum-norm solution of its first two rows.
-Landing accelerate_onto_foot(const ImplicitEquations& equations, Vec3 p, Vec3 x0, const IterationControl& control);
+Landing accelerate_onto_foot(const ImplicitEquations& equations, Vec3 p, Vec3 x0,
+                             const IterationControl& control);
 
 // The method `accelerated`: Algorithm 1 from the paper's start (Algorithm 3 needs a point on the
 // curve), then Algorithm 3.
-ProjectionResult accelerated(const ImplicitEquations& equations, const Box3& box, Vec3 p, const Options& options);
+ProjectionResult accelerated(const ImplicitEquations& equations, const Box3& box, Vec3 p,
+                             const Options& options);
 
 // One step Z = Y - f_i(Y) / |grad f_i|^2 grad f_i of eqs. (9), (19), (20); false if grad f_i = 0.
 bool newton_onto_equation(const ImplicitEquations& equations, int i, Vec3 y, Vec3& z);

@@ -70,7 +70,8 @@ ProjectionResult curvature_circle(const ParametricCurve& curve, Vec3 p, const Op
       break;
     }
   }
-  return finish_parametric_result(curve, p, t, "curvature_circle", status, n, step, control, std::move(trace));
+  return finish_parametric_result(curve, p, t, "curvature_circle", status, n, step, control,
+                                  std::move(trace));
 }
 
 }  // namespace footpoint::curve

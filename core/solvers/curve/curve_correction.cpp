@@ -30,9 +30,8 @@ bool correct_in_normal_plane(const ImplicitEquations& equations, Vec3 y, Vec3 t,
   z = y;
   for (iterations = 1; iterations <= 10; ++iterations) {
     const ImplicitJet j = equations.jet(z);
-    Matrix<3> a{{{j.grad[0].x, j.grad[0].y, j.grad[0].z},
-                 {j.grad[1].x, j.grad[1].y, j.grad[1].z},
-                 {t.x, t.y, t.z}}};
+    Matrix<3> a{
+        {{j.grad[0].x, j.grad[0].y, j.grad[0].z}, {j.grad[1].x, j.grad[1].y, j.grad[1].z}, {t.x, t.y, t.z}}};
     Vector<3> b{-j.f[0], -j.f[1], -dot(z - y, t)};
     if (!dense_solve<3>(a, b)) return false;
     const Vec3 dz{b[0], b[1], b[2]};

@@ -16,7 +16,8 @@ using Vector = std::array<double, N>;
 // Solves A x = b in place (b becomes x). Returns false when a pivot is below
 // pivot_tolerance * max|A| (64 eps: numerically singular), in which case b is left unspecified.
 template <int N>
-bool dense_solve(Matrix<N> a, Vector<N>& b, double pivot_tolerance = 64.0 * std::numeric_limits<double>::epsilon()) {
+bool dense_solve(Matrix<N> a, Vector<N>& b,
+                 double pivot_tolerance = 64.0 * std::numeric_limits<double>::epsilon()) {
   double scale = 0.0;
   for (const auto& row : a)
     for (double v : row) scale = std::fmax(scale, std::fabs(v));

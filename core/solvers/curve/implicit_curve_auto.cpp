@@ -87,8 +87,8 @@ ProjectionResult implicit_curve_auto(const ImplicitCurve& curve, Vec3 p, const O
   // minimum of the samples is a candidate, else only those that can hold the nearest point.
   SampleCandidates candidates;
   double d0sq = 0.0;
-  const std::int32_t nearest =
-      curve.sample_index().nearest_and_local_minima(p, options.all_minima ? kInfinity : 0.5 * h, candidates, d0sq);
+  const std::int32_t nearest = curve.sample_index().nearest_and_local_minima(
+      p, options.all_minima ? kInfinity : 0.5 * h, candidates, d0sq);
   if (nearest < 0) {
     // No point of the curve in the box.
     r.summary.status = Status::degenerate;
@@ -131,7 +131,8 @@ ProjectionResult implicit_curve_auto(const ImplicitCurve& curve, Vec3 p, const O
       const bool known = std::any_of(minima.begin(), minima.end(), [&](const Minimum& m) {
         return norm(Vec3{m.foot[0], m.foot[1], m.foot[2]} - f.x) <= same;
       });
-      if (!known) minima.push_back({{f.x.x, f.x.y, eq.planar() ? 0.0 : f.x.z}, {0.0, 0.0}, f.distance, fs.location});
+      if (!known)
+        minima.push_back({{f.x.x, f.x.y, eq.planar() ? 0.0 : f.x.z}, {0.0, 0.0}, f.distance, fs.location});
     }
     if (f.met && f.distance < best_met.distance) {
       best_met = f;
@@ -161,7 +162,8 @@ ProjectionResult implicit_curve_auto(const ImplicitCurve& curve, Vec3 p, const O
   r.summary.status = best.met ? Status::converged : Status::degenerate;
   if (r.distance > options.max_distance) r.summary.status = Status::beyond_max_distance;
   if (options.all_minima) {
-    std::sort(minima.begin(), minima.end(), [](const Minimum& a, const Minimum& b) { return a.distance < b.distance; });
+    std::sort(minima.begin(), minima.end(),
+              [](const Minimum& a, const Minimum& b) { return a.distance < b.distance; });
     r.minima = std::move(minima);
   }
   if (options.trace) r.trace = std::move(best_trace);

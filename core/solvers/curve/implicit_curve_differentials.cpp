@@ -14,9 +14,8 @@ bool curvature_vector(const ImplicitJet& j, Vec3& c) {
   const Vec3 t = unit_tangent(j);
   if (norm2(t) == 0.0) return false;
   // eq. (15) as the linear system W2 c = b.
-  Matrix<3> w{{{j.grad[0].x, j.grad[0].y, j.grad[0].z},
-               {j.grad[1].x, j.grad[1].y, j.grad[1].z},
-               {t.x, t.y, t.z}}};
+  Matrix<3> w{
+      {{j.grad[0].x, j.grad[0].y, j.grad[0].z}, {j.grad[1].x, j.grad[1].y, j.grad[1].z}, {t.x, t.y, t.z}}};
   Vector<3> b{-dot(t, j.hess[0] * t), -dot(t, j.hess[1] * t), 0.0};
   if (!dense_solve<3>(w, b)) return false;
   c = {b[0], b[1], b[2]};

@@ -57,7 +57,8 @@ bool implicit_residuals_met(const Summary& summary, Vec3 x, const IterationContr
                             bool with_orthogonality) {
   const double size = std::max(1.0, norm(x));
   const double tol = control.residual_tolerance;
-  if (!(summary.equation_residual[0] <= tol * size && summary.equation_residual[1] <= tol * size)) return false;
+  if (!(summary.equation_residual[0] <= tol * size && summary.equation_residual[1] <= tol * size))
+    return false;
   return !with_orthogonality || summary.orthogonality[0] <= tol;
 }
 

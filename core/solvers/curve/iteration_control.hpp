@@ -70,7 +70,8 @@ inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // The status of a result at `distance` that its method judged `status`.
 inline Status within_max_distance(Status status, double distance, const IterationControl& control) {
-  return status == Status::converged && distance > control.max_distance ? Status::beyond_max_distance : status;
+  return status == Status::converged && distance > control.max_distance ? Status::beyond_max_distance
+                                                                        : status;
 }
 
 }  // namespace footpoint::curve

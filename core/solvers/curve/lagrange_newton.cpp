@@ -35,7 +35,8 @@ LocalMinimum lagrange_newton(const ImplicitEquations& equations, Vec3 p, Vec3 x0
     Vector<5> b{};
     const Vec3 g = out.x - p + l1 * j.grad[0] + l2 * j.grad[1];
     for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) a[r][c] = (r == c ? 1.0 : 0.0) + l1 * j.hess[0][r][c] + l2 * j.hess[1][r][c];
+      for (int c = 0; c < 3; ++c)
+        a[r][c] = (r == c ? 1.0 : 0.0) + l1 * j.hess[0][r][c] + l2 * j.hess[1][r][c];
       a[r][3] = a[3][r] = j.grad[0][r];
       a[r][4] = a[4][r] = j.grad[1][r];
       b[r] = -g[r];

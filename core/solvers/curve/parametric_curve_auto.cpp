@@ -88,8 +88,8 @@ ProjectionResult parametric_curve_auto(const ParametricCurve& curve, Vec3 p, con
   // minimum of the samples is a candidate, else only those that can hold the nearest point.
   SampleCandidates candidates;
   double d0sq = 0.0;
-  const std::int32_t nearest =
-      curve.sample_index().nearest_and_local_minima(p, options.all_minima ? kInfinity : 0.5 * h, candidates, d0sq);
+  const std::int32_t nearest = curve.sample_index().nearest_and_local_minima(
+      p, options.all_minima ? kInfinity : 0.5 * h, candidates, d0sq);
   const double d0 = std::sqrt(d0sq);
   if (d0 - 0.5 * h > options.max_distance) {
     ProjectionResult r = parametric_result(curve, p, s.params[static_cast<std::size_t>(nearest)], "auto");
@@ -120,7 +120,8 @@ ProjectionResult parametric_curve_auto(const ParametricCurve& curve, Vec3 p, con
       });
       if (!known) {
         const bool end = f.t <= curve.domain().tmin || f.t >= curve.domain().tmax;
-        minima.push_back({{x.x, x.y, x.z}, {f.t, 0.0}, f.distance, end ? Location::endpoint : Location::interior});
+        minima.push_back(
+            {{x.x, x.y, x.z}, {f.t, 0.0}, f.distance, end ? Location::endpoint : Location::interior});
       }
     }
     if (f.distance < best.distance) {
@@ -136,7 +137,8 @@ ProjectionResult parametric_curve_auto(const ParametricCurve& curve, Vec3 p, con
                                                                                         : Status::degenerate;
   if (r.distance > options.max_distance) r.summary.status = Status::beyond_max_distance;
   if (options.all_minima) {
-    std::sort(minima.begin(), minima.end(), [](const Minimum& x, const Minimum& y) { return x.distance < y.distance; });
+    std::sort(minima.begin(), minima.end(),
+              [](const Minimum& x, const Minimum& y) { return x.distance < y.distance; });
     r.minima = std::move(minima);
   }
   if (options.trace) r.trace = std::move(best_trace);

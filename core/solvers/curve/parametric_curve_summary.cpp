@@ -45,7 +45,8 @@ double parametric_start(const ParametricCurve& curve, Vec3 p, const Options& opt
   if (options.initial) return (*options.initial)[0];
   double d2 = 0.0;
   const std::int32_t i = curve.sample_index().nearest(p, d2);
-  return i >= 0 ? curve.samples().params[static_cast<std::size_t>(i)] : 0.5 * (curve.domain().tmin + curve.domain().tmax);
+  return i >= 0 ? curve.samples().params[static_cast<std::size_t>(i)]
+                : 0.5 * (curve.domain().tmin + curve.domain().tmax);
 }
 
 ProjectionResult finish_parametric_result(const ParametricCurve& curve, Vec3 p, double t, const char* method,
@@ -56,8 +57,10 @@ ProjectionResult finish_parametric_result(const ParametricCurve& curve, Vec3 p, 
   r.summary.iterations = iterations;
   r.summary.step_norm = step;
   if (status == Status::converged) {
-    if (!curve.domain().contains(t)) status = Status::outside_domain;
-    else if (!parametric_residual_met(r, control)) status = Status::degenerate;
+    if (!curve.domain().contains(t))
+      status = Status::outside_domain;
+    else if (!parametric_residual_met(r, control))
+      status = Status::degenerate;
   }
   r.summary.status = within_max_distance(status, r.distance, control);
   r.trace = std::move(trace);

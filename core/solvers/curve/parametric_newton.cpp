@@ -54,8 +54,10 @@ double bracketed_newton(const CurveFormulas& formulas, Vec3 p, double a, double 
     const double g = dot(d, j.d1);
     const double dg = dot(j.d1, j.d1) + dot(d, j.d2);
     if (g == 0.0) break;
-    if (g < 0.0) a = t;  // the minimum lies to the right of t
-    else b = t;
+    if (g < 0.0)
+      a = t;  // the minimum lies to the right of t
+    else
+      b = t;
     // Newton inside the (closed) bracket, else bisection. A converged Newton step lands on t
     // itself, which is a bracket end: the bracket is closed so that this is not taken for an
     // escape.

@@ -35,9 +35,10 @@ Landing iterate_eq20(const ImplicitEquations& equations, Vec3 p, Vec3 x0, const 
 
 ProjectionResult simplified_projection(const ImplicitEquations& equations, const Box3& box, Vec3 p,
                                        const Options& options) {
-  return land_then(equations, box, p, options, "simplified", [&](const Landing& l, const IterationControl& control) {
-    return iterate_eq20(equations, p, l.x, control);
-  });
+  return land_then(equations, box, p, options, "simplified",
+                   [&](const Landing& l, const IterationControl& control) {
+                     return iterate_eq20(equations, p, l.x, control);
+                   });
 }
 
 }  // namespace footpoint::curve

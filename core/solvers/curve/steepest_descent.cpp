@@ -71,8 +71,9 @@ bool paper_iteration_done(const ImplicitEquations& equations, Vec3 p, Vec3 x, do
   return foot_residuals_met(equations, p, x, control, with_orthogonality);
 }
 
-bool take_paper_step(const ImplicitEquations& equations, Vec3 p, Vec3 x1, int n, double limit, double& previous,
-                     const IterationControl& control, bool with_orthogonality, Landing& out) {
+bool take_paper_step(const ImplicitEquations& equations, Vec3 p, Vec3 x1, int n, double limit,
+                     double& previous, const IterationControl& control, bool with_orthogonality,
+                     Landing& out) {
   if (!is_finite(x1)) {
     out.status = Status::non_finite;
     return true;

@@ -22,7 +22,7 @@ Vec3 paper_start(Vec3 p, const Options& options, bool planar);
 struct Landing {
   Vec3 x;
   int iterations = 0;
-  double step = 0.0;            // last increment |X_{n+1} - X_n|
+  double step = 0.0;                  // last increment |X_{n+1} - X_n|
   Status status = Status::converged;  // converged: landed; else why it stopped
 };
 
@@ -46,8 +46,9 @@ bool paper_iteration_done(const ImplicitEquations& equations, Vec3 p, Vec3 x, do
 // Shared by the paper's loops: accept the iterate X_{n+1} = x1 (record its increment) and say
 // whether the loop stops: x1 non-finite, beyond `limit` (diverged) or done by paper_iteration_done
 // (converged); `out.status` then says which.
-bool take_paper_step(const ImplicitEquations& equations, Vec3 p, Vec3 x1, int n, double limit, double& previous,
-                     const IterationControl& control, bool with_orthogonality, Landing& out);
+bool take_paper_step(const ImplicitEquations& equations, Vec3 p, Vec3 x1, int n, double limit,
+                     double& previous, const IterationControl& control, bool with_orthogonality,
+                     Landing& out);
 
 // Shared by the paper's methods: the result at x after a loop that ended with `status`
 // (converged only if the residuals meet the tolerance; outside_domain when x is not in the box).
@@ -59,14 +60,15 @@ ProjectionResult paper_result(const ImplicitEquations& equations, const Box3& bo
 // `refine` (Landing refine(Landing landed, const IterationControl&)) when the landing converged,
 // and the result at the end with the trace of every increment.
 template <class Refine>
-ProjectionResult land_then(const ImplicitEquations& equations, const Box3& box, Vec3 p, const Options& options,
-                           const char* method, Refine&& refine, bool with_orthogonality = true) {
+ProjectionResult land_then(const ImplicitEquations& equations, const Box3& box, Vec3 p,
+                           const Options& options, const char* method, Refine&& refine,
+                           bool with_orthogonality = true) {
   std::vector<std::array<double, 3>> trace;
   const IterationControl control = make_control(options, kPaperIterations, &trace);
   Landing l = land_on_curve(equations, paper_start(p, options, equations.planar()), control);
   if (l.status == Status::converged) l = refine(l, control);
-  ProjectionResult r =
-      paper_result(equations, box, p, l.x, method, l.status, l.iterations, l.step, control, with_orthogonality);
+  ProjectionResult r = paper_result(equations, box, p, l.x, method, l.status, l.iterations, l.step, control,
+                                    with_orthogonality);
   r.trace = std::move(trace);
   return r;
 }

@@ -6,7 +6,8 @@
 
 namespace footpoint::curve {
 
-ProjectionResult tangent_foot(const ImplicitEquations& equations, const Box3& box, Vec3 p, const Options& options) {
+ProjectionResult tangent_foot(const ImplicitEquations& equations, const Box3& box, Vec3 p,
+                              const Options& options) {
   std::vector<std::array<double, 3>> trace;
   const IterationControl control = make_control(options, kPaperIterations, &trace);
   IterationControl landing = control;

@@ -11,6 +11,7 @@
 
 namespace footpoint::curve {
 
-ProjectionResult tangent_foot(const ImplicitEquations& equations, const Box3& box, Vec3 p, const Options& options);
+ProjectionResult tangent_foot(const ImplicitEquations& equations, const Box3& box, Vec3 p,
+                              const Options& options);
 
 }  // namespace footpoint::curve

@@ -24,6 +24,7 @@ struct BoxMinimum {
   std::array<int, 2> side{};
 };
 
-BoxMinimum minimize_on_box(const BoxQuadratic& q, const std::array<double, 2>& lo, const std::array<double, 2>& hi);
+BoxMinimum minimize_on_box(const BoxQuadratic& q, const std::array<double, 2>& lo,
+                           const std::array<double, 2>& hi);
 
 }  // namespace footpoint::surface

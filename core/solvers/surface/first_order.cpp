@@ -23,7 +23,9 @@ PaperStep first_order_step(const Vec3& p, const SurfaceJet& jet) {
 
 namespace {
 struct FirstOrder {
-  PaperStep step(const Vec3& p, double, double, const SurfaceJet& jet) const { return first_order_step(p, jet); }
+  PaperStep step(const Vec3& p, double, double, const SurfaceJet& jet) const {
+    return first_order_step(p, jet);
+  }
 };
 }  // namespace
 

@@ -22,10 +22,14 @@ NewtonMapDerivative newton_map_derivative(const Vec3& p, const SurfaceJet3& jet)
   const Vec3 s2[2][2] = {{jet.suu, jet.suv}, {jet.suv, jet.svv}};
   auto s3 = [&](int i, int j, int k) -> const Vec3& {
     switch (i + j + k) {
-      case 0: return jet.suuu;
-      case 1: return jet.suuv;
-      case 2: return jet.suvv;
-      default: return jet.svvv;
+      case 0:
+        return jet.suuu;
+      case 1:
+        return jet.suuv;
+      case 2:
+        return jet.suvv;
+      default:
+        return jet.svvv;
     }
   };
   for (int k = 0; k < 2; ++k) {

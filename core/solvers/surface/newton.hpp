@@ -11,8 +11,8 @@ namespace footpoint::surface {
 
 // F and its Jacobian F' at one parameter point.
 struct OrthogonalitySystem {
-  double F1 = 0.0, F2 = 0.0;                       // eq. (23)
-  double J11 = 0.0, J12 = 0.0, J21 = 0.0, J22 = 0.0;  // ∂F_i/∂u, ∂F_i/∂v
+  double F1 = 0.0, F2 = 0.0;                            // eq. (23)
+  double J11 = 0.0, J12 = 0.0, J21 = 0.0, J22 = 0.0;    // ∂F_i/∂u, ∂F_i/∂v
   double det() const { return J11 * J22 - J12 * J21; }  // F0 of eq. (24)
 };
 OrthogonalitySystem orthogonality_system(const Vec3& p, const SurfaceJet& jet);

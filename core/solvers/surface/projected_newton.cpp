@@ -166,7 +166,8 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     const bool stagnant = step_inf <= kStagnantStep * step_scale && step_inf > kShrink * last_step_inf;
     stagnant_steps = stagnant ? stagnant_steps + 1 : 0;
     last_step_inf = step_inf;
-    if (stagnant_steps >= 3 && std::max(free_[0] ? o.relative[0] : 0.0, free_[1] ? o.relative[1] : 0.0) <= kStalledResidual)
+    if (stagnant_steps >= 3 &&
+        std::max(free_[0] ? o.relative[0] : 0.0, free_[1] ? o.relative[1] : 0.0) <= kStalledResidual)
       done = true;
     if (convex && done) {
       status = Status::converged;
@@ -185,7 +186,8 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
       // the ball around t (or the point t + δ) inside the domain - on a face, along the free
       // parameter (the held one is on its bound)
       auto within = [&](double c0, double c1, double radius) {
-        const bool in0 = c0 - radius > lo[0] && c0 + radius < hi[0], in1 = c1 - radius > lo[1] && c1 + radius < hi[1];
+        const bool in0 =
+            c0 - radius > lo[0] && c0 + radius<hi[0], in1 = c1 - radius> lo[1] && c1 + radius < hi[1];
         return (in0 || !free_[0]) && (in1 || !free_[1]);
       };
       // the early stop (projected_newton.hpp)
@@ -194,7 +196,8 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
       const double dH2n = dH0 * dH0 + 2.0 * dH1 * dH1 + dH2 * dH2, dt2 = dt0 * dt0 + dt1 * dt1;
       const double dn2 = delta[0] * delta[0] + delta[1] * delta[1];
       // L |δ| <= λ/4 in squares, the square roots only when it holds
-      if (dt2 > 0.0 && kLipschitzSafety * kLipschitzSafety * dH2n * dn2 <= 0.0625 * lambda_min * lambda_min * dt2) {
+      if (dt2 > 0.0 &&
+          kLipschitzSafety * kLipschitzSafety * dH2n * dn2 <= 0.0625 * lambda_min * lambda_min * dt2) {
         const double L = kLipschitzSafety * std::sqrt(dH2n / dt2);
         const double dn = std::sqrt(dn2);
         const double R = 2.0 * dn;  // the ball holding the basin's only stationary point
@@ -222,9 +225,10 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
         const bool inside = held && within(t[0] + delta[0], t[1] + delta[1], 0.0);
         if (inside && early->cutoff < std::numeric_limits<double>::infinity()) {
           // 2 min f >= |r|^2 + <g, δ> - (8/3) L |δ|^3
-          const double low2 = dot(r, r) + (g[0] * delta[0] + g[1] * delta[1]) - (8.0 / 3.0) * L * dn * dn * dn;
-          const double tie = kTie * early->cutoff +
-                             32.0 * std::numeric_limits<double>::epsilon() * (norm_p + norm(jet.s));
+          const double low2 =
+              dot(r, r) + (g[0] * delta[0] + g[1] * delta[1]) - (8.0 / 3.0) * L * dn * dn * dn;
+          const double tie =
+              kTie * early->cutoff + 32.0 * std::numeric_limits<double>::epsilon() * (norm_p + norm(jet.s));
           if (low2 >= 0.0 && std::sqrt(low2) >= early->cutoff - tie) {
             sol.u = t[0] + delta[0];
             sol.v = t[1] + delta[1];

@@ -44,8 +44,8 @@ namespace footpoint::surface {
 
 struct LocalSolution {
   double u = 0.0, v = 0.0;
-  SurfaceJet jet;          // at (u, v)
-  double distance = 0.0;   // |p - s(u, v)|
+  SurfaceJet jet;         // at (u, v)
+  double distance = 0.0;  // |p - s(u, v)|
   Status status = Status::non_finite;
   int iterations = 0;      // accepted steps
   double step_norm = 0.0;  // norm of the last accepted step
@@ -57,7 +57,7 @@ struct LocalSolution {
 // What the caller knows that can end a solve early (see above).
 struct EarlyStop {
   double cutoff = std::numeric_limits<double>::infinity();  // the best distance found so far
-  const std::array<double, 2>* minimisers = nullptr;         // minimisers found so far (u, v)
+  const std::array<double, 2>* minimisers = nullptr;        // minimisers found so far (u, v)
   int minimiser_count = 0;
   // A point near the start and the Hessian of f there (upper triangle), for the first Lipschitz
   // estimate; reference_H[0] = NaN when there is none.
@@ -72,7 +72,7 @@ inline constexpr int kLocalMaxIterations = 100;
 // appends every accepted step (Δu, Δv, 0). With `early`, may stop early with `abandoned` set.
 LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, double u0,
                                double v0, const ConvergenceCriteria& criteria,
-                               std::vector<std::array<double, 3>>* trace = nullptr, const EarlyStop* early = nullptr,
-                               const SurfaceJet* start_jet = nullptr);
+                               std::vector<std::array<double, 3>>* trace = nullptr,
+                               const EarlyStop* early = nullptr, const SurfaceJet* start_jet = nullptr);
 
 }  // namespace footpoint::surface

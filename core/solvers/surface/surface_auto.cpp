@@ -67,7 +67,11 @@ class Search {
  public:
   Search(const SurfaceCells& cells, const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p,
          const Options& options)
-      : cells_(cells), formulas_(formulas), box_(box), p_(p), options_(options),
+      : cells_(cells),
+        formulas_(formulas),
+        box_(box),
+        p_(p),
+        options_(options),
         criteria_(convergence_criteria(options, box, kLocalMaxIterations)),
         bound_(options.max_distance) {
     if (options.all_minima) all_.reserve(8);
@@ -131,7 +135,8 @@ class Search {
     // (all_minima solves from every corner: each may be a minimum of its own.)
     for (const SurfaceCorner& corner : cells_.corners()) {
       const double answer = has_best_ ? best_.sol.distance : std::min(nearest_, options_.max_distance);
-      if (corner.finite && (options_.all_minima || norm(corner.jet.s - p_) < answer)) solve(corner.u, corner.v);
+      if (corner.finite && (options_.all_minima || norm(corner.jet.s - p_) < answer))
+        solve(corner.u, corner.v);
     }
     if (nearest_cell_ >= 0 && (!has_best_ || nearest_ < best_.sol.distance)) {
       const SurfaceCell& c = cells_.cells()[static_cast<std::size_t>(nearest_cell_)];
@@ -148,7 +153,8 @@ class Search {
       r.summary.iterations = s.iterations;
       r.summary.step_norm = s.step_norm;
       if (!(s.distance <= options_.max_distance)) r.summary.status = Status::beyond_max_distance;
-      if (options_.trace) projected_newton(formulas_, box_, p_, best_.u_start, best_.v_start, criteria_, &r.trace);
+      if (options_.trace)
+        projected_newton(formulas_, box_, p_, best_.u_start, best_.v_start, criteria_, &r.trace);
     } else {
       // No solve: every box is beyond max_distance (or no cell is finite). Report the centre of
       // the cell reached by walking down the nearest boxes, without solving.
@@ -271,15 +277,16 @@ class Search {
     // apart: every side whose model value is within the model's error of the model's minimum is a
     // candidate too - every side of an unresolved cell, whose model error is not known.
     if (c.u0 == box_.umin || c.u1 == box_.umax || c.v0 == box_.vmin || c.v1 == box_.vmax)
-      add_boundary_candidates(c, q, lb,
-                              c.resolved ? m.value + 2.0 * (dc + c.extent) * c.rho2
-                                         : std::numeric_limits<double>::infinity(),
-                              model_face);
+      add_boundary_candidates(
+          c, q, lb,
+          c.resolved ? m.value + 2.0 * (dc + c.extent) * c.rho2 : std::numeric_limits<double>::infinity(),
+          model_face);
   }
 
   // Candidates at the model's best point on each of the cell's sides on the domain's boundary
   // whose model value is at most `threshold`, other than on `except` (a candidate already).
-  void add_boundary_candidates(const SurfaceCell& c, const BoxQuadratic& q, double lb, double threshold, Face except) {
+  void add_boundary_candidates(const SurfaceCell& c, const BoxQuadratic& q, double lb, double threshold,
+                               Face except) {
     const double uc = c.uc(), vc = c.vc();
     const double lo0 = c.u0 - uc, hi0 = c.u1 - uc, lo1 = c.v0 - vc, hi1 = c.v1 - vc;
     // a side's own face, and the corner where its minimiser is at the side's end on the boundary
@@ -303,8 +310,9 @@ class Search {
   // its Newton model (its Hessian at the centre starts the early stop's Lipschitz estimate).
   // Rule 4 may merge it with a minimum found nearby if the cell is resolved and `mergeable`;
   // `basin`, when given, is where (else around the model's minimiser, or the coarse cell itself).
-  void add_candidate(const SurfaceCell& c, const BoxQuadratic& model, double du, double dv, double lb, Face face,
-                     bool mergeable = true, std::optional<std::array<double, 4>> basin = std::nullopt) {
+  void add_candidate(const SurfaceCell& c, const BoxQuadratic& model, double du, double dv, double lb,
+                     Face face, bool mergeable = true,
+                     std::optional<std::array<double, 4>> basin = std::nullopt) {
     Candidate k;
     k.reference_t = {c.uc(), c.vc()};
     k.reference_H = {model.H[0][0], model.H[0][1], model.H[1][1]};
@@ -354,7 +362,8 @@ class Search {
                  face_of(box_, u, v) == k.face && distance <= k.d_model;
         };
         bool found = false;
-        for (int f = 0; f < feet_count_ && !found; ++f) found = same(feet_[f][0], feet_[f][1], feet_distance_[f]);
+        for (int f = 0; f < feet_count_ && !found; ++f)
+          found = same(feet_[f][0], feet_[f][1], feet_distance_[f]);
         for (std::size_t f = 0; f < all_.size() && !found; ++f)
           found = same(all_[f].sol.u, all_[f].sol.v, all_[f].sol.distance);
         if (found) continue;
@@ -373,7 +382,8 @@ class Search {
     // known - to hold nothing nearer (a copy of the best foot, or a worse local minimum);
     // all_minima wants every minimum, so no cutoff there.
     EarlyStop early;
-    early.cutoff = has_best_ && !options_.all_minima ? best_.sol.distance : std::numeric_limits<double>::infinity();
+    early.cutoff =
+        has_best_ && !options_.all_minima ? best_.sol.distance : std::numeric_limits<double>::infinity();
     early.minimisers = feet_;
     early.minimiser_count = feet_count_;
     if (from) {
@@ -384,7 +394,8 @@ class Search {
     const SurfaceJet* start_jet = nullptr;
     for (const SurfaceCorner& corner : cells_.corners())
       if (corner.u == f.u_start && corner.v == f.v_start) start_jet = &corner.jet;
-    f.sol = projected_newton(formulas_, box_, p_, f.u_start, f.v_start, criteria_, nullptr, &early, start_jet);
+    f.sol =
+        projected_newton(formulas_, box_, p_, f.u_start, f.v_start, criteria_, nullptr, &early, start_jet);
     ++solves_;
     if (f.sol.abandoned) {  // its predicted minimiser still answers for its basin (rule 4)
       if (std::isfinite(f.sol.distance)) remember(f.sol.u, f.sol.v, f.sol.distance);
@@ -489,12 +500,12 @@ class Search {
   };
   Claim claims_[kClaims];
   struct Candidate {
-    double d_model;             // distance to the model's foot point
-    double lb;                  // lower bound (rules 1, 2)
-    double u, v;                // start of the local solve
-    std::array<double, 4> basin;  // rule 4's region: u0, u1, v0, v1
-    Face face;                    // the face the model's minimiser is on
-    bool mergeable;               // rule 4 applies
+    double d_model;                     // distance to the model's foot point
+    double lb;                          // lower bound (rules 1, 2)
+    double u, v;                        // start of the local solve
+    std::array<double, 4> basin;        // rule 4's region: u0, u1, v0, v1
+    Face face;                          // the face the model's minimiser is on
+    bool mergeable;                     // rule 4 applies
     std::array<double, 2> reference_t;  // the cell's centre and the Newton model's Hessian there
     std::array<double, 3> reference_H;
   };
@@ -502,7 +513,7 @@ class Search {
   int candidates_count_ = 0;
   int claims_count_ = 0;
   std::array<double, 2> feet_[kRemembered];  // minimisers found (all_minima: all_ has all of them)
-  double feet_distance_[kRemembered];         // and their distances (abandoned: lower bounds)
+  double feet_distance_[kRemembered];        // and their distances (abandoned: lower bounds)
   int feet_count_ = 0;
   std::vector<Found> all_;
 };

@@ -11,9 +11,12 @@ double parameter_scale(const ParamBox& box) {
                    box.umax - box.umin, box.vmax - box.vmin});
 }
 
-double ConvergenceCriteria::step_scale(double u, double v) const { return std::max({scale, std::abs(u), std::abs(v)}); }
+double ConvergenceCriteria::step_scale(double u, double v) const {
+  return std::max({scale, std::abs(u), std::abs(v)});
+}
 
-ConvergenceCriteria convergence_criteria(const Options& options, const ParamBox& box, int default_max_iterations) {
+ConvergenceCriteria convergence_criteria(const Options& options, const ParamBox& box,
+                                         int default_max_iterations) {
   ConvergenceCriteria c;
   c.tolerance = options.tolerance > 0.0 ? options.tolerance : kDefaultTolerance;
   c.scale = parameter_scale(box);
@@ -44,7 +47,8 @@ Orthogonality orthogonality(const Vec3& p, double norm_p, const Vec3& s, const V
   return o;
 }
 
-bool ConvergenceTest::converged(double step_inf, double u, double v, const Orthogonality& o, std::array<bool, 2> free) {
+bool ConvergenceTest::converged(double step_inf, double u, double v, const Orthogonality& o,
+                                std::array<bool, 2> free) {
   double residual = 0.0;
   for (int i = 0; i < 2; ++i)
     if (free[i]) residual = std::isnan(o.relative[i]) ? o.relative[i] : std::max(residual, o.relative[i]);

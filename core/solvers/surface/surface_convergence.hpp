@@ -40,7 +40,8 @@ struct ConvergenceCriteria {
 double parameter_scale(const ParamBox& box);
 
 // Resolves Options (0 = the method's default) against the domain.
-ConvergenceCriteria convergence_criteria(const Options& options, const ParamBox& box, int default_max_iterations);
+ConvergenceCriteria convergence_criteria(const Options& options, const ParamBox& box,
+                                         int default_max_iterations);
 
 // The orthogonality residuals of a foot point s(t) for the point p.
 struct Orthogonality {
@@ -57,7 +58,8 @@ class ConvergenceTest {
  public:
   explicit ConvergenceTest(const ConvergenceCriteria& criteria) : criteria_(criteria) {}
   // step_inf = |Δt|∞ of the step just taken (or about to be taken) at (u, v).
-  bool converged(double step_inf, double u, double v, const Orthogonality& o, std::array<bool, 2> free = {true, true});
+  bool converged(double step_inf, double u, double v, const Orthogonality& o,
+                 std::array<bool, 2> free = {true, true});
   // What converged() concludes, without the residuals, for a step above the step bound and a
   // residual above its floor: not converged, and not stalled either.
   void unsettled() { stalled_ = 0; }
