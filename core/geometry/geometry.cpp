@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <string_view>
+#include <system_error>
+#include <vector>
 
 #include "geometry/sha256.hpp"
 
@@ -46,6 +49,104 @@ std::string GeometryDefinition::canonical() const {
 }
 
 std::string GeometryDefinition::id() const { return sha256_hex(canonical()).substr(0, 32); }
+
+namespace {
+
+[[noreturn]] void bad_canonical(const std::string& why) {
+  throw GeometryError("bad_canonical", "", -1, "not a canonical geometry definition: " + why);
+}
+
+double read_number(std::string_view text) {
+  double x = 0.0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), x);
+  if (r.ec != std::errc() || r.ptr != text.data() + text.size())
+    bad_canonical("bad number '" + std::string(text) + "'");
+  return x;
+}
+
+// The formula names and domain variables of each type, in canonical order, as read_geometry
+// (server/geometry_json.cpp) builds them from a posted definition.
+struct TypeLayout {
+  GeometryType type;
+  std::vector<std::string> required, optional, domain;
+};
+
+const TypeLayout* layout_of(std::string_view type, std::size_t formulas) {
+  static const TypeLayout layouts[] = {
+      {GeometryType::parametric_surface, {"x", "y", "z"}, {}, {"u", "v"}},
+      {GeometryType::parametric_curve, {"x", "y"}, {"z"}, {"t"}},
+      {GeometryType::implicit_curve, {"equations[0]"}, {}, {"x", "y"}},
+      {GeometryType::implicit_curve, {"equations[0]", "equations[1]"}, {}, {"x", "y", "z"}},
+  };
+  for (const auto& l : layouts)
+    if (type == to_string(l.type) && formulas >= l.required.size() &&
+        formulas <= l.required.size() + l.optional.size())
+      return &l;
+  return nullptr;
+}
+
+}  // namespace
+
+GeometryDefinition parse_canonical(std::string_view text) {
+  std::vector<std::string_view> parts;
+  for (std::size_t start = 0;;) {
+    const auto end = text.find(';', start);
+    parts.push_back(text.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start));
+    if (end == std::string_view::npos) break;
+    start = end + 1;
+  }
+  constexpr std::string_view kType = "type=", kDomain = "domain.", kConstants = "constants.";
+  if (parts.size() < 2 || parts[0] != "footpoint/1" || parts[1].substr(0, kType.size()) != kType)
+    bad_canonical("it does not start with footpoint/1;type=");
+  const std::string_view type = parts[1].substr(kType.size());
+
+  // name=value members: the formulas first, then the domain, then the constants.
+  std::vector<std::pair<std::string_view, std::string_view>> formulas, domain, constants;
+  for (std::size_t i = 2; i < parts.size(); ++i) {
+    const auto eq = parts[i].find('=');
+    if (eq == std::string_view::npos || eq == 0)
+      bad_canonical("member '" + std::string(parts[i]) + "' has no name=");
+    std::string_view name = parts[i].substr(0, eq), value = parts[i].substr(eq + 1);
+    if (name.substr(0, kDomain.size()) == kDomain)
+      domain.emplace_back(name.substr(kDomain.size()), value);
+    else if (name.substr(0, kConstants.size()) == kConstants)
+      constants.emplace_back(name.substr(kConstants.size()), value);
+    else
+      formulas.emplace_back(name, value);
+  }
+  const TypeLayout* layout = layout_of(type, formulas.size());
+  if (!layout)
+    bad_canonical("type '" + std::string(type) + "' with " + std::to_string(formulas.size()) + " formulas");
+
+  GeometryDefinition def;
+  def.type = layout->type;
+  for (std::size_t i = 0; i < formulas.size(); ++i) {
+    const std::string& expected =
+        i < layout->required.size() ? layout->required[i] : layout->optional[i - layout->required.size()];
+    if (formulas[i].first != expected)
+      bad_canonical("formula " + std::to_string(i) + " is named '" + std::string(formulas[i].first) +
+                    "', not " + expected);
+    def.formulas.push_back({expected, std::string(formulas[i].second)});
+  }
+  if (domain.size() != layout->domain.size()) bad_canonical("the domain does not have the type's variables");
+  for (std::size_t i = 0; i < domain.size(); ++i) {
+    const auto [name, value] = domain[i];
+    const auto comma = value.find(',');
+    if (name != layout->domain[i] || value.size() < 5 || value.front() != '[' || value.back() != ']' ||
+        comma == std::string_view::npos)
+      bad_canonical("bad domain member '" + std::string(name) + "=" + std::string(value) + "'");
+    def.domain.push_back({std::string(name),
+                          {read_number(value.substr(1, comma - 1)),
+                           read_number(value.substr(comma + 1, value.size() - comma - 2))}});
+  }
+  for (const auto& [name, value] : constants)
+    if (!def.constants.emplace(std::string(name), read_number(value)).second)
+      bad_canonical("constant '" + std::string(name) + "' appears twice");
+  // Whatever the members parsed to must print back to these very bytes (order, number forms,
+  // no whitespace), so that the text and the definition have one id.
+  if (def.canonical() != text) bad_canonical("it is not in canonical form");
+  return def;
+}
 
 bool CompiledGeometry::has_method(std::string_view name) const {
   const auto& m = methods();

@@ -35,6 +35,12 @@ struct GeometryDefinition {
   std::string id() const;
 };
 
+// The inverse of canonical(): the definition whose canonical text is `text`, with the formula
+// names and domain variables a posted definition of its type has (a shared registry stores
+// canonical texts; a replica compiles from them). canonical(parse_canonical(t)) == t for every
+// text accepted; any other text throws GeometryError with code "bad_canonical".
+GeometryDefinition parse_canonical(std::string_view text);
+
 // A definition that cannot be compiled: `code` is a stable machine-readable code
 // (formula_syntax, unknown_variable, empty_formula, formula_too_long, bad_domain, ...), `field`
 // names the offending field ("x", "equations[1]", "domain.u"), `position` the character (or -1).
