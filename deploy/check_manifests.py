@@ -32,7 +32,7 @@ READINESS_PATH = "/readyz"
 SERVER_BINARY = "footpoint-server"
 # Needed only by the tests, benchmarks and the oracle: not in the image's build stage.
 TEST_ONLY_PACKAGES = {"doctest-dev", "libbenchmark-dev"}
-RUNTIME_LIBRARIES = {"libmuparser2v5", "libcpp-httplib0.11", "libspdlog1.10", "libfmt9"}
+RUNTIME_LIBRARIES = {"libmuparser2v5", "libcpp-httplib0.11", "libspdlog1.10", "libfmt9", "libhiredis0.14"}
 DNS_LABEL = re.compile(r"^[a-z0-9]([-a-z0-9]*[a-z0-9])?$")
 
 

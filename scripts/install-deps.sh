@@ -9,6 +9,8 @@ packages=(
   build-essential cmake pkg-config git
   libcpp-httplib-dev nlohmann-json3-dev libmuparser-dev libspdlog-dev doctest-dev  # design card
   libnanoflann-dev   # k-d tree over cached samples (auto methods' seeding)
+  libhiredis-dev     # build list: the shared geometry registry's Redis client (run time: libhiredis0.14)
+  redis-server       # test list: the registry tests start their own Redis on loopback
   libbenchmark-dev   # bench/
   python3 python3-yaml python3-jsonschema   # openapi / manifest checks in the tests
   python3-numpy python3-scipy python3-sympy python3-mpmath  # shared/cases/oracle.py, reference generators

@@ -71,12 +71,13 @@ void write_method_names(JsonWriter& w, const CompiledGeometry& g) {
 
 }  // namespace
 
-Api::Api(const ServerConfig& config, GeometryCache& cache, ThreadPool& pool, Metrics& metrics)
-    : config_(config), cache_(cache), pool_(pool), metrics_(metrics) {}
+Api::Api(const ServerConfig& config, GeometryCache& cache, ThreadPool& pool, Metrics& metrics,
+         GeometryRegistry* registry)
+    : config_(config), cache_(cache), pool_(pool), metrics_(metrics), registry_(registry) {}
 
 ApiResponse Api::error_response(const ApiError& error) {
   ApiResponse r = json_response(error.status, error_body(error));
-  if (error.code == "overloaded") r.retry_after_s = 1;
+  if (error.code == "overloaded" || error.code == "registry_unavailable") r.retry_after_s = 1;
   return r;
 }
 
@@ -88,6 +89,7 @@ Metrics::Gauges Api::gauges() const {
   g.in_flight = in_flight();
   g.in_flight_points = in_flight_points();
   g.shutting_down = shutting_down();
+  g.registry = registry_ ? &registry_->metrics() : nullptr;
   return g;
 }
 
@@ -230,18 +232,45 @@ ApiResponse Api::methods() {
   return json_response(200, methods_body_);
 }
 
+formula::CompileLimits Api::compile_limits() const {
+  formula::CompileLimits limits;
+  limits.max_formula_length = config_.max_formula_length;
+  limits.deadline = std::chrono::steady_clock::now() +
+                    (config_.compile_deadline.count() > 0 ? config_.compile_deadline : config_.deadline);
+  return limits;
+}
+
 GeometryCache::Lookup Api::compile(const GeometryDefinition& def, const std::string& field_prefix) {
   try {
-    formula::CompileLimits limits;
-    limits.max_formula_length = config_.max_formula_length;
-    limits.deadline = std::chrono::steady_clock::now() +
-                      (config_.compile_deadline.count() > 0 ? config_.compile_deadline : config_.deadline);
-    auto lookup = cache_.get_or_compile(def, limits);
+    auto lookup = cache_.get_or_compile(def, compile_limits());
     if (lookup.compiled) metrics_.observe_compile(lookup.compile_time.count());
     return lookup;
   } catch (const GeometryError& e) {
     throw ApiError(422, e.code, e.what(), e.field.empty() ? std::string() : field_prefix + e.field,
                    e.position);
+  }
+}
+
+std::shared_ptr<const CompiledGeometry> Api::held_geometry(std::string_view id) {
+  const std::string key(id);
+  if (auto g = cache_.find(key)) {
+    if (registry_) registry_->note_use(key);
+    return g;
+  }
+  if (!registry_) return nullptr;
+  try {
+    const auto lookup = registry_->load(key, compile_limits());
+    if (lookup.compiled) metrics_.observe_compile(lookup.compile_time.count());
+    return lookup.geometry;
+  } catch (const RegistryUnavailable& e) {
+    // Not 404: whether the id exists is not known while the registry cannot be asked.
+    throw ApiError(503, "registry_unavailable",
+                   "geometry " + key + " is not held by this replica and the shared registry cannot be " +
+                       "reached; retry shortly, or use POST /v1/project with the definition inline",
+                   "id");
+  } catch (const GeometryError& e) {
+    throw ApiError(422, e.code, std::string("the stored definition does not compile here: ") + e.what(),
+                   e.field, e.position);
   }
 }
 
@@ -276,6 +305,11 @@ ApiResponse Api::create_geometry(std::string_view body) {
   w.integer(static_cast<long long>(g.memory_bytes()));
   w.key("compile_ms");
   w.number(lookup.compile_time.count() * 1e3);
+  // Whether every replica can now answer the id: "stored" in the shared registry, "not_stored"
+  // (the registry is unavailable: this replica only, stored when the registry is back), or
+  // "off" (no registry configured).
+  w.key("registry");
+  w.string(!registry_ ? "off" : registry_->store(g) ? "stored" : "not_stored");
   w.end_object();
   ApiResponse r = json_response(lookup.compiled ? 201 : 200, w.take());
   r.location = "/v1/geometries/" + g.id();
@@ -283,7 +317,7 @@ ApiResponse Api::create_geometry(std::string_view body) {
 }
 
 ApiResponse Api::get_geometry(std::string_view id) {
-  const auto g = cache_.find(std::string(id));
+  const auto g = held_geometry(id);
   if (!g)
     throw ApiError(404, "geometry_not_found",
                    "geometry " + std::string(id) + " is not held (evicted, deleted, or never posted): " +
@@ -314,8 +348,19 @@ ApiResponse Api::get_geometry(std::string_view id) {
 }
 
 ApiResponse Api::delete_geometry(std::string_view id) {
-  if (!cache_.erase(std::string(id)))
-    throw ApiError(404, "geometry_not_found", "geometry " + std::string(id) + " is not held", "id");
+  bool held = false;
+  if (registry_) {
+    try {
+      held = registry_->erase(std::string(id));
+    } catch (const RegistryUnavailable&) {
+      throw ApiError(503, "registry_unavailable",
+                     "the shared registry cannot be reached, so geometry " + std::string(id) +
+                         " cannot be deleted everywhere; nothing was deleted: retry shortly",
+                     "id");
+    }
+  }
+  held = cache_.erase(std::string(id)) || held;
+  if (!held) throw ApiError(404, "geometry_not_found", "geometry " + std::string(id) + " is not held", "id");
   ApiResponse r;
   r.status = 204;
   r.content_type.clear();
@@ -326,7 +371,7 @@ ApiResponse Api::project(std::string_view id, std::string_view body) {
   const bool inline_geometry = id.empty();
   std::shared_ptr<const CompiledGeometry> geometry;
   if (!inline_geometry) {
-    geometry = cache_.find(std::string(id));
+    geometry = held_geometry(id);
     if (!geometry)
       throw ApiError(404, "geometry_not_found",
                      "geometry " + std::string(id) + " is not held (evicted, deleted, or never posted): " +

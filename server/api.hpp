@@ -13,6 +13,7 @@
 #include "batch/thread_pool.hpp"
 #include "cache/geometry_cache.hpp"
 #include "config.hpp"
+#include "geometry_registry.hpp"
 #include "metrics.hpp"
 #include "route.hpp"
 
@@ -24,12 +25,14 @@ struct ApiResponse {
   std::string body;
   std::string location;    // Location header (201 Created), empty otherwise
   std::size_t points = 0;  // points projected (for the request log)
-  int retry_after_s = 0;   // Retry-After header (503 overloaded), 0: none
+  int retry_after_s = 0;   // Retry-After header (503 overloaded, registry_unavailable), 0: none
 };
 
 class Api {
  public:
-  Api(const ServerConfig& config, GeometryCache& cache, ThreadPool& pool, Metrics& metrics);
+  // `registry`: the shared level 2 under `cache` (nullptr: one process, the cache alone).
+  Api(const ServerConfig& config, GeometryCache& cache, ThreadPool& pool, Metrics& metrics,
+      GeometryRegistry* registry = nullptr);
 
   // Answers a request that matched `match` with an allowed method. Never throws: every
   // failure becomes a JSON error response with its status.
@@ -56,12 +59,17 @@ class Api {
   ApiResponse delete_geometry(std::string_view id);
   ApiResponse project(std::string_view id, std::string_view body);  // id empty: inline geometry
 
+  formula::CompileLimits compile_limits() const;
   GeometryCache::Lookup compile(const GeometryDefinition& def, const std::string& field_prefix);
+  // The geometry with this id from the cache, else from the registry; nullptr when neither holds
+  // it. Throws ApiError (503 registry_unavailable, 422 when a stored definition does not compile).
+  std::shared_ptr<const CompiledGeometry> held_geometry(std::string_view id);
 
   const ServerConfig& config_;
   GeometryCache& cache_;
   ThreadPool& pool_;
   Metrics& metrics_;
+  GeometryRegistry* registry_;
   std::atomic<bool> shutting_down_{false};
   std::atomic<std::size_t> in_flight_{0};
   std::atomic<std::size_t> in_flight_points_{0};

@@ -3,8 +3,11 @@
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <limits>
 #include <vector>
+
+#include "redis/redis_client.hpp"
 
 namespace footpoint::server {
 
@@ -21,7 +24,7 @@ T parse_integer(const std::string& name, const std::string& text, T min, T max) 
 }
 
 struct Setting {
-  const char* flag;  // without the leading "--"
+  const char* flag;  // without the leading "--"; nullptr: environment only
   const char* env;
   const char* help;
   void (*set)(ServerConfig&, const std::string& name, const std::string& value);
@@ -132,13 +135,52 @@ const std::vector<Setting>& settings() {
          throw ConfigError(n + ": unknown log level '" + v + "'");
        },
        [](const ServerConfig& c) { return c.log_level; }},
+      {"registry-url", "FOOTPOINT_REGISTRY_URL",
+       "shared geometry registry, redis://[user@]host[:port][/db] (\"\": none, one process)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         if (!v.empty()) {
+           try {
+             redis::parse_url(v);
+           } catch (const std::invalid_argument& e) {
+             throw ConfigError(n + ": " + e.what());
+           }
+         }
+         c.registry_url = v;
+       },
+       [](const ServerConfig& c) { return c.registry_url.empty() ? std::string("\"\"") : c.registry_url; }},
+      {nullptr, "FOOTPOINT_REGISTRY_PASSWORD", "the registry's password (environment only, never logged)",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.registry_password = v; },
+       [](const ServerConfig&) { return std::string("none"); }},
+      {"registry-password-file", "FOOTPOINT_REGISTRY_PASSWORD_FILE",
+       "file holding the registry's password (a mounted Secret)",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.registry_password_file = v; },
+       [](const ServerConfig& c) {
+         return c.registry_password_file.empty() ? std::string("\"\"") : c.registry_password_file;
+       }},
+      {"registry-timeout-ms", "FOOTPOINT_REGISTRY_TIMEOUT_MS",
+       "bound on each registry operation of a request, in milliseconds",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.registry_timeout = std::chrono::milliseconds(parse_integer<long>(n, v, 1, 60000));
+       },
+       [](const ServerConfig& c) { return std::to_string(c.registry_timeout.count()); }},
+      {"registry-pool-size", "FOOTPOINT_REGISTRY_POOL_SIZE", "registry connections for requests",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.registry_pool_size = parse_integer<std::size_t>(n, v, 1, 1024);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.registry_pool_size); }},
+      {"registry-ttl-s", "FOOTPOINT_REGISTRY_TTL_S",
+       "seconds an entry unused on every replica stays in the registry (0: no expiry)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.registry_ttl = std::chrono::seconds(parse_integer<long>(n, v, 0, 10L * 365 * 86400));
+       },
+       [](const ServerConfig& c) { return std::to_string(c.registry_ttl.count()); }},
   };
   return table;
 }
 
 const Setting* find_flag(const std::string& flag) {
   for (const auto& s : settings())
-    if (flag == s.flag) return &s;
+    if (s.flag && flag == s.flag) return &s;
   return nullptr;
 }
 
@@ -174,6 +216,17 @@ ServerConfig load_config(int argc, const char* const* argv,
   }
   if (config.effective_max_inflight() > config.connection_threads)
     throw ConfigError("--max-inflight must not exceed --connection-threads");
+  if (!config.registry_password_file.empty()) {
+    if (!config.registry_password.empty())
+      throw ConfigError("set FOOTPOINT_REGISTRY_PASSWORD or --registry-password-file, not both");
+    std::ifstream in(config.registry_password_file, std::ios::binary);
+    if (!in) throw ConfigError("--registry-password-file: cannot read " + config.registry_password_file);
+    std::getline(in, config.registry_password, '\0');
+    if (!config.registry_password.empty() && config.registry_password.back() == '\n')
+      config.registry_password.pop_back();
+    if (!config.registry_password.empty() && config.registry_password.back() == '\r')
+      config.registry_password.pop_back();
+  }
   return config;
 }
 
@@ -181,7 +234,7 @@ std::string usage() {
   const ServerConfig defaults;
   std::string text = "usage: footpoint-server [--flag value | --flag=value]...\n\n";
   for (const auto& s : settings()) {
-    std::string line = std::string("  --") + s.flag;
+    std::string line = s.flag ? std::string("  --") + s.flag : std::string("  (no flag)");
     line.resize(std::max<std::size_t>(line.size() + 1, 24), ' ');
     line += std::string(s.env);
     line.resize(std::max<std::size_t>(line.size() + 1, 56), ' ');

@@ -59,6 +59,23 @@ struct ServerConfig {
   int backlog = 1024;
   // --log-level / FOOTPOINT_LOG_LEVEL: trace, debug, info, warn, error, critical or off.
   std::string log_level = "info";
+
+  // The shared geometry registry (server/geometry_registry.hpp), off when the URL is empty.
+  // --registry-url / FOOTPOINT_REGISTRY_URL: redis://[user@]host[:port][/db].
+  std::string registry_url;
+  // FOOTPOINT_REGISTRY_PASSWORD (no flag: a flag would show in process lists), or the file named
+  // by --registry-password-file / FOOTPOINT_REGISTRY_PASSWORD_FILE (a mounted Secret; one
+  // trailing newline is dropped). Never logged.
+  std::string registry_password;
+  std::string registry_password_file;
+  // --registry-timeout-ms / FOOTPOINT_REGISTRY_TIMEOUT_MS: bound on each Redis operation of a
+  // request (connecting included); beyond it the request goes on without the registry.
+  std::chrono::milliseconds registry_timeout{250};
+  // --registry-pool-size / FOOTPOINT_REGISTRY_POOL_SIZE: Redis connections for requests.
+  std::size_t registry_pool_size = 4;
+  // --registry-ttl-s / FOOTPOINT_REGISTRY_TTL_S: an entry unused on every replica for this long
+  // expires; 0: never (bound Redis by maxmemory with allkeys-lru instead).
+  std::chrono::seconds registry_ttl{604800};
 };
 
 struct ConfigError : std::runtime_error {

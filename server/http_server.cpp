@@ -97,13 +97,28 @@ ApiError http_error(int status) {
   }
 }
 
+// The shared registry the configuration names, started (logging first: it logs its connection).
+std::unique_ptr<GeometryRegistry> start_registry(const ServerConfig& config, GeometryCache& cache) {
+  if (config.registry_url.empty()) return nullptr;
+  init_logging(config.log_level);
+  RegistryOptions options;
+  options.endpoint = redis::parse_url(config.registry_url);
+  options.endpoint.password = config.registry_password;
+  options.timeout = config.registry_timeout;
+  options.pool_size = config.registry_pool_size;
+  options.ttl = config.registry_ttl;
+  options.max_entry_bytes = config.max_body_bytes;
+  return std::make_unique<GeometryRegistry>(std::move(options), cache);
+}
+
 }  // namespace
 
 HttpServer::HttpServer(ServerConfig config, Handler handler)
     : config_(std::move(config)),
       cache_(GeometryCacheOptions{config_.cache_entries, config_.cache_bytes}),
+      registry_(start_registry(config_, cache_)),
       pool_(config_.threads),
-      api_(config_, cache_, pool_, metrics_),
+      api_(config_, cache_, pool_, metrics_, registry_.get()),
       handler_(std::move(handler)),
       http_(std::make_unique<Listener>()) {
   init_logging(config_.log_level);

@@ -19,6 +19,7 @@
 #include "batch/thread_pool.hpp"
 #include "cache/geometry_cache.hpp"
 #include "config.hpp"
+#include "geometry_registry.hpp"
 #include "metrics.hpp"
 
 namespace footpoint::server {
@@ -47,6 +48,7 @@ class HttpServer {
   const ServerConfig& config() const { return config_; }
   Api& api() { return api_; }
   GeometryCache& cache() { return cache_; }
+  GeometryRegistry* registry() { return registry_.get(); }
 
   class Listener;  // the httplib server
 
@@ -54,6 +56,7 @@ class HttpServer {
   ServerConfig config_;
   Metrics metrics_;
   GeometryCache cache_;
+  std::unique_ptr<GeometryRegistry> registry_;  // nullptr without --registry-url
   ThreadPool pool_;
   Api api_;
   Handler handler_;

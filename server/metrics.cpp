@@ -4,10 +4,9 @@
 #include <cmath>
 
 #include "json_writer.hpp"
+#include "prometheus_text.hpp"
 
 namespace footpoint::server {
-
-namespace {
 
 void line(std::string& out, const std::string& name, const std::string& labels, double value) {
   out += name;
@@ -24,32 +23,21 @@ void header(std::string& out, const char* name, const char* type, const char* he
   out += std::string("# HELP ") + name + " " + help + "\n# TYPE " + name + " " + type + "\n";
 }
 
-template <class H, std::size_t N>
-void histogram_lines(std::string& out, const std::string& name, const std::string& labels, const H& h,
-                     const std::array<double, N>& bounds) {
+void histogram_lines(std::string& out, const std::string& name, const std::string& labels,
+                     const std::uint64_t* buckets, std::size_t bounds_count, const double* bounds,
+                     double sum_seconds, std::uint64_t count) {
   const std::string sep = labels.empty() ? "" : labels + ",";
   std::uint64_t cumulative = 0;
-  for (std::size_t b = 0; b < N; ++b) {
-    cumulative += h.buckets[b].load(std::memory_order_relaxed);
+  for (std::size_t b = 0; b < bounds_count; ++b) {
+    cumulative += buckets[b];
     std::string le;
     append_shortest(le, bounds[b]);
     line(out, name + "_bucket", sep + "le=\"" + le + "\"", static_cast<double>(cumulative));
   }
-  cumulative += h.buckets[N].load(std::memory_order_relaxed);
+  cumulative += buckets[bounds_count];
   line(out, name + "_bucket", sep + "le=\"+Inf\"", static_cast<double>(cumulative));
-  line(out, name + "_sum", labels, static_cast<double>(h.sum_ns.load(std::memory_order_relaxed)) * 1e-9);
-  line(out, name + "_count", labels, static_cast<double>(h.count.load(std::memory_order_relaxed)));
-}
-
-}  // namespace
-
-template <std::size_t N>
-void Metrics::Histogram<N>::observe(const std::array<double, N>& bounds, double seconds) {
-  std::size_t b = 0;
-  while (b < N && seconds > bounds[b]) ++b;
-  buckets[b].fetch_add(1, std::memory_order_relaxed);
-  sum_ns.fetch_add(static_cast<std::uint64_t>(std::max(0.0, seconds) * 1e9), std::memory_order_relaxed);
-  count.fetch_add(1, std::memory_order_relaxed);
+  line(out, name + "_sum", labels, sum_seconds);
+  line(out, name + "_count", labels, static_cast<double>(count));
 }
 
 int Metrics::status_index(int status) {
@@ -133,6 +121,7 @@ std::string Metrics::render(const Gauges& g) const {
   line(out, "footpoint_worker_queue_tasks", "", static_cast<double>(g.worker_queue));
   header(out, "footpoint_shutting_down", "gauge", "1 while the server drains before exiting.");
   line(out, "footpoint_shutting_down", "", g.shutting_down ? 1.0 : 0.0);
+  if (g.registry) g.registry->render(out);
   return out;
 }
 

@@ -11,6 +11,7 @@
 //   footpoint_geometry_compilations_total{result}            counter (ok, error)
 //   footpoint_worker_threads, footpoint_worker_queue_tasks   gauges (the numerical pool)
 //   footpoint_shutting_down                                  gauge (1 while draining)
+//   footpoint_registry_*                                     the shared registry's (registry_metrics.hpp)
 #pragma once
 #include <array>
 #include <atomic>
@@ -19,6 +20,8 @@
 #include <string>
 
 #include "cache/geometry_cache.hpp"
+#include "prometheus_text.hpp"
+#include "registry_metrics.hpp"
 #include "route.hpp"
 #include "solvers/result.hpp"
 
@@ -40,6 +43,7 @@ class Metrics {
     std::size_t in_flight = 0;
     std::size_t in_flight_points = 0;
     bool shutting_down = false;
+    const RegistryMetrics* registry = nullptr;  // the shared registry's, when there is one
   };
   std::string render(const Gauges& gauges) const;
 
@@ -54,14 +58,6 @@ class Metrics {
   static constexpr std::array<int, 16> kHttpStatuses{200, 201, 204, 400, 404, 405, 408, 411,
                                                      413, 414, 415, 416, 422, 500, 503, 0};
   static int status_index(int status);
-
-  template <std::size_t N>
-  struct Histogram {
-    std::array<std::atomic<std::uint64_t>, N + 1> buckets{};  // not cumulative; last = +Inf
-    std::atomic<std::uint64_t> sum_ns{0};
-    std::atomic<std::uint64_t> count{0};
-    void observe(const std::array<double, N>& bounds, double seconds);
-  };
 
   std::array<std::array<std::atomic<std::uint64_t>, kHttpStatuses.size()>, kRouteCount> requests_{};
   std::array<Histogram<kRequestBuckets.size()>, kRouteCount> durations_{};

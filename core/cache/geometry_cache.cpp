@@ -106,6 +106,11 @@ bool GeometryCache::erase(const std::string& id) {
   return true;
 }
 
+std::vector<std::string> GeometryCache::ids() const {
+  std::lock_guard lock(mutex_);
+  return {recency_.begin(), recency_.end()};
+}
+
 std::optional<GeometryCache::EntryStats> GeometryCache::entry_stats(const std::string& id) const {
   std::lock_guard lock(mutex_);
   auto it = entries_.find(id);

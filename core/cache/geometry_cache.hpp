@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "geometry/geometry.hpp"
 
@@ -62,6 +63,9 @@ class GeometryCache {
 
   // Drops the geometry with this id; false when it was not held.
   bool erase(const std::string& id);
+
+  // The ids held, most recently used first.
+  std::vector<std::string> ids() const;
 
   struct EntryStats {
     std::uint64_t hits = 0;  // lookups it answered since it was inserted
