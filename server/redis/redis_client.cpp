@@ -268,7 +268,7 @@ std::vector<Reply> Connection::exchange(Clock::time_point deadline) {
   while (replies.size() < expected) {
     std::optional<Reply> r = read(deadline);
     if (!r) fail(Error::Kind::timeout, "registry: no reply within the timeout");
-    if (is_auth_error(*r)) fail(Error::Kind::auth, "registry refused a command: " + r->str);
+    if (is_auth_error(*r)) fail(Error::Kind::auth, "registry refused the command: " + r->str);
     replies.push_back(std::move(*r));
   }
   return replies;
