@@ -36,13 +36,15 @@ server_pid=
 client_pid=
 replica_pid=
 proxy_pid=
+redis_pid=
 cleanup() {
   if [ -n "$server_pid" ] && kill -0 "$server_pid" 2>/dev/null; then
     kill -KILL "$server_pid" 2>/dev/null || true
     wait "$server_pid" 2>/dev/null || true
   fi
-  for pid in "$client_pid" "$replica_pid" "$proxy_pid"; do
-    if [ -n "$pid" ]; then kill "$pid" 2>/dev/null || true; fi
+  # shellcheck disable=SC2086  # replica_pid holds several pids
+  for pid in $client_pid $replica_pid $proxy_pid $redis_pid; do
+    kill "$pid" 2>/dev/null || true
   done
   rm -rf "$tmp"
 }
@@ -170,18 +172,42 @@ assert worst < 1e-12, worst
 print(f"ok: examples/project_csv.sh: {len(points)} points in batches of 4, max error {worst:.1e} against the exact torus foot points")
 EOF
 
-# Scale-out: a second replica behind a round-robin proxy (one backend per connection; curl opens one
-# per request). The geometry is posted to the first replica, every batch lands on the second, which
-# has not seen the id: it answers 404 geometry_not_found and the script re-sends that batch to the
-# one-shot /v1/project. The output must be the same bytes as against one server.
-replica_log=$tmp/replica.log
-replica_port=$("$python" -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-(cd / && exec env -i PATH=/usr/bin:/bin FOOTPOINT_HOST=127.0.0.1 FOOTPOINT_PORT="$replica_port" FOOTPOINT_THREADS=1 \
-  "$server") > "$replica_log" 2>&1 &
-replica_pid=$!
-for _ in $(seq 1 100); do curl -sf -o /dev/null "http://127.0.0.1:$replica_port/healthz" && break; sleep 0.1; done
-curl -sf -o /dev/null "http://127.0.0.1:$replica_port/healthz" || fail "the second replica did not start"
-"$python" - "$port" "$replica_port" > "$tmp/proxy.port" <<'EOF' &
+# Scale-out: two replicas behind a round-robin proxy (one backend per connection; curl opens one
+# per request), so the geometry is posted to one replica and every batch lands on the other. With
+# the shared registry (a redis-server of this check's own, on loopback with a password) the other
+# replica answers the id itself: no batch may need the script's fallback to /v1/project, and the
+# output must be the same bytes as against one server. Without redis-server installed the check
+# runs the replicas without a registry and expects the fallback instead (each batch meets 404).
+free_port() { "$python" -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'; }
+registry_env=()
+if command -v redis-server > /dev/null; then
+  redis_port=$(free_port)
+  redis_password=layout-$RANDOM-$RANDOM
+  mkdir -p "$tmp/redis"
+  redis-server --port "$redis_port" --bind 127.0.0.1 --save '' --appendonly no --dir "$tmp/redis" \
+    --requirepass "$redis_password" > "$tmp/redis.log" 2>&1 &
+  redis_pid=$!
+  for _ in $(seq 1 100); do
+    REDISCLI_AUTH=$redis_password redis-cli -p "$redis_port" ping 2>/dev/null | grep -q PONG && break
+    sleep 0.05
+  done
+  registry_env=(FOOTPOINT_REGISTRY_URL="redis://127.0.0.1:$redis_port/0" FOOTPOINT_REGISTRY_PASSWORD="$redis_password")
+else
+  echo "note: redis-server is not installed: the scale-out check runs without the shared registry"
+fi
+replica_ports=()
+replica_pids=()
+for r in a b; do
+  replica_port=$(free_port)
+  (cd / && exec env -i PATH=/usr/bin:/bin FOOTPOINT_HOST=127.0.0.1 FOOTPOINT_PORT="$replica_port" FOOTPOINT_THREADS=1 \
+    "${registry_env[@]}" "$server") > "$tmp/replica-$r.log" 2>&1 &
+  replica_pids+=($!)
+  replica_ports+=("$replica_port")
+  replica_pid="${replica_pids[*]}"
+  for _ in $(seq 1 100); do curl -sf -o /dev/null "http://127.0.0.1:$replica_port/healthz" && break; sleep 0.1; done
+  curl -sf -o /dev/null "http://127.0.0.1:$replica_port/healthz" || fail "replica $r did not start"
+done
+"$python" - "${replica_ports[@]}" > "$tmp/proxy.port" <<'EOF' &
 import itertools, socket, sys, threading
 backends = itertools.cycle([("127.0.0.1", int(p)) for p in sys.argv[1:]])
 listener = socket.create_server(("127.0.0.1", 0))
@@ -215,15 +241,32 @@ FOOTPOINT_URL=http://127.0.0.1:$(cat "$tmp/proxy.port") "$source_dir/examples/pr
   "$source_dir/examples/torus.json" "$source_dir/examples/points.csv" 4 > "$tmp/feet-balanced.csv" ||
   fail "examples/project_csv.sh behind the round-robin proxy"
 cmp -s "$tmp/feet.csv" "$tmp/feet-balanced.csv" || fail "two replicas answered differently from one"
-kill -TERM "$replica_pid"
-wait "$replica_pid" || fail "the second replica did not exit 0 on SIGTERM"
+for pid in "${replica_pids[@]}"; do
+  kill -TERM "$pid"
+  wait "$pid" || fail "a replica did not exit 0 on SIGTERM"
+done
 replica_pid=
 kill "$proxy_pid" 2>/dev/null || true
 wait "$proxy_pid" 2>/dev/null || true
 proxy_pid=
-misses=$(grep -c '"route":"/v1/geometries/{id}/project","status":404' "$replica_log" || true)
-[ "$misses" = 3 ] || fail "expected 3 geometry_not_found answers from the second replica, saw $misses"
-pass "two replicas behind a round-robin proxy: 3 batches met an unknown id (404), went to /v1/project, same output"
+count() { cat "$tmp"/replica-*.log | grep -c "$1" || true; }
+by_id=$(count '"route":"/v1/geometries/{id}/project","status":200')
+misses=$(count '"route":"/v1/geometries/{id}/project","status":404')
+oneshot=$(count '"route":"/v1/project"')
+if [ ${#registry_env[@]} -gt 0 ]; then
+  kill "$redis_pid" 2>/dev/null || true
+  wait "$redis_pid" 2>/dev/null || true
+  redis_pid=
+  if [ "$by_id" != 3 ] || [ "$misses" != 0 ] || [ "$oneshot" != 0 ]; then
+    fail "with the registry, expected 3 batches answered by id and no retry; saw $by_id by id, $misses 404, $oneshot one-shot"
+  fi
+  pass "two replicas on a shared registry behind a round-robin proxy: 3 batches answered by id by the replica that did not see the post, no client retry, same output"
+else
+  if [ "$misses" != 3 ] || [ "$oneshot" != 3 ]; then
+    fail "without a registry, expected 3 geometry_not_found answers and 3 one-shot retries; saw $misses and $oneshot"
+  fi
+  pass "two replicas without a registry behind a round-robin proxy: 3 batches met an unknown id (404), went to /v1/project, same output"
+fi
 
 # The copy-paste curl examples of the README's operations section.
 "$python" "$deploy/check_examples.py" --server "$server" "$base" "$source_dir/README.md" ||

@@ -3,10 +3,15 @@
 
   deploy/Dockerfile      stages, build/runtime packages, install prefix, non-root USER, EXPOSE,
                          HEALTHCHECK, exec-form ENTRYPOINT
-  deploy/compose.yaml    parses; build points at the Dockerfile; port, probe path, image, env
+  deploy/compose.yaml    parses; footpoint replicas (built from the Dockerfile, at least two) behind
+                         one load balancer (nginx, deploy/nginx.conf: upstream, port, body size,
+                         timeouts), Redis (the registry: password from a secret file, maxmemory +
+                         allkeys-lru, no published port); port, probe path, image, env, healthchecks
   deploy/k8s/*.yaml      parses; the fields Kubernetes requires per kind (Deployment, Service,
                          HorizontalPodAutoscaler, PodDisruptionBudget, Kustomization); selectors
-                         match the pod template; the HPA targets the Deployment
+                         match the pod templates; the HPA targets the footpoint Deployment; the
+                         registry: a Redis Deployment and Service that FOOTPOINT_REGISTRY_URL
+                         names, one Secret for both, mounted as the password file
 and their consistency: one port, one probe path per purpose, one image name, one user id, only
 environment variables the server reads (server/config.cpp), grace periods longer than the deadline.
 
@@ -235,49 +240,167 @@ def compose_duration(text):
 
 # ---- compose ------------------------------------------------------------------------------------
 
-def check_compose(doc, deploy_dir, known_env, facts, p):
+def compose_role(svc):
+    """footpoint (built from the Dockerfile), redis (the registry) or lb (the load balancer)."""
+    if isinstance(get(svc, "build"), dict):
+        return "footpoint"
+    image = str(get(svc, "image") or "")
+    if image.startswith("redis:"):
+        return "redis"
+    if image.startswith("nginx:"):
+        return "lb"
+    return None
+
+
+def registry_url_parts(url):
+    """(host, port) of redis://[user@]host[:port][/db], or None."""
+    m = re.match(r"^redis://(?:[^:@/]+@)?([^:/@]+)(?::(\d+))?(?:/\d*)?$", str(url or ""))
+    return (m.group(1), int(m.group(2) or 6379)) if m else None
+
+
+def nginx_directives(text):
+    """[(name, [args])] of an nginx.conf, comments dropped (enough for the checks here)."""
+    text = re.sub(r"#[^\n]*", "", text)
+    return [(words[0], words[1:]) for words in (d.split() for d in re.split(r"[;{}]", text)) if words]
+
+
+def nginx_size(text):
+    m = re.match(r"^(\d+)([kKmMgG]?)$", text)
+    return int(m.group(1)) * {"": 1, "k": 1 << 10, "m": 1 << 20, "g": 1 << 30}[m.group(2).lower()] if m else None
+
+
+def nginx_seconds(text):
+    m = re.match(r"^(\d+)(ms|s|m)?$", text)
+    return int(m.group(1)) * {"ms": 0.001, "s": 1, "m": 60, None: 1}[m.group(2)] if m else None
+
+
+def check_common_service(svc, w, p):
+    test = get(svc, "healthcheck", "test")
+    p.expect(test, w, "needs a healthcheck")
+    signal = get(svc, "stop_signal")
+    p.expect(signal in (None, "SIGTERM"), w, "stop_signal must be SIGTERM")
+    user = get(svc, "user")
+    p.expect(user is None or str(user).split(":")[0] not in ("0", "root"), w, "must not run as root")
+    return " ".join(test) if isinstance(test, list) else str(test or "")
+
+
+def published_targets(svc):
+    targets = []
+    for port in get(svc, "ports") or []:
+        if isinstance(port, dict):
+            targets.append(int(port.get("target", -1)))
+        else:
+            targets.append(int(str(port).split(":")[-1].split("/")[0]))
+    return targets
+
+
+def service_env(svc):
+    env = get(svc, "environment") or {}
+    if isinstance(env, list):
+        env = dict(e.split("=", 1) for e in env)
+    return env
+
+
+def check_compose(doc, deploy_dir, known_env, facts, p, texts):
     where = "deploy/compose.yaml"
     services = get(doc, "services")
     if not p.expect(isinstance(services, dict) and services, where, "needs a services mapping"):
         return
+    roles = {}
+    for name, svc in services.items():
+        role = compose_role(svc)
+        if p.expect(role, f"{where}: services.{name}",
+                    "unexpected service (neither built from deploy/Dockerfile, nor redis:, nor nginx:)"):
+            roles.setdefault(role, []).append(name)
+    for role in ("footpoint", "redis", "lb"):
+        p.expect(len(roles.get(role, [])) == 1, where, f"needs exactly one {role} service")
+    secrets = get(doc, "secrets") or {}
     for name, svc in services.items():
         w = f"{where}: services.{name}"
-        build = get(svc, "build")
-        if p.expect(isinstance(build, dict), w, "needs build.context and build.dockerfile"):
+        role = compose_role(svc)
+        health = check_common_service(svc, w, p)
+        image = get(svc, "image")
+        if role == "footpoint":
+            build = get(svc, "build")
             context = os.path.normpath(os.path.join(deploy_dir, str(build.get("context", "."))))
             dockerfile = os.path.join(context, str(build.get("dockerfile", "Dockerfile")))
             p.expect(os.path.samefile(dockerfile, os.path.join(deploy_dir, "Dockerfile"))
                      if os.path.exists(dockerfile) else False, w, "build must use deploy/Dockerfile")
             p.expect(os.path.exists(os.path.join(context, "CMakeLists.txt")), w,
                      "build.context must be the repository root")
-        image = get(svc, "image")
-        if p.expect(isinstance(image, str), w, "needs an image name"):
-            facts.setdefault("images", []).append((w, image))
-        ports = get(svc, "ports") or []
-        targets = []
-        for port in ports:
-            if isinstance(port, dict):
-                targets.append(int(port.get("target", -1)))
-            else:
-                targets.append(int(str(port).split(":")[-1].split("/")[0]))
-        p.expect(PORT in targets, w, f"must publish container port {PORT}")
-        env = get(svc, "environment") or {}
-        if isinstance(env, list):
-            env = dict(e.split("=", 1) for e in env)
-        check_env(env, known_env, w, p)
-        test = get(svc, "healthcheck", "test")
-        if p.expect(test, w, "needs a healthcheck"):
-            line = " ".join(test) if isinstance(test, list) else str(test)
-            p.expect(LIVENESS_PATH in line and f":{PORT}/" in line, w, f"healthcheck must probe :{PORT}{LIVENESS_PATH}")
+            if p.expect(isinstance(image, str), w, "needs an image name"):
+                facts.setdefault("images", []).append((w, image))
+            replicas = get(svc, "deploy", "replicas")
+            p.expect(isinstance(replicas, int) and replicas >= 2, w, "needs deploy.replicas >= 2 (scale-out)")
+            p.expect(not get(svc, "ports"), w,
+                     "must not publish host ports (replicas would clash): the load balancer publishes")
+            env = service_env(svc)
+            check_env(env, known_env, w, p)
+            p.expect(LIVENESS_PATH in health and f":{PORT}/" in health, w, f"healthcheck must probe :{PORT}{LIVENESS_PATH}")
             if "health_tool" in facts:
-                p.expect(facts["health_tool"] in line, w, f"healthcheck must use {facts['health_tool']} (installed in the image)")
-        signal = get(svc, "stop_signal")
-        p.expect(signal in (None, "SIGTERM"), w, "stop_signal must be SIGTERM")
-        grace = get(svc, "stop_grace_period")
-        p.expect(grace is not None and compose_duration(grace) > deadline_seconds(env), w,
-                 "stop_grace_period must exceed the request deadline (FOOTPOINT_DEADLINE_MS)")
-        user = get(svc, "user")
-        p.expect(user is None or str(user).split(":")[0] not in ("0", "root"), w, "must not run as root")
+                p.expect(facts["health_tool"] in health, w, f"healthcheck must use {facts['health_tool']} (installed in the image)")
+            grace = get(svc, "stop_grace_period")
+            p.expect(grace is not None and compose_duration(grace) > deadline_seconds(env), w,
+                     "stop_grace_period must exceed the request deadline (FOOTPOINT_DEADLINE_MS)")
+            p.expect("FOOTPOINT_REGISTRY_PASSWORD" not in env, w,
+                     "no password in the environment: FOOTPOINT_REGISTRY_PASSWORD_FILE from a secret")
+            url = registry_url_parts(env.get("FOOTPOINT_REGISTRY_URL"))
+            if p.expect(url, w, "FOOTPOINT_REGISTRY_URL must be redis://<the redis service>:6379/<db>"):
+                p.expect(url[0] in roles.get("redis", []) and url[1] == 6379, w,
+                         f"FOOTPOINT_REGISTRY_URL names {url[0]}:{url[1]}, not the redis service on 6379")
+            password_file = str(env.get("FOOTPOINT_REGISTRY_PASSWORD_FILE", ""))
+            secret = password_file[len("/run/secrets/"):] if password_file.startswith("/run/secrets/") else None
+            if p.expect(secret, w, "FOOTPOINT_REGISTRY_PASSWORD_FILE must be /run/secrets/<secret>"):
+                p.expect(secret in (get(svc, "secrets") or []) and secret in secrets, w,
+                         f"the secret {secret} must be declared and given to the service")
+                facts["compose_secret"] = secret
+            facts["compose_footpoint"] = name
+            facts["compose_env"] = env
+        elif role == "redis":
+            command = " ".join(get(svc, "command") or []) if isinstance(get(svc, "command"), list) else str(get(svc, "command") or "")
+            p.expect("--maxmemory " in command and "allkeys-lru" in command, w,
+                     "Redis must be bounded: --maxmemory with --maxmemory-policy allkeys-lru")
+            p.expect("requirepass" in command, w, "Redis needs a password (requirepass)")
+            p.expect(not get(svc, "ports"), w, "must not publish Redis on the host")
+            p.expect("redis-cli" in health and "ping" in health.lower(), w, "healthcheck must be redis-cli ping")
+            facts["compose_redis_secrets"] = get(svc, "secrets") or []
+            facts["compose_redis_command"] = command
+        elif role == "lb":
+            p.expect(PORT in published_targets(svc) and any(str(x).startswith(f"{PORT}:") for x in get(svc, "ports") or []),
+                     w, f"the load balancer must publish {PORT}:{PORT}, the one address")
+            p.expect(LIVENESS_PATH in health, w, f"healthcheck must probe {LIVENESS_PATH} through the balancer")
+            mounts = [str(v).split(":") for v in get(svc, "volumes") or []]
+            conf = [m[0] for m in mounts if len(m) >= 2 and m[1] == "/etc/nginx/nginx.conf"]
+            if p.expect(conf, w, "must mount deploy/nginx.conf at /etc/nginx/nginx.conf"):
+                facts["nginx_conf"] = os.path.normpath(conf[0])
+            p.expect(roles.get("footpoint", [None])[0] in (get(svc, "depends_on") or {}), w,
+                     "must depend on the footpoint service")
+    secret = facts.get("compose_secret")
+    if secret and "compose_redis_secrets" in facts:
+        p.expect(secret in facts["compose_redis_secrets"] and f"/run/secrets/{secret}" in facts["compose_redis_command"],
+                 where, f"Redis must take its password from the same secret ({secret}) as the replicas")
+    if "nginx_conf" in facts:
+        check_nginx(texts.get(facts["nginx_conf"]), facts, p)
+
+
+def check_nginx(text, facts, p):
+    where = f"deploy/{facts['nginx_conf']}"
+    if not p.expect(text is not None, where, "does not exist (mounted by the lb service)"):
+        return
+    d = nginx_directives(text)
+    servers = [a[0] for n, a in d if n == "server" and a]
+    target = f"{facts.get('compose_footpoint')}:{PORT}"
+    p.expect(target in servers, where, f"the upstream must be {target} (the replicas' service)")
+    p.expect(["8080"] in [a for n, a in d if n == "listen"], where, f"must listen on {PORT}")
+    env = facts.get("compose_env", {})
+    sizes = [nginx_size(a[0]) for n, a in d if n == "client_max_body_size"]
+    limit = int(env.get("FOOTPOINT_MAX_BODY_BYTES", 16 << 20))
+    p.expect(sizes and sizes[0] and sizes[0] >= limit, where,
+             f"client_max_body_size must admit FOOTPOINT_MAX_BODY_BYTES ({limit})")
+    reads = [nginx_seconds(a[0]) for n, a in d if n == "proxy_read_timeout"]
+    p.expect(reads and reads[0] and reads[0] > deadline_seconds(env), where,
+             "proxy_read_timeout must exceed the request deadline (FOOTPOINT_DEADLINE_MS)")
+    p.expect(any(n == "proxy_pass" for n, _ in d), where, "needs a proxy_pass to the upstream")
 
 
 # ---- Kubernetes ---------------------------------------------------------------------------------
@@ -356,7 +479,68 @@ def check_deployment(doc, where, known_env, facts, p):
                  "terminationGracePeriodSeconds must exceed the request deadline (FOOTPOINT_DEADLINE_MS)")
         p.expect(get(c, "securityContext", "allowPrivilegeEscalation") is False, w,
                  "securityContext.allowPrivilegeEscalation must be false")
+        p.expect("FOOTPOINT_REGISTRY_PASSWORD" not in env, w,
+                 "no password in the environment: FOOTPOINT_REGISTRY_PASSWORD_FILE from a Secret volume")
+        facts["registry_url"] = (w, env.get("FOOTPOINT_REGISTRY_URL"))
+        facts["registry_password"] = (w, env.get("FOOTPOINT_REGISTRY_PASSWORD_FILE"),
+                                      secret_mounts(pod, c))
     facts["deployment"] = get(doc, "metadata", "name")
+
+
+def secret_mounts(pod, container):
+    """{mountPath: secretName} of the container's volume mounts that come from a Secret."""
+    secrets = {v.get("name"): get(v, "secret", "secretName") for v in get(pod, "volumes") or []
+               if get(v, "secret", "secretName")}
+    return {m.get("mountPath"): secrets[m.get("name")] for m in get(container, "volumeMounts") or []
+            if m.get("name") in secrets}
+
+
+def redis_memory_bytes(text):
+    """Bytes of a Redis size (200mb, 1gb) or a Kubernetes quantity (256Mi, 1Gi)."""
+    m = re.match(r"^(\d+)(b|kb|mb|gb|Ki|Mi|Gi|k|M|G)?$", str(text))
+    if not m:
+        return None
+    unit = {"b": 1, "kb": 1 << 10, "mb": 1 << 20, "gb": 1 << 30, "Ki": 1 << 10, "Mi": 1 << 20, "Gi": 1 << 30,
+            "k": 1000, "M": 10 ** 6, "G": 10 ** 9, None: 1}[m.group(2)]
+    return int(m.group(1)) * unit
+
+
+def check_redis_deployment(doc, where, facts, p):
+    spec = get(doc, "spec") or {}
+    labels = get(spec, "template", "metadata", "labels")
+    p.expect(selector_matches(get(spec, "selector", "matchLabels"), labels), where,
+             "spec.selector.matchLabels must be non-empty and match spec.template.metadata.labels")
+    facts["redis_labels"] = labels or {}
+    pod = get(spec, "template", "spec") or {}
+    p.expect(get(spec, "replicas") in (None, 1), where, "one Redis: every footpoint pod must see the same registry")
+    p.expect(get(pod, "securityContext", "runAsNonRoot") is True, where, "pod securityContext.runAsNonRoot must be true")
+    for c in get(pod, "containers") or []:
+        w = f"{where}: container {get(c, 'name')}"
+        ports = {port.get("name"): port.get("containerPort") for port in get(c, "ports") or []}
+        p.expect(6379 in ports.values(), w, "must declare containerPort 6379")
+        facts["redis_ports"] = ports
+        for probe in ("livenessProbe", "readinessProbe"):
+            p.expect(isinstance(get(c, probe), dict), w, f"needs a {probe}")
+        for kind in ("requests", "limits"):
+            for res in ("cpu", "memory"):
+                p.expect(get(c, "resources", kind, res) is not None, w, f"needs resources.{kind}.{res}")
+        for e in get(c, "env") or []:
+            p.expect(isinstance(e.get("value"), str) or get(e, "valueFrom", "secretKeyRef"), w,
+                     f"env {e.get('name')}: a string or a secretKeyRef")
+        command = " ".join(str(x) for x in (get(c, "command") or []) + (get(c, "args") or []))
+        maxmemory = re.search(r"--maxmemory (\S+)", command)
+        if p.expect(maxmemory and "--maxmemory-policy allkeys-lru" in command, w,
+                    "Redis must be bounded: --maxmemory with --maxmemory-policy allkeys-lru"):
+            limit = redis_memory_bytes(get(c, "resources", "limits", "memory"))
+            p.expect(limit and redis_memory_bytes(maxmemory.group(1)) < limit, w,
+                     "--maxmemory must stay below the container's memory limit")
+        mounts = secret_mounts(pod, c)
+        from_secret = [path for path in mounts if f"{path.rstrip('/')}/" in command]
+        p.expect("requirepass" in command and from_secret, w,
+                 "Redis needs a password (requirepass) read from a mounted Secret, not written in the manifest")
+        facts["redis_secrets"] = {mounts[path] for path in from_secret}
+        p.expect(get(c, "securityContext", "allowPrivilegeEscalation") is False, w,
+                 "securityContext.allowPrivilegeEscalation must be false")
 
 
 def check_service(doc, where, facts, p):
@@ -427,20 +611,34 @@ def check_k8s(docs_by_file, known_env, facts, p):
                 continue
             check_metadata(doc, where, p)
             if kind == "Deployment":
-                check_deployment(doc, where, known_env, facts, p)
+                images = [str(get(c, "image") or "") for c in get(doc, "spec", "template", "spec", "containers") or []]
+                if any(i.startswith("redis:") for i in images):
+                    seen.setdefault("redis Deployment", []).append(where)
+                    check_redis_deployment(doc, where, facts, p)
+                else:
+                    seen.setdefault("footpoint Deployment", []).append(where)
+                    check_deployment(doc, where, known_env, facts, p)
             elif kind == "Service":
                 check_service(doc, where, facts, p)
             elif kind == "HorizontalPodAutoscaler":
                 check_hpa(doc, where, facts, p)
             elif kind == "PodDisruptionBudget":
                 check_pdb(doc, where, facts, p)
-    for kind in ("Deployment", "Service", "HorizontalPodAutoscaler", "PodDisruptionBudget"):
-        p.expect(len(seen.get(kind, [])) == 1, "deploy/k8s", f"needs exactly one {kind}")
+    for kind, n in (("footpoint Deployment", 1), ("redis Deployment", 1), ("Service", 2),
+                    ("HorizontalPodAutoscaler", 1), ("PodDisruptionBudget", 1)):
+        p.expect(len(seen.get(kind, [])) == n, "deploy/k8s", f"needs exactly {n} {kind}")
     # Cross-references, now that the Deployment is known.
     labels = facts.get("pod_labels", {})
     ports = facts.get("container_ports", {})
+    redis_labels, redis_ports = facts.get("redis_labels", {}), facts.get("redis_ports", {})
+    redis_services = {}
     for what, where, doc in facts.get("pending", []):
-        if what == "service":
+        if what == "service" and selector_matches(get(doc, "spec", "selector"), redis_labels):
+            for port in get(doc, "spec", "ports") or []:
+                target = port.get("targetPort", port.get("port"))
+                p.expect(target in redis_ports or target == 6379, where, f"targetPort {target!r} is not Redis's port")
+                redis_services[get(doc, "metadata", "name")] = port.get("port")
+        elif what == "service":
             p.expect(selector_matches(get(doc, "spec", "selector"), labels), where,
                      "spec.selector must select the Deployment's pods")
             for port in get(doc, "spec", "ports") or []:
@@ -457,6 +655,19 @@ def check_k8s(docs_by_file, known_env, facts, p):
             if isinstance(lo, int):
                 p.expect(lo < facts.get("min_replicas", 1), where,
                          "minAvailable must be below the HPA's minReplicas, or no node can ever be drained")
+    if "registry_url" in facts:
+        w, url = facts["registry_url"]
+        parts = registry_url_parts(url)
+        if p.expect(parts, w, "FOOTPOINT_REGISTRY_URL must be redis://<the Redis Service>:<port>/<db>"):
+            p.expect(redis_services.get(parts[0]) == parts[1], w,
+                     f"FOOTPOINT_REGISTRY_URL names {parts[0]}:{parts[1]}, not the Redis Service "
+                     f"({', '.join(f'{k}:{v}' for k, v in redis_services.items()) or 'none'})")
+    if "registry_password" in facts:
+        w, path, mounts = facts["registry_password"]
+        secret = next((name for mount, name in mounts.items() if path and path.startswith(f"{mount.rstrip('/')}/")), None)
+        if p.expect(secret, w, "FOOTPOINT_REGISTRY_PASSWORD_FILE must be a file of a mounted Secret volume"):
+            p.expect(secret in facts.get("redis_secrets", set()), w,
+                     f"the password Secret {secret} is not the one Redis reads")
 
 
 # ---- all files ----------------------------------------------------------------------------------
@@ -480,7 +691,7 @@ def check_texts(texts, deploy_dir, install_deps_text, config_cpp_text):
         elif rel in ("compose.yaml", "compose.yml"):
             p.expect(len(docs) == 1, f"deploy/{rel}", "must hold one document")
             if docs:
-                check_compose(docs[0], deploy_dir, known_env, facts, p)
+                check_compose(docs[0], deploy_dir, known_env, facts, p, texts)
         else:
             p.add(f"deploy/{rel}", "unexpected YAML file (not compose, not k8s)")
     p.expect("compose.yaml" in texts, "deploy", "needs compose.yaml")
@@ -496,7 +707,7 @@ def read_texts(deploy_dir):
     texts = {}
     for root, _, files in os.walk(deploy_dir):
         for f in files:
-            if f.endswith((".yaml", ".yml")) or f in ("Dockerfile", "Dockerfile.dockerignore"):
+            if f.endswith((".yaml", ".yml", ".conf")) or f in ("Dockerfile", "Dockerfile.dockerignore"):
                 path = os.path.join(root, f)
                 with open(path, encoding="utf-8") as fh:
                     texts[os.path.relpath(path, deploy_dir)] = fh.read()
@@ -566,7 +777,34 @@ MUTATIONS = [
     ("Dockerfile", " libfmt9", " libfmt-dev", "build-only package"),
     ("Dockerfile", " libnanoflann-dev", "", "libnanoflann-dev"),
     ("Dockerfile.dockerignore", "!server/\n", "", "copies server/"),
-    ("compose.yaml", '"8080:8080"', '"8080:9090"', "publish container port"),
+    ("compose.yaml", '"8080:8080"', '"8080:9090"', "must publish 8080:8080"),
+    ("compose.yaml", "      replicas: 2", "      replicas: 1", "deploy.replicas >= 2"),
+    ("compose.yaml", '    expose:\n      - "8080"', '    ports:\n      - "8080:8080"', "must not publish host ports"),
+    ("compose.yaml", "redis://redis:6379/0", "redis://cache:6379/0", "not the redis service"),
+    ("compose.yaml", "FOOTPOINT_REGISTRY_PASSWORD_FILE: /run/secrets/registry_password",
+     'FOOTPOINT_REGISTRY_PASSWORD: "hunter2"', "no password in the environment"),
+    ("compose.yaml", "--maxmemory-policy allkeys-lru", "--maxmemory-policy noeviction", "allkeys-lru"),
+    ("compose.yaml", "    secrets:\n      - registry_password\n    healthcheck:\n      test: [\"CMD-SHELL\", \"REDIS",
+     "    healthcheck:\n      test: [\"CMD-SHELL\", \"REDIS", "same secret"),
+    ("compose.yaml", "redis-cli ping", "true", "redis-cli ping"),
+    ("compose.yaml", "      - ./nginx.conf:/etc/nginx/nginx.conf:ro", "      - ./nginx.conf:/etc/nginx/other.conf:ro",
+     "must mount deploy/nginx.conf"),
+    ("compose.yaml", "    image: nginx:stable-bookworm", "    image: traefik:v3", "unexpected service"),
+    ("nginx.conf", "server footpoint:8080;", "server footpoint:9090;", "upstream must be footpoint:8080"),
+    ("nginx.conf", "client_max_body_size 16m;", "client_max_body_size 1m;", "client_max_body_size"),
+    ("nginx.conf", "proxy_read_timeout 40s;", "proxy_read_timeout 10s;", "proxy_read_timeout"),
+    ("k8s/redis.yaml", "--maxmemory 200mb", "--maxmemory 300mb", "below the container's memory limit"),
+    ("k8s/redis.yaml", "--maxmemory-policy allkeys-lru", "--maxmemory-policy noeviction", "allkeys-lru"),
+    ("k8s/redis.yaml", '"$(cat /var/run/secrets/footpoint-registry/password)"', "hunter2", "read from a mounted Secret"),
+    ("k8s/redis.yaml", "  replicas: 1\n", "  replicas: 3\n", "one Redis"),
+    ("k8s/redis.yaml", "    app.kubernetes.io/component: registry\n  ports:", "    app.kubernetes.io/component: cache\n  ports:",
+     "select the Deployment's pods"),
+    ("k8s/deployment.yaml", "redis://footpoint-redis:6379/0", "redis://redis:6379/0", "not the Redis Service"),
+    ("k8s/deployment.yaml", "              value: /var/run/secrets/footpoint-registry/password",
+     "              value: /etc/footpoint/password", "mounted Secret volume"),
+    ("k8s/deployment.yaml", "            secretName: footpoint-registry", "            secretName: other-secret",
+     "not the one Redis reads"),
+    ("k8s/kustomization.yaml", "  - redis.yaml\n", "", "must list"),
     ("compose.yaml", "stop_grace_period: 40s", "stop_grace_period: 10s", "stop_grace_period"),
     ("compose.yaml", "FOOTPOINT_MAX_POINTS", "FOOTPOINT_MAXPOINTS", "not read by the server"),
     ("compose.yaml", "image: footpoint:", "image: other:", "differs from"),

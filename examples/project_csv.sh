@@ -9,10 +9,12 @@
 #   foot_x,foot_y[,foot_z],distance,status
 #
 # The geometry is posted once (POST /v1/geometries answers its id, a hash of the definition); the
-# points go in batches to POST /v1/geometries/{id}/project, which carries no definition. Behind a
-# load balancer a batch can land on a replica that has not seen the id (it answers 404
-# geometry_not_found): that batch goes again to the one-shot POST /v1/project with the definition
-# inline, which any replica answers, and which leaves the geometry cached there under the same id.
+# points go in batches to POST /v1/geometries/{id}/project, which carries no definition. With a
+# shared registry every replica answers the id. Without one, behind a load balancer, a batch can
+# land on a replica that has not seen the id (404 geometry_not_found), and with one a replica
+# that does not hold the id can find the registry unreachable (503 registry_unavailable): that
+# batch goes again to the one-shot POST /v1/project with the definition inline, which any replica
+# answers, and which leaves the geometry cached there under the same id.
 set -euo pipefail
 
 if [ $# -lt 2 ] || [ $# -gt 3 ]; then
@@ -52,7 +54,9 @@ for batch in "$work"/batch.*; do
   jq -R -s '{points: (split("\n") | map(select(length > 0) | split(",") | map(tonumber)))}' \
     "$batch" > "$work/request.json"
   status=$(post "/v1/geometries/$id/project" "$work/request.json")
-  if [ "$status" = 404 ] && [ "$(jq -r '.error.code' "$work/response.json")" = geometry_not_found ]; then
+  code=$(jq -r '.error.code // empty' "$work/response.json")
+  if { [ "$status" = 404 ] && [ "$code" = geometry_not_found ]; } ||
+     { [ "$status" = 503 ] && [ "$code" = registry_unavailable ]; }; then
     jq --slurpfile geometry "$geometry_file" '{geometry: $geometry[0]} + .' "$work/request.json" > "$work/oneshot.json"
     status=$(post /v1/project "$work/oneshot.json")
   fi
