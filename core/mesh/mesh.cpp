@@ -1,0 +1,24 @@
+#include "mesh/mesh.hpp"
+
+#include <stdexcept>
+
+#include "geometry/implicit_curve.hpp"
+#include "geometry/parametric_curve.hpp"
+#include "geometry/parametric_surface_geometry.hpp"
+#include "mesh/curve_mesh.hpp"
+#include "mesh/surface_mesh.hpp"
+
+namespace footpoint {
+
+Mesh mesh_geometry(const CompiledGeometry& geometry, const MeshOptions& options) {
+  if (options.resolution < 2) throw std::invalid_argument("a mesh needs a resolution of at least 2");
+  if (const auto* s = dynamic_cast<const ParametricSurface*>(&geometry))
+    return mesh_parametric_surface(*s, options.resolution);
+  if (const auto* c = dynamic_cast<const ParametricCurve*>(&geometry))
+    return mesh_parametric_curve(*c, options.resolution);
+  if (const auto* c = dynamic_cast<const ImplicitCurve*>(&geometry))
+    return mesh_implicit_curve(*c, options.resolution);
+  throw std::invalid_argument("no mesh for this kind of geometry");
+}
+
+}  // namespace footpoint
