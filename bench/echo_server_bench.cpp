@@ -148,10 +148,10 @@ int main(int argc, char** argv) {
   if (exit_code >= 0) return exit_code;
   HttpServer* self = nullptr;
   HttpServer server(config, [&self, &config, &replays](const RouteMatch& m, std::string_view method,
-                                                       std::string_view body) {
+                                                       std::string_view body, std::string_view query) {
     if (m.route == Route::project || m.route == Route::geometry_project)
       return echo(m, body, config.max_points, replays);
-    return self->api().handle(m, method, body);
+    return self->api().handle(m, method, body, query);
   });
   self = &server;
   try {

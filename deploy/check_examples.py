@@ -8,8 +8,8 @@ Takes the first FILE whose operations section has ```sh blocks: README.md's text
 (deploy/OPERATIONS.md). Every command of every block runs, in order, in one bash (so that `ID=$(...)`
 carries over), with localhost:8080 replaced by BASE_URL. A command starting with `curl` must answer
 2xx, unless a comment `# → CODE (STATUS ...)` just above it names the error code and status it
-expects; its body must then be that JSON error. JSON answers must parse; /metrics and /openapi.yaml
-must look like what they are. A `VAR=$(...)` command must set VAR. With --server, the section's
+expects; its body must then be that JSON error. JSON answers must parse; /metrics, /openapi.yaml and a
+mesh's OBJ must look like what they are. A `VAR=$(...)` command must set VAR. With --server, the section's
 configuration table must list exactly the flags, variables and defaults of `PATH --help`.
 """
 import json
@@ -148,6 +148,9 @@ def main():
                 continue
             if not isinstance(doc, dict) or not str(doc.get("openapi", "")).startswith("3.1"):
                 problems.append(f"{first}: not an OpenAPI 3.1 document")
+        elif "format=obj" in first:
+            if not body.startswith("# footpoint mesh of geometry "):
+                problems.append(f"{first}: not a footpoint OBJ mesh: {body[:120]!r}")
         elif status == 204:
             if body:
                 problems.append(f"{first}: 204 with a body")

@@ -11,6 +11,7 @@ packages=(
   libnanoflann-dev   # k-d tree over cached samples (auto methods' seeding)
   libhiredis-dev     # build list: the shared geometry registry's Redis client (run time: libhiredis0.14)
   redis-server       # test list: the registry tests start their own Redis on loopback
+  libjs-three        # build list: three.js and its orbit controls, embedded in the server for the pages (ui/)
   libbenchmark-dev   # bench/
   python3 python3-yaml python3-jsonschema   # openapi / manifest checks in the tests
   python3-numpy python3-scipy python3-sympy python3-mpmath  # shared/cases/oracle.py, reference generators

@@ -8,10 +8,14 @@
 #include "geometry_json.hpp"
 #include "json_reader.hpp"
 #include "json_writer.hpp"
+#include "mesh/mesh.hpp"
+#include "mesh_request.hpp"
+#include "mesh_response.hpp"
 #include "openapi_text.hpp"
 #include "project_request.hpp"
 #include "request_log.hpp"
 #include "result_json.hpp"
+#include "ui_files.hpp"
 
 namespace footpoint::server {
 
@@ -93,7 +97,8 @@ Metrics::Gauges Api::gauges() const {
   return g;
 }
 
-ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::string_view body) {
+ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::string_view body,
+                        std::string_view query) {
   try {
     switch (match.route) {
       case Route::healthz:
@@ -117,10 +122,18 @@ ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::s
         InFlight counted(in_flight_);
         return project(match.id, body);
       }
+      case Route::geometry_mesh: {
+        InFlight counted(in_flight_);
+        return mesh(match.id, query);
+      }
       case Route::project: {
         InFlight counted(in_flight_);
         return project({}, body);
       }
+      case Route::ui_playground:
+      case Route::ui_docs:
+      case Route::ui_asset:
+        return ui(match);
       case Route::none:
         break;
     }
@@ -405,6 +418,49 @@ ApiResponse Api::project(std::string_view id, std::string_view body) {
                                           request.options.trace, elapsed_ms));
   r.points = results.size();
   return r;
+}
+
+ApiResponse Api::mesh(std::string_view id, std::string_view query) {
+  const auto geometry = held_geometry(id);
+  if (!geometry)
+    throw ApiError(404, "geometry_not_found",
+                   "geometry " + std::string(id) + " is not held (evicted, deleted, or never posted): " +
+                       "POST its definition to /v1/geometries again (the id stays the same)",
+                   "id");
+  MeshRequest request = read_mesh_request(query, config_.max_mesh_resolution);
+  if (request.resolution == 0)
+    request.resolution =
+        std::min(config_.max_mesh_resolution,
+                 geometry->num_params() == 2 ? kDefaultSurfaceResolution : kDefaultCurveResolution);
+  const Mesh mesh = mesh_geometry(*geometry, MeshOptions{request.resolution});
+  ApiResponse r;
+  if (request.format == MeshFormat::obj) {
+    r.content_type = "model/obj";
+    r.body = mesh_obj(*geometry, mesh, request.resolution);
+    r.headers.emplace_back("Content-Disposition",
+                           "attachment; filename=\"footpoint-" + geometry->id() + ".obj\"");
+  } else {
+    r.body = mesh_json(*geometry, mesh, request.resolution);
+  }
+  return r;
+}
+
+ApiResponse Api::ui(const RouteMatch& match) const {
+  if (!config_.ui) throw ApiError(404, "route_not_found", "the browser pages are turned off (--ui off)");
+  const std::string_view name = match.route == Route::ui_playground ? "index.html"
+                                : match.route == Route::ui_docs     ? "docs.html"
+                                                                    : match.id;
+  for (const UiFile& file : ui_files())
+    if (file.name == name) {
+      ApiResponse r;
+      r.content_type = std::string(file.content_type);
+      r.body = std::string(file.text);
+      // Scripts, styles and requests of the same origin only: no inline script, nothing external.
+      r.headers.emplace_back("Content-Security-Policy", "default-src 'self'");
+      r.headers.emplace_back("X-Content-Type-Options", "nosniff");
+      return r;
+    }
+  throw ApiError(404, "route_not_found", "no file /ui/" + std::string(name));
 }
 
 }  // namespace footpoint::server

@@ -8,6 +8,8 @@
 #include <mutex>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "api_error.hpp"
 #include "batch/thread_pool.hpp"
@@ -26,6 +28,7 @@ struct ApiResponse {
   std::string location;    // Location header (201 Created), empty otherwise
   std::size_t points = 0;  // points projected (for the request log)
   int retry_after_s = 0;   // Retry-After header (503 overloaded, registry_unavailable), 0: none
+  std::vector<std::pair<std::string, std::string>> headers;  // further headers (the pages' security policy)
 };
 
 class Api {
@@ -34,9 +37,11 @@ class Api {
   Api(const ServerConfig& config, GeometryCache& cache, ThreadPool& pool, Metrics& metrics,
       GeometryRegistry* registry = nullptr);
 
-  // Answers a request that matched `match` with an allowed method. Never throws: every
-  // failure becomes a JSON error response with its status.
-  ApiResponse handle(const RouteMatch& match, std::string_view method, std::string_view body);
+  // Answers a request that matched `match` with an allowed method; `query` is the target's text
+  // after '?' (empty when there is none). Never throws: every failure becomes a JSON error
+  // response with its status.
+  ApiResponse handle(const RouteMatch& match, std::string_view method, std::string_view body,
+                     std::string_view query = {});
 
   // While shutting down, /readyz answers 503 (the HTTP layer refuses new API requests).
   void set_shutting_down() { shutting_down_.store(true); }
@@ -58,6 +63,8 @@ class Api {
   ApiResponse get_geometry(std::string_view id);
   ApiResponse delete_geometry(std::string_view id);
   ApiResponse project(std::string_view id, std::string_view body);  // id empty: inline geometry
+  ApiResponse mesh(std::string_view id, std::string_view query);
+  ApiResponse ui(const RouteMatch& match) const;
 
   formula::CompileLimits compile_limits() const;
   GeometryCache::Lookup compile(const GeometryDefinition& def, const std::string& field_prefix);

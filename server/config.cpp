@@ -94,6 +94,18 @@ const std::vector<Setting>& settings() {
          c.compile_deadline = std::chrono::milliseconds(parse_integer<long>(n, v, 0, 86400000));
        },
        [](const ServerConfig& c) { return std::to_string(c.compile_deadline.count()); }},
+      {"max-mesh-resolution", "FOOTPOINT_MAX_MESH_RESOLUTION",
+       "largest resolution of a mesh (a surface's cells along its larger direction, a curve's segments)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.max_mesh_resolution = parse_integer<int>(n, v, 2, 4096);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.max_mesh_resolution); }},
+      {"ui", "FOOTPOINT_UI", "on: serve the playground at / and the API reference at /docs; off: 404",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         if (v != "on" && v != "off") throw ConfigError(n + ": expected on or off, got '" + v + "'");
+         c.ui = v == "on";
+       },
+       [](const ServerConfig& c) { return std::string(c.ui ? "on" : "off"); }},
       {"cache-entries", "FOOTPOINT_CACHE_ENTRIES", "compiled geometries kept (LRU)",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
          c.cache_entries = parse_integer<std::size_t>(n, v, 1, std::size_t{1} << 24);

@@ -44,6 +44,13 @@ struct ServerConfig {
   // --compile-deadline-ms / FOOTPOINT_COMPILE_DEADLINE_MS: how long compiling a geometry (with what
   // `auto` precomputes) may take before the request gets 422 compile_timeout; 0 = the request deadline.
   std::chrono::milliseconds compile_deadline{0};
+  // --max-mesh-resolution / FOOTPOINT_MAX_MESH_RESOLUTION: the largest `resolution` of
+  // GET /v1/geometries/{id}/mesh (400 above it): cells along a surface's larger direction, a
+  // curve's segments. 512 bounds a surface's mesh at 263,169 vertices (a sphere: 46 MB of JSON, 0.55 s).
+  int max_mesh_resolution = 512;
+  // --ui / FOOTPOINT_UI: on serves the browser pages (the playground at /, the API reference at
+  // /docs and their files under /ui/); off answers them 404.
+  bool ui = true;
   // --cache-entries / FOOTPOINT_CACHE_ENTRIES: compiled geometries kept (LRU).
   std::size_t cache_entries = 1024;
   // --cache-bytes / FOOTPOINT_CACHE_BYTES: memory the kept geometries may hold (LRU): 256 MiB.

@@ -67,6 +67,7 @@ void set_response(httplib::Response& res, ApiResponse&& r) {
   if (!r.content_type.empty()) res.set_header("Content-Type", r.content_type);
   if (!r.location.empty()) res.set_header("Location", r.location);
   if (r.retry_after_s > 0) res.set_header("Retry-After", std::to_string(r.retry_after_s));
+  for (const auto& [name, value] : r.headers) res.set_header(name, value);
 }
 
 // Answers from pre-routing. When the request carries a body that will now not be read, the
@@ -123,9 +124,8 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       http_(std::make_unique<Listener>()) {
   init_logging(config_.log_level);
   if (!handler_)
-    handler_ = [this](const RouteMatch& m, std::string_view method, std::string_view body) {
-      return api_.handle(m, method, body);
-    };
+    handler_ = [this](const RouteMatch& m, std::string_view method, std::string_view body,
+                      std::string_view query) { return api_.handle(m, method, body, query); };
   Listener& http = *http_;
 
   const unsigned connection_threads = config_.connection_threads;
@@ -241,7 +241,11 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
 
   auto handle = [this](const httplib::Request& req, httplib::Response& res) {
     const RouteMatch match = match_route(req.method, req.path);
-    ApiResponse r = handler_(match, req.method, req.body);
+    const auto question = req.target.find('?');
+    const std::string_view query = question == std::string::npos
+                                       ? std::string_view()
+                                       : std::string_view(req.target).substr(question + 1);
+    ApiResponse r = handler_(match, req.method, req.body, query);
     t_request.points = r.points;
     set_response(res, std::move(r));
   };

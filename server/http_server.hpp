@@ -28,8 +28,8 @@ class HttpServer {
  public:
   // Answers a request whose route and method passed the pre-routing checks. The default is the
   // Api; benchmarks substitute their own (e.g. an echo) to measure the HTTP and JSON layers.
-  using Handler =
-      std::function<ApiResponse(const RouteMatch&, std::string_view method, std::string_view body)>;
+  using Handler = std::function<ApiResponse(const RouteMatch&, std::string_view method, std::string_view body,
+                                            std::string_view query)>;
 
   explicit HttpServer(ServerConfig config, Handler handler = nullptr);
   ~HttpServer();

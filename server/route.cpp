@@ -20,8 +20,16 @@ const char* route_template(Route route) {
       return "/v1/geometries/{id}";
     case Route::geometry_project:
       return "/v1/geometries/{id}/project";
+    case Route::geometry_mesh:
+      return "/v1/geometries/{id}/mesh";
     case Route::project:
       return "/v1/project";
+    case Route::ui_playground:
+      return "/";
+    case Route::ui_docs:
+      return "/docs";
+    case Route::ui_asset:
+      return "/ui/{file}";
     case Route::none:
       return "unmatched";
   }
@@ -35,7 +43,15 @@ RouteMatch match_route(std::string_view method, std::string_view path) {
     m.method_allowed = allowed;
     m.allow = allow_header;
   };
-  if (path == "/healthz") {
+  if (path == "/" || path == "/docs") {
+    m.route = path == "/" ? Route::ui_playground : Route::ui_docs;
+    allow(get, "GET, HEAD");
+  } else if (constexpr std::string_view ui = "/ui/";
+             path.substr(0, ui.size()) == ui && path.size() > ui.size()) {
+    m.route = Route::ui_asset;
+    m.id = path.substr(ui.size());
+    allow(get, "GET, HEAD");
+  } else if (path == "/healthz") {
     m.route = Route::healthz;
     allow(get, "GET, HEAD");
   } else if (path == "/readyz") {
@@ -58,7 +74,7 @@ RouteMatch match_route(std::string_view method, std::string_view path) {
     allow(method == "POST", "POST");
   } else if (constexpr std::string_view prefix = "/v1/geometries/"; path.substr(0, prefix.size()) == prefix) {
     std::string_view rest = path.substr(prefix.size());
-    constexpr std::string_view project = "/project";
+    constexpr std::string_view project = "/project", mesh = "/mesh";
     const auto slash = rest.find('/');
     if (slash == std::string_view::npos) {
       if (rest.empty()) return m;
@@ -69,6 +85,10 @@ RouteMatch match_route(std::string_view method, std::string_view path) {
       m.route = Route::geometry_project;
       m.id = rest.substr(0, slash);
       allow(method == "POST", "POST");
+    } else if (slash > 0 && rest.substr(slash) == mesh) {
+      m.route = Route::geometry_mesh;
+      m.id = rest.substr(0, slash);
+      allow(get, "GET, HEAD");
     }
   }
   return m;

@@ -58,13 +58,6 @@ json post_json(httplib::Client& c, const std::string& path, const std::string& b
   return r->body.empty() ? json() : json::parse(r->body);
 }
 
-std::string create(httplib::Client& c, const std::string& definition) {
-  auto r = c.Post("/v1/geometries", definition, "application/json");
-  REQUIRE(r);
-  REQUIRE_MESSAGE((r->status == 201 || r->status == 200), r->body);
-  return json::parse(r->body)["geometry_id"].get<std::string>();
-}
-
 std::string points_body(const std::vector<std::array<double, 3>>& pts, int dim = 3,
                         const std::string& extra = "") {
   JsonWriter w;

@@ -140,6 +140,23 @@ TEST_CASE("every response matches openapi.yaml") {
   record("GET", geometry, c->Get(("/v1/geometries/" + id).c_str()));
   record("GET", geometry, c->Get(("/v1/geometries/" + curve_id).c_str()));
 
+  const std::string mesh = "/v1/geometries/{id}/mesh";
+  const std::string planar_id = json::parse(samples[7].body)["geometry_id"];
+  const std::string param_id = json::parse(samples[8].body)["geometry_id"];
+  record("GET", mesh, c->Get(("/v1/geometries/" + id + "/mesh?resolution=4").c_str()));
+  record("GET", mesh, c->Get(("/v1/geometries/" + curve_id + "/mesh?resolution=16").c_str()));
+  record("GET", mesh, c->Get(("/v1/geometries/" + planar_id + "/mesh?resolution=16&format=json").c_str()));
+  record("GET", mesh, c->Get(("/v1/geometries/" + param_id + "/mesh?resolution=8").c_str()));
+  record("GET", mesh, c->Get(("/v1/geometries/" + id + "/mesh?resolution=3&format=obj").c_str()));
+  record("GET", mesh, c->Get(("/v1/geometries/" + id + "/mesh?resolution=1").c_str()));                 // 400
+  record("GET", mesh, c->Get(("/v1/geometries/" + id + "/mesh?format=ply").c_str()));                   // 400
+  record("GET", mesh, c->Get("/v1/geometries/00000000000000000000000000000000/mesh"));                  // 404
+  record("POST", mesh, c->Post(("/v1/geometries/" + id + "/mesh").c_str(), "{}", "application/json"));  // 405
+
+  for (const char* page : {"/", "/docs"}) record("GET", page, c->Get(page));
+  for (const char* file : {"playground.js", "playground.css", "favicon.svg", "docs.html", "nope.js"})
+    record("GET", "/ui/{file}", c->Get((std::string("/ui/") + file).c_str()));
+
   const std::string on = "/v1/geometries/" + id + "/project";
   post(project, on, R"J({"point":[1,2,2]})J");
   post(project, on,

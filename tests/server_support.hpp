@@ -122,6 +122,14 @@ inline nlohmann::json raw_json(const std::string& response) {
   return nlohmann::json::parse(response.substr(start + 4, length));
 }
 
+// Posts a geometry definition (201 or 200) and returns its id.
+inline std::string create(httplib::Client& c, const std::string& definition) {
+  auto r = c.Post("/v1/geometries", definition, "application/json");
+  REQUIRE(r);
+  REQUIRE_MESSAGE((r->status == 201 || r->status == 200), r->body);
+  return nlohmann::json::parse(r->body)["geometry_id"].get<std::string>();
+}
+
 inline std::string read_text_file(const std::string& path) {
   std::ifstream in(path);
   REQUIRE_MESSAGE(in.good(), "cannot read " << path);
