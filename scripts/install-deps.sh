@@ -16,6 +16,7 @@ packages=(
   python3 python3-yaml python3-jsonschema   # openapi / manifest checks in the tests
   python3-numpy python3-scipy python3-sympy python3-mpmath  # shared/cases/oracle.py, reference generators
   curl jq wrk
+  chromium python3-websocket   # test list: the browser pages in headless chromium (tests/ui_playground_browser.py)
   "$@"
 )
 missing=()
