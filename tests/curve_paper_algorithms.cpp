@@ -1,10 +1,10 @@
 // The spatial-curve paper's own algorithms, run as printed from X0 = P - (0.1, 0.1, 0.1), on the
 // 16 test points of its Examples 1 and 2. They are local and often not the global answer
-// (../shared/cases/SEED_CHECK.md); tests/data/curve_paper_algorithms.json records, point by point,
+// (tests/data/papers/README.md); tests/data/curve_paper_algorithms.json records, point by point,
 // what each converges to, and this test checks each record on its own terms: a converged result is
 // an orthogonal point of the curve (|f_i| / |grad f_i| <= 1e-12 relative, orthogonality <= 1e-12),
 // no result is closer than the oracle's global distance, and the results marked global are it.
-// Algorithm 5 is also checked against ../shared/cases/PAPER_TRACES.md (a straightforward reading
+// Algorithm 5 is also checked against a float64 transcription of the paper (a straightforward reading
 // of eq. (20) lands on the paper's published point for Example 1's #1, 2, 4, 6, 8-14, 16, and on
 // the true nearest point for #5 and #7).
 #include <doctest/doctest.h>
@@ -122,7 +122,7 @@ TEST_CASE("paper algorithms on Example 1: point-by-point records") { check_recor
 
 TEST_CASE("paper algorithms on Example 2: point-by-point records") { check_records("paperC_ex2"); }
 
-TEST_CASE("Algorithm 5 on Example 1 reproduces PAPER_TRACES.md") {
+TEST_CASE("Algorithm 5 on Example 1 lands where a transcription of eq. (20) lands") {
   const json cases = read(FOOTPOINT_CASES_FILE);
   const json& c = public_case(cases, "paperC_ex1");
   const auto g = compile(c);
@@ -139,7 +139,7 @@ TEST_CASE("Algorithm 5 on Example 1 reproduces PAPER_TRACES.md") {
     for (int i = 0; i < 3; ++i)
       d += std::pow(r.foot[static_cast<std::size_t>(i)] - published[i].get<double>(), 2);
     CHECK(std::sqrt(d) <= 2e-3);
-    // In 10-17 iterations of eq. (20) in PAPER_TRACES (stopping at a step of 1e-14); our stricter
+    // In 10-17 iterations of the transcription of eq. (20) (stopping at a step of 1e-14); our stricter
     // stop (1e-15 relative, residuals 1e-12) takes one or two more.
     CHECK(r.summary.iterations >= 10);
     CHECK(r.summary.iterations <= 19);

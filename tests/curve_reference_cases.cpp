@@ -1,4 +1,4 @@
-// `auto` against reference answers computed independently (../shared/cases/oracle.py, 50-digit):
+// `auto` against reference answers computed independently (tests/tools/gen_reference.py, 50 digits):
 // parametric curves (helix, trefoil, planar ellipse, a parabola arc with endpoint answers), planar
 // implicit curves (ellipse, cusp and lemniscate singular points, two components, a clipped
 // parabola, two circles touching at a tacnode) and spatial curves (Viviani's curve with its double point,

@@ -91,7 +91,7 @@ TEST_CASE("bad-input matrix: exact status and code for each kind, and the server
   const std::string id = json::parse(created->body)["geometry_id"];
   const std::string project = "/v1/geometries/" + id + "/project";
   const json good = good_answer(*c, project);
-  // paperA_ex1: distance 1.07887060698367359338660328836 (shared/cases/public_cases.json).
+  // paperA_ex1: distance 1.07887060698367359338660328836 (tests/data/papers/public_cases.json).
   CHECK(std::fabs(good["distance"].get<double>() - 1.0788706069836736) <= 1e-14);
   CHECK(good["diagnostics"]["status"] == "converged");
 

@@ -1,5 +1,5 @@
-// `auto` against references computed by shared/cases/oracle.py for geometries of our own
-// (tests/data/surface_*.json, each file records the command that made it): a sphere with poles
+// `auto` against 50-digit references (tests/tools/gen_reference.py) for geometries of our own
+// (tests/data/surface_*.json, each file records the command that makes it): a sphere with poles
 // (s_u = 0) and a seam, a torus (periodic in both parameters), a near-flat monkey saddle (k_n = 0
 // at the origin) and a plane, and the benchmark surfaces S1, S2, S3 with points in the box twice
 // their size (mostly edge and corner answers) and within 1% of them; far points and points on the

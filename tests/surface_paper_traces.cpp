@@ -1,7 +1,7 @@
 // The papers' methods, run as published from the papers' starting values, against the papers'
 // iteration tables (GSA paper Tables 4, 5, 8, 9, 10) through options.trace, and the hybrid
-// paper's counterexamples C1-C5. Where a paper's text is wrong (cases/SEED_CHECK.md,
-// cases/PAPER_TRACES.md) the tests assert what the formulas really do and say so.
+// paper's counterexamples C1-C5. Where a paper's text is wrong (tests/data/papers/README.md says
+// where and by how much) the tests assert what the formulas really do and say so.
 #include <doctest/doctest.h>
 
 #include <vector>
@@ -20,7 +20,7 @@ struct Row {
 };
 
 // GSA paper, Example 1: s = (u+v, sin u + 2 cos v, sin(u+v)), p = (1, 2, 2); domain [-25, 25]^2
-// as in public_cases.json (the paper states none).
+// as in tests/data/papers/public_cases.json (the paper states none).
 std::shared_ptr<const ParametricSurface> example1() {
   return make_surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-25, 25}, {-25, 25});
 }
@@ -68,7 +68,7 @@ TEST_CASE("first_order reproduces Table 4 (Example 1 from (1, 2)) and reaches th
   CHECK(r.summary.status == Status::converged);
   CHECK(r.summary.method == "first_order");
   CHECK(r.summary.iterations == static_cast<int>(r.trace.size()));
-  // the global foot point (SEED_CHECK: d = 1.07887060698367...), from other parameters
+  // the global foot point (d = 1.07887060698367...), from other parameters
   CHECK(r.distance == doctest::Approx(1.0788706069836736).epsilon(1e-13));
   CHECK(dist3(r.foot, {1.2890239979093887, 2.0, 0.960564136059471}) < 1e-12);
   CHECK(r.summary.orthogonality[0] < 1e-13);
@@ -80,7 +80,7 @@ TEST_CASE("gsa: Table 5's first row; the printed formulas' second row; the globa
   const ProjectionResult r = project(*g, {1, 2, 2}, "gsa", traced_from(1, 2));
   // Step 1 is the paper's to 2 digits: eqs. (3)-(20) as printed give (-0.64906, -1.28384) against
   // the printed (-0.650, -1.29). From step 2 the paper's numbers (1.40e-1, 4.69e-2) are not what
-  // the printed formulas give, (1.80e-1, 5.90e-2) (PAPER_TRACES.md).
+  // the printed formulas give, (1.80e-1, 5.90e-2).
   REQUIRE(r.trace.size() >= 2);
   CHECK(r.trace[0][0] == doctest::Approx(-6.50e-1).epsilon(0.01));
   CHECK(r.trace[0][1] == doctest::Approx(-1.29).epsilon(0.01));
@@ -126,7 +126,7 @@ TEST_CASE("first_order reproduces Table 8 (Example 2 from (2, -2)): a local mini
   }
   CHECK(r.summary.status == Status::converged);
   // The text claims (0.7618438, 1.5629102) from every start; its own Table 8 ends at the local
-  // minimum (1.5910968, 0.5302255), d = 2.9103808719 (SEED_CHECK.md).
+  // minimum (1.5910968, 0.5302255), d = 2.9103808719.
   CHECK(r.params[0] == doctest::Approx(1.5910968).epsilon(1e-7));
   CHECK(r.params[1] == doctest::Approx(0.5302255).epsilon(1e-6));
   CHECK(r.distance == doctest::Approx(2.9103808719).epsilon(1e-10));
@@ -148,7 +148,7 @@ TEST_CASE("newton reproduces Table 9 (Example 2 from (2, -2)), printed negated; 
           {32, -2.17e-4, 1.31e-3}, {33, -5.28e-7, 3.08e-6}, {34, -3.03e-12, 1.70e-11}},
       -1.0);
   CHECK(r.summary.status == Status::converged);
-  // A stationary point that is not a minimum (PAPER_TRACES.md): converged, d = 3.3785099546.
+  // A stationary point that is not a minimum: converged, d = 3.3785099546.
   CHECK(r.params[0] == doctest::Approx(1.1644202).epsilon(1e-7));
   CHECK(r.params[1] == doctest::Approx(0.9878237).epsilon(1e-7));
   CHECK(r.distance == doctest::Approx(3.3785099546).epsilon(1e-10));
@@ -160,7 +160,7 @@ TEST_CASE(
   const ProjectionResult r = project(*g, {3, 4, 5}, "gsa", traced_from(2, -2));
   const std::vector<Row> rows = {
       {1, -1.38e-1, 5.03e-1}, {2, -1.25e-1, 4.04e-1}, {3, -7.57e-2, 3.82e-1}, {4, -2.90e-2, 4.21e-1}};
-  for (const Row& row : rows) {  // "to 2-3 digits" (PAPER_TRACES.md)
+  for (const Row& row : rows) {  // to 2-3 digits
     INFO("step " << row.step);
     REQUIRE(static_cast<int>(r.trace.size()) >= row.step);
     const auto& t = r.trace[static_cast<std::size_t>(row.step - 1)];
@@ -178,7 +178,7 @@ TEST_CASE(
     "Table 3: from Example 1's starts newton converges, mostly to stationary points that are not the "
     "nearest") {
   // The paper prints NC (no convergence) for Newton. It does converge, but from most starts to a
-  // stationary point that is not the nearest (PAPER_TRACES.md: 6 of the 7, at d = 1.4456513076
+  // stationary point that is not the nearest (6 of the 7, at d = 1.4456513076
   // or 4.7432376769). Five starts get there in 5-14 steps (`reached`, 0 for the other two); the
   // other two wander out of [-25, 25]^2 for 34-49 steps, so that where they end depends on the
   // last bits of sin and cos (here one or both reach the nearest foot's copies out there, or
@@ -221,7 +221,7 @@ struct Counterexample {
   std::array<double, 2> hybrid_params;  // where the unconstrained hybrid method converges
   bool hybrid_inside;
   bool hybrid_chaotic;                // the first-order phase wanders: where it switches depends on rounding
-  std::array<double, 2> auto_params;  // the global nearest point (public_cases.json)
+  std::array<double, 2> auto_params;  // the global nearest point (tests/data/papers/)
   Location auto_location;
 };
 }  // namespace
@@ -276,7 +276,7 @@ TEST_CASE("hybrid paper counterexamples C1-C5 from (1, 1)") {
       const ProjectionResult au = project(*g, c.p, "auto");
       if (!c.hybrid_chaotic) {
         CHECK(hy.summary.status == (c.hybrid_inside ? Status::converged : Status::outside_domain));
-        const double digits = c.hybrid_params[0] == 4.697 ? 1e-3 : 1e-6;  // as many as PAPER_TRACES prints
+        const double digits = c.hybrid_params[0] == 4.697 ? 1e-3 : 1e-6;  // as many as are known
         CHECK(hy.params[0] == doctest::Approx(c.hybrid_params[0]).epsilon(digits).scale(1.0));
         CHECK(hy.params[1] == doctest::Approx(c.hybrid_params[1]).epsilon(digits).scale(1.0));
         CHECK(hy.summary.orthogonality[0] < 1e-12);
@@ -286,10 +286,10 @@ TEST_CASE("hybrid paper counterexamples C1-C5 from (1, 1)") {
         // from the origin, for a hundred steps or more, and every step amplifies the rounding of
         // the last: where the Newton test (eq. (24)) first passes, and so which stationary point
         // the run ends at, depends on the last bits of the arithmetic (operation order, FMA
-        // contraction, the formula engine's evaluation). PAPER_TRACES.md reports (14.54, 18.18)
-        // after 108 steps, an independent transcription (-3.04, -3.80) after 357, this code has
-        // given (15.60, 19.50) after 125; another compiler may give yet another point, or none
-        // within the iteration budget. Only what holds whatever the rounding is asserted:
+        // contraction, the formula engine's evaluation). A float64 transcription of the paper gives
+        // (14.54, 18.18) after 108 steps, an independent transcription (-3.04, -3.80) after 357, this code
+        // has given (15.60, 19.50) after 125; another compiler may give yet another point, or none within the
+        // iteration budget. Only what holds whatever the rounding is asserted:
         //  - Algorithm 1 starts with a first-order step (Step 2): the first increment is eq. (5)'s
         //    from (1, 1), computed from the same jet as the first-order method's;
         //  - the run ends converged / outside_domain (the stopping test passed) or on its budget,

@@ -1,5 +1,5 @@
-// Every surface case of shared/cases/public_cases.json through `auto`: the global nearest point
-// over the closed domain, against the 50-digit references.
+// Every surface case of the papers (tests/data/papers/public_cases.json) through `auto`: the global nearest
+// point over the closed domain, against the 50-digit references.
 #include <doctest/doctest.h>
 
 #include "surface_fixtures.hpp"
