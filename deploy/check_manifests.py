@@ -35,8 +35,6 @@ PORT = 8080
 LIVENESS_PATH = "/healthz"
 READINESS_PATH = "/readyz"
 SERVER_BINARY = "footpoint-server"
-# Needed only by the tests, benchmarks and the oracle: not in the image's build stage.
-TEST_ONLY_PACKAGES = {"doctest-dev", "libbenchmark-dev"}
 RUNTIME_LIBRARIES = {"libmuparser2v5", "libcpp-httplib0.11", "libspdlog1.10", "libfmt9", "libhiredis0.14"}
 DNS_LABEL = re.compile(r"^[a-z0-9]([-a-z0-9]*[a-z0-9])?$")
 
@@ -117,6 +115,16 @@ def instructions_of(stage, keyword):
     return [args for k, args in stage["instructions"] if k == keyword]
 
 
+def service_packages(install_deps_text):
+    """The packages of scripts/install-deps.sh's first list, `packages=( ... )`: what building
+    and running the service needs (the test tools are a second list, installed with --test)."""
+    m = re.search(r"^packages=\((.*?)^\)", install_deps_text, re.M | re.S)
+    if not m:
+        return set()
+    words = " ".join(line.split("#")[0] for line in m.group(1).splitlines()).split()
+    return {w for w in words if re.fullmatch(r"[a-z0-9.+-]+", w)}
+
+
 def check_dockerfile(text, texts_extra, install_deps_text, p):
     """Returns facts the other files must agree with: port, uid, health command, prefix."""
     where = "deploy/Dockerfile"
@@ -132,8 +140,7 @@ def check_dockerfile(text, texts_extra, install_deps_text, p):
     p.expect(build["name"], where, "the build stage needs a name (FROM ... AS build)")
 
     build_packages = [x for r in instructions_of(build, "RUN") for x in apt_packages(r)]
-    needed = set(re.findall(r"\b([a-z0-9.+-]+-dev)\b", install_deps_text)) - TEST_ONLY_PACKAGES
-    needed |= {"cmake", "pkg-config"}
+    needed = service_packages(install_deps_text)
     for pkg in sorted(needed - set(build_packages)):
         p.add(where, f"build stage does not install {pkg} (scripts/install-deps.sh needs it to build)")
     build_runs = " ".join(instructions_of(build, "RUN"))

@@ -1,24 +1,37 @@
 #!/usr/bin/env bash
-# Installs everything footpoint needs to build, test and benchmark, from Debian 12 packages.
-# Idempotent; run as root (or with sudo available). Used by both README commands and by CI.
-# Packages given as arguments are installed as well (fuzz/install.sh adds clang's libFuzzer).
+# Installs footpoint's dependencies from Debian 12 packages. Idempotent; run as root (or with sudo).
+#   bash scripts/install-deps.sh            what building and running the service needs
+#   bash scripts/install-deps.sh --test     that, and what the tests and benchmarks need
+# Further arguments are package names installed as well (fuzz/install.sh adds clang's libFuzzer).
 set -euo pipefail
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+# Building and running the service (the Dockerfile's build stage installs the same list).
 packages=(
-  build-essential cmake pkg-config git
-  libcpp-httplib-dev nlohmann-json3-dev libmuparser-dev libspdlog-dev doctest-dev  # design card
+  build-essential cmake pkg-config
+  libcpp-httplib-dev nlohmann-json3-dev libmuparser-dev libspdlog-dev
   libnanoflann-dev   # k-d tree over cached samples (auto methods' seeding)
-  libhiredis-dev     # build list: the shared geometry registry's Redis client (run time: libhiredis0.14)
-  redis-server       # test list: the registry tests start their own Redis on loopback
-  libjs-three        # build list: three.js and its orbit controls, embedded in the server for the pages (ui/)
-  libbenchmark-dev   # bench/
-  python3 python3-yaml python3-jsonschema   # openapi / manifest checks in the tests
-  python3-numpy python3-scipy python3-sympy python3-mpmath  # shared/cases/oracle.py, reference generators
-  curl jq wrk
-  chromium python3-websocket   # test list: the browser pages in headless chromium (tests/ui_playground_browser.py)
-  "$@"
+  libhiredis-dev     # the shared geometry registry's Redis client (run time: libhiredis0.14)
+  libjs-three        # three.js and its orbit controls, embedded in the server for the pages (ui/)
 )
+# The test suite, the benchmarks and the checks CI runs.
+test_packages=(
+  git                                        # ctest's clone test, CI's clean clone
+  doctest-dev                                # tests/
+  redis-server                               # the registry tests start their own Redis on loopback
+  python3 python3-yaml python3-jsonschema    # openapi / manifest checks in the tests
+  python3-numpy python3-scipy python3-sympy python3-mpmath  # tests/tools/ reference generators
+  curl jq                                    # deploy checks, examples/project_csv.sh
+  wrk                                        # bench/http_bench.sh
+  libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev  # bench/occt/
+  clang-format clang-tidy shellcheck         # scripts/check_format.sh, scripts/check_tidy.sh, deploy_shellcheck
+  chromium python3-websocket                 # the browser pages in headless chromium (tests/ui_playground_browser.py)
+)
+extra=()
+for arg in "$@"; do
+  if [ "$arg" = "--test" ]; then packages+=("${test_packages[@]}"); else extra+=("$arg"); fi
+done
+packages+=("${extra[@]}")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
