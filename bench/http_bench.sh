@@ -84,7 +84,7 @@ f:close()
 LUA
 
 # HALF_WIDTHS: the parameter domains [-w,w]^2 measured (default "3 25"): 3 is S1 of the Open CASCADE
-# comparison (shared/peers), 25 the reference cases' domain for this example, where the surface
+# comparison (bench/occt/), 25 the reference cases' domain for this example, where the surface
 # covers itself ~16 times (each 3-D point has ~8 parameter preimages) and a global answer needs
 # ~29 local solves per near point.
 read -r -a widths <<<"${HALF_WIDTHS:-${HALF_WIDTH:-3 25}}"

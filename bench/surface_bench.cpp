@@ -2,7 +2,7 @@
 // (the machine is shared: wall time would include descheduling), less the timer's own overhead,
 // median over the runs; over points: median, mean, 90th and 99th percentile of those; and the
 // batch mean: one timer around all the points, the mean per point (median over the runs).
-//  1. `auto` on S1, S2, S3 (shared/peers/surfaces.txt) and on the GSA paper's Example 1 surface
+//  1. `auto` on S1, S2, S3 (bench/occt/surfaces.json) and on the GSA paper's Example 1 surface
 //     over [-25,25]^2 (8 periods each way: it covers itself ~16 times): box points uniform in the
 //     box centred on the surface's bounding box with twice its extent, and points within 1% of it;
 //     the slowest 5% of the points, described (local solves, distance, where the answer lies);
@@ -15,14 +15,11 @@
 // The load average (/proc/loadavg) is printed with every section.
 //
 // Usage: surface_bench [points per set, default 2000] [runs, default 5] [--sections 12345]
-//        surface_bench --peer DIR [--reps R] [KEY ...]
-// --peer: the Open CASCADE peer's point sets (shared/peers/README.md; DIR is the peer's copy, with
-// surfaces.txt and build/data/points_<KEY>.txt, KEY in S1 S2 S3 S1n S2n S3n by default), projected
-// by `auto`; writes build/data/res_footpoint-auto_<KEY>.txt in the peer's format
-// (idx ok time_ns d u v wall_ns; time_ns the median over R runs, default 5, of the thread CPU
-// time) and batch_footpoint-auto_<KEY>.txt (mean per point of a timed pass over all points:
-// median min max over the runs), for the peer's py/summarize.py.
-#include <time.h>
+//        surface_bench --peer [--peer-dir DIR] [--reps R] [NAME ...]
+// --peer: `auto` on the point sets of the Open CASCADE comparison (bench/occt/data/NAME.json, all
+// of bench/occt/surfaces.json by default; --peer-dir another copy of bench/occt), per point the
+// median over R runs (default 5) of the thread CPU time, and the accuracy against the sets'
+// 50-digit references. bench/occt/occt_compare prints the same beside Open CASCADE's.
 
 #include <algorithm>
 #include <array>
@@ -31,17 +28,15 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <map>
 #include <random>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "batch/batch.hpp"
 #include "batch/thread_pool.hpp"
-#include "geometry/geometry.hpp"
-#include "geometry/parametric_surface_geometry.hpp"
+#include "compiled_surface.hpp"
+#include "cpu_time.hpp"
+#include "occt/point_sets.hpp"
 
 using namespace footpoint;
 using Clock = std::chrono::steady_clock;
@@ -66,43 +61,13 @@ const SurfaceSpec kSurfaces[] = {
 };
 
 std::shared_ptr<const ParametricSurface> compile(const SurfaceSpec& s) {
-  GeometryDefinition def;
-  def.type = GeometryType::parametric_surface;
-  def.formulas = {{"x", s.x}, {"y", s.y}, {"z", s.z}};
-  def.domain = {{"u", s.u}, {"v", s.v}};
-  return std::dynamic_pointer_cast<const ParametricSurface>(compile_parametric_surface(def, {}));
+  return bench::compile_surface(s.x, s.y, s.z, s.u, s.v);
 }
 
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string a, b, c;
-  in >> a >> b >> c;
-  return "load average " + a + " " + b + " " + c;
-}
-
-double cpu_ns() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) * 1e9 + static_cast<double>(ts.tv_nsec);
-}
-
-// Median back-to-back delta of the CPU clock, subtracted from every per-point time.
-double timer_overhead() {
-  std::vector<double> d;
-  for (int i = 0; i < 2001; ++i) {
-    const double a = cpu_ns(), b = cpu_ns();
-    d.push_back(b - a);
-  }
-  std::nth_element(d.begin(), d.begin() + 1000, d.end());
-  return d[1000];
-}
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-  return v[k];
-}
+using bench::load_average;
+using bench::percentile;
+double cpu_ns() { return bench::thread_cpu_ns(); }
+double timer_overhead() { return bench::timer_overhead_ns(); }
 double median(std::vector<double> v) { return percentile(std::move(v), 0.5); }
 double mean(const std::vector<double>& v) {
   double s = 0.0;
@@ -367,113 +332,35 @@ void section_http(const std::vector<std::shared_ptr<const ParametricSurface>>& s
   }
 }
 
-// ---- the Open CASCADE peer's point sets ----
+// ---- the point sets of the Open CASCADE comparison (bench/occt/) ----
 
-std::map<std::string, SurfaceSpec> read_peer_surfaces(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot open " + path);
-  std::map<std::string, SurfaceSpec> out;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    for (std::string part; std::getline(ss, part, '|');) f.push_back(part);
-    if (f.size() != 5) continue;
-    auto trim = [](std::string s) {
-      s.erase(0, s.find_first_not_of(" \t"));
-      s.erase(s.find_last_not_of(" \t\r") + 1);
-      return s;
-    };
-    SurfaceSpec s;
-    s.name = trim(f[0]);
-    std::stringstream dom(f[1]);
-    dom >> s.u[0] >> s.u[1] >> s.v[0] >> s.v[1];
-    s.x = trim(f[2]);
-    s.y = trim(f[3]);
-    s.z = trim(f[4]);
-    out[s.name] = s;
-  }
-  return out;
-}
-
-std::vector<Vec3> read_peer_points(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot open " + path);
-  std::vector<Vec3> points;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::stringstream ss(line);
-    Vec3 p;
-    ss >> p.x >> p.y >> p.z;
-    points.push_back(p);
-  }
-  return points;
-}
-
-int peer_mode(const std::string& dir, int reps, std::vector<std::string> keys) {
-  if (keys.empty()) keys = {"S1", "S2", "S3", "S1n", "S2n", "S3n"};
-  const auto surfaces = read_peer_surfaces(dir + "/surfaces.txt");
-  const std::string data = dir + "/build/data";
+int comparison_mode(const std::string& dir, int reps, std::vector<std::string> names) {
+  if (names.empty()) names = bench::comparison_surface_names(dir);
   const double overhead = timer_overhead();
   std::printf(
-      "footpoint auto on the peer's point sets (%s), %d runs; CPU-timer overhead %.0f ns (subtracted); %s\n",
-      data.c_str(), reps, overhead, load_average().c_str());
-  for (const std::string& key : keys) {
-    // "S3n" is the near set of S3
-    const std::string base =
-        key.size() > 1 && key.back() == 'n' && surfaces.count(key.substr(0, key.size() - 1))
-            ? key.substr(0, key.size() - 1)
-            : key;
-    if (!surfaces.count(base)) {
-      std::fprintf(stderr, "no surface %s in surfaces.txt\n", base.c_str());
-      return 1;
-    }
+      "footpoint auto on the Open CASCADE comparison's point sets (%s/data), %d runs; CPU-timer overhead "
+      "%.0f ns (subtracted); %s\n",
+      dir.c_str(), reps, overhead, load_average().c_str());
+  for (const std::string& name : names) {
+    const bench::ComparisonSurface s = bench::read_comparison_surface(dir + "/data/" + name + ".json");
     const auto t0 = Clock::now();
-    const auto g = compile(surfaces.at(base));
+    const auto g = compile({s.name, s.x, s.y, s.z, s.u, s.v});
     const double compile_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-    const std::vector<Vec3> points = read_peer_points(data + "/points_" + key + ".txt");
-    const Timed t = time_points(*g, points, "auto", {}, reps, overhead);
-    // a timed pass over all points: the mean per point without per-point timer noise
-    std::vector<double> batch;
-    for (int r = 0; r < reps; ++r) {
-      const double c0 = cpu_ns();
-      double sink = 0.0;
-      for (const Vec3& v : points) {
-        const double p[3] = {v.x, v.y, v.z};
-        sink += g->project(p, "auto", Options{}).distance;
-      }
-      batch.push_back((cpu_ns() - c0) / static_cast<double>(points.size()));
-      if (sink == -1.0) std::printf(" ");
+    for (const bench::PointSet& set : s.sets) {
+      std::vector<Vec3> points;
+      for (const auto& p : set.points) points.push_back({p[0], p[1], p[2]});
+      const Timed t = time_points(*g, points, "auto", {}, reps, overhead);
+      std::vector<bench::Answer> answers;
+      for (const ProjectionResult& r : t.results)
+        answers.push_back({r.summary.status == Status::converged, r.distance});
+      const bench::Accuracy a = bench::accuracy(answers, set.references);
+      std::printf(
+          "   %-3s %-4s %4zu points: median %6.2f µs, mean %6.2f µs, batch mean %6.2f µs; not global %d, "
+          "not converged %d, max rel err %.1e (%zu cells, compiled in %.1f ms)\n",
+          s.name.c_str(), set.name.c_str(), points.size(), median(t.ns) / 1e3, mean(t.ns) / 1e3,
+          t.batch_ns / 1e3, a.not_global, a.no_answer, a.max_relative_error, g->cells().cells().size(),
+          compile_ms);
     }
-    std::sort(batch.begin(), batch.end());
-    const std::string res = data + "/res_footpoint-auto_" + key + ".txt";
-    FILE* f = std::fopen(res.c_str(), "w");
-    if (!f) throw std::runtime_error("cannot write " + res);
-    std::fprintf(
-        f,
-        "# footpoint auto on %s (%zu cells, compiled in %.1f ms); per-point time = median of %d repetitions "
-        "(thread CPU time; wall in last column)\n# idx ok time_ns d u v wall_ns\n",
-        key.c_str(), g->cells().cells().size(), compile_ms, reps);
-    int failed = 0;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const ProjectionResult& r = t.results[i];
-      const bool ok = r.summary.status == Status::converged;
-      failed += ok ? 0 : 1;
-      std::fprintf(f, "%zu %d %.1f %.17g %.17g %.17g %.1f\n", i, ok ? 1 : 0, t.ns[i], r.distance, r.params[0],
-                   r.params[1], t.wall_ns[i]);
-    }
-    std::fclose(f);
-    FILE* fb = std::fopen((data + "/batch_footpoint-auto_" + key + ".txt").c_str(), "w");
-    if (fb) {
-      std::fprintf(fb, "%.1f %.1f %.1f\n", batch[batch.size() / 2], batch.front(), batch.back());
-      std::fclose(fb);
-    }
-    std::printf(
-        "   %-4s %5zu points: median %6.2f µs, mean %6.2f µs, batch mean %6.2f µs, not converged %d -> %s\n",
-        key.c_str(), points.size(), median(t.ns) / 1e3, mean(t.ns) / 1e3, batch[batch.size() / 2] / 1e3,
-        failed, res.c_str());
   }
   std::printf("   %s\n", load_average().c_str());
   return 0;
@@ -483,11 +370,13 @@ int peer_mode(const std::string& dir, int reps, std::vector<std::string> keys) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> positional;
-  std::string peer, sections = "12345";
+  std::string comparison, sections = "12345";
   int reps = 5;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--peer") && i + 1 < argc) {
-      peer = argv[++i];
+    if (!std::strcmp(argv[i], "--peer")) {
+      comparison = FOOTPOINT_OCCT_DIR;
+    } else if (!std::strcmp(argv[i], "--peer-dir") && i + 1 < argc) {
+      comparison = argv[++i];
     } else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) {
       reps = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--sections") && i + 1 < argc) {
@@ -496,7 +385,7 @@ int main(int argc, char** argv) {
       positional.push_back(argv[i]);
     }
   }
-  if (!peer.empty()) return peer_mode(peer, reps, positional);
+  if (!comparison.empty()) return comparison_mode(comparison, reps, positional);
 
   const int n = positional.size() > 0 ? std::atoi(positional[0].c_str()) : 2000;
   const int runs = positional.size() > 1 ? std::atoi(positional[1].c_str()) : 5;
