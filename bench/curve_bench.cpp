@@ -1,6 +1,6 @@
 // Curves (issue 4): medians of the time per projected point, single thread, with the compiled
 // curve (its samples and k-d tree) built once, and of the time to compile + discover a curve.
-// Targets: the spatial-curve paper's Examples 1 and 2 with random points in [-300, 300]^3, `auto`
+// Targets: [Curve] Examples 1 and 2 with random points in [-300, 300]^3, `auto`
 // <= 20 us per point and compile + discovery <= 50 ms; parametric helix and trefoil, `auto`
 // <= 3 us per point.
 #include <algorithm>

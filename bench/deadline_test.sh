@@ -6,7 +6,7 @@
 # PORT (default 18495).
 # Each request below must be answered within DEADLINE_MS + SLACK_MS, and a good request sent
 # right after it must be answered at once (< 500 ms) with the reference answer:
-#   - a huge batch: 100,000 points, the spatial-curve paper's Example 2 with its slowest method
+#   - a huge batch: 100,000 points, [Curve] Example 2 with its slowest method
 #     ("complete") and the largest iteration budget (minutes of work);
 #   - pathological formulas, each posted once (so compiled, with everything `auto` precomputes,
 #     inside the request): a 4,000-character sum of sines as a parametric curve over a long
@@ -78,7 +78,7 @@ PY
 surface='{"type":"parametric_surface","x":"u+v","y":"sin(u)+2*cos(v)","z":"sin(u+v)","domain":{"u":[-25,25],"v":[-25,25]}}'
 id=$(curl -sS -H 'Content-Type: application/json' --data-binary "$surface" "$URL/v1/geometries" |
   python3 -c 'import json,sys; print(json.load(sys.stdin)["geometry_id"])')
-good() {  # prints "seconds distance" for the GSA paper's Example 1 point
+good() {  # prints "seconds distance" for the [GSA] Example 1 point
   curl -sS -o "$work/good.json" -w '%{time_total}' -H 'Content-Type: application/json' \
     --data-binary '{"point":[1,2,2]}' "$URL/v1/geometries/$id/project" >"$work/good.time"
   python3 -c "import json; print(open('$work/good.time').read(), json.load(open('$work/good.json'))['result']['distance'])"

@@ -47,7 +47,7 @@ int main() {
   const Surface surfaces[] = {
       {"S1", "u+v", "sin(u)+2*cos(v)", "sin(u+v)"},
       {"S2", "u^4*v^3+u*v+u", "u^3+v^3", "u+v"},
-      {"S3 (hybrid paper Ex. 2, degree 6)",
+      {"S3 ([Hybrid] Ex. 2, degree 6)",
        "u^6+u^5*v+v^6-u^2*v^3+u*v^4-v^5+u^4+u^3*v+v^4+u^3-u*v^2+v^3+u*v+v^2+1",
        "u^6+2*u^4*v^2-v^6+u^5+u^2*v^3+v^5+u^4-u*v^3+u^3-2*u*v^2+v^3+4*u*v+2*v^2+2*u+2*v+1",
        "u^6+u*v^5+u^4*v+u^2*v^3+u^3*v+2*u^2*v^2+v^4+u^3+2*u*v+u"},

@@ -6,7 +6,7 @@
 # REPEATS (batch pairs per domain, default 3), PORT (default 18471; the echo uses PORT+1),
 # CONNECTIONS (single-point runs, default 50), BATCH_CONNECTIONS (default 4).
 # Runs:
-#   1. single-point POST /v1/geometries/{id}/project on the GSA paper's Example 1 surface, random
+#   1. single-point POST /v1/geometries/{id}/project on the [GSA] Example 1 surface, random
 #      points, CONNECTIONS connections: requests/s and p50/p99 latency; the same against the echo
 #      server (same HTTP layer and JSON reader/writer, no projection);
 #   2. 10,000-point batches on the same surface and on the echo server, in REPEATS back-to-back
@@ -130,7 +130,7 @@ done
 timeout 30 wrk -t2 -c"$CONNECTIONS" -d2s -s "$work/single.lua" "$echo_url" >/dev/null
 run_wrk echo_single "$CONNECTIONS" "$work/single.lua" "$echo_url"
 
-echo "http_bench: wrk -t2 on $HOST, ${DURATION}s per run, $(nproc) cores; GSA paper Example 1 surface"
+echo "http_bench: wrk -t2 on $HOST, ${DURATION}s per run, $(nproc) cores; [GSA] Example 1 surface"
 printf '  echo baseline: single point, %d connections: %s req/s (p50 %s, p99 %s)\n' \
   "$CONNECTIONS" "$(rps echo_single)" "$(pct echo_single 50%)" "$(pct echo_single 99%)"
 for w in "${widths[@]}"; do

@@ -2,13 +2,13 @@
 // (the machine is shared: wall time would include descheduling), less the timer's own overhead,
 // median over the runs; over points: median, mean, 90th and 99th percentile of those; and the
 // batch mean: one timer around all the points, the mean per point (median over the runs).
-//  1. `auto` on S1, S2, S3 (bench/occt/surfaces.json) and on the GSA paper's Example 1 surface
+//  1. `auto` on S1, S2, S3 (bench/occt/surfaces.json) and on the [GSA] Example 1 surface
 //     over [-25,25]^2 (8 periods each way: it covers itself ~16 times): box points uniform in the
 //     box centred on the surface's bounding box with twice its extent, and points within 1% of it;
 //     the slowest 5% of the points, described (local solves, distance, where the answer lies);
 //  2. `newton` and `gsa` per point from a given start (the auto answer's parameters moved by 1% of
 //     the domain) on the near points;
-//  3. the papers' methods and `auto` side by side from the papers' starting values;
+//  3. the methods of [GSA] and [Hybrid] and `auto` side by side from the papers' starting values;
 //  4. project_batch over the thread pool, 100,000 points, 2 threads against 1 (wall time);
 //  5. `auto` on A1 and S1 with bench/http_bench.sh's point distribution (uniform in
 //     x in [-20,20], y in [-3,3], z in [-1.5,1.5]), with the local solves per point.
@@ -307,7 +307,7 @@ void section_batch(const ParametricSurface& g) {
   std::printf("   speed-up 2 threads / 1 thread: %.2fx\n", rate[2] / rate[1]);
 }
 
-// Points as bench/http_bench.sh draws them around the GSA paper's Example 1 surface.
+// Points as bench/http_bench.sh draws them around the [GSA] Example 1 surface.
 std::vector<Vec3> http_points(int n, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> U(0.0, 1.0);

@@ -59,7 +59,7 @@ double cosine(const P3& a, const P3& t) { return std::fabs(dot(a, t)) / (norm(a)
 
 // Bounds on the answers, relative to the size of the numbers involved (s = max(1, |p|, |foot|)):
 // rounding of a handful of operations on numbers of that size, with room for formulas that
-// cancel (the hybrid paper's degree-6 polynomials).
+// cancel ([Hybrid]'s degree-6 polynomials).
 constexpr double kSame = 1e-12;       // |s(params) - foot|, |distance - |p - foot||
 constexpr double kOnCurve = 1e-10;    // |f_i(foot)| / |grad f_i(foot)|, a distance to f_i = 0
 constexpr double kOrthogonal = 1e-8;  // the solvers' own largest accepted (stalled) residual

@@ -1,4 +1,4 @@
-// The spatial-curve paper's own algorithms, run as printed from X0 = P - (0.1, 0.1, 0.1), on the
+// The algorithms of [Curve], run as printed from X0 = P - (0.1, 0.1, 0.1), on the
 // 16 test points of its Examples 1 and 2. They are local and often not the global answer
 // (tests/data/papers/README.md); tests/data/curve_paper_algorithms.json records, point by point,
 // what each converges to, and this test checks each record on its own terms: a converged result is

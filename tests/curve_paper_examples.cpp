@@ -1,4 +1,4 @@
-// The spatial-curve paper's Examples 1 and 2 (tests/data/papers/public_cases.json, paperC_ex1 and
+// [Curve] Examples 1 and 2 (tests/data/papers/public_cases.json, paperC_ex1 and
 // paperC_ex2, box [-300, 300]^3): `auto` finds the global nearest point for all 16 test points of
 // each, to 1e-12 relative in distance; discovery finds the one closed loop of each; the options
 // (all_minima, trace, max_distance) behave.

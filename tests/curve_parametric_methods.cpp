@@ -1,4 +1,4 @@
-// The local methods of parametric curves: `newton` and `curvature_circle` (the GSA paper's
+// The local methods of parametric curves: `newton` and `curvature_circle` ([GSA]
 // Section 3, Hu-Wallner). From the nearest sample they converge to the nearest point for the
 // reference points of tests/data/curve_parametric_cases.json that are interior minima; from a
 // given start to the stationary point of that start's basin (or outside_domain).
@@ -91,7 +91,7 @@ TEST_CASE("newton and curvature_circle from a given start") {
 }
 
 TEST_CASE("curvature_circle and newton agree on the helix and trace their increments") {
-  // The GSA paper's Remark 2 expects order 1 when p is off the curve; on the helix the osculating
+  // [GSA] Remark 2 expects order 1 when p is off the curve; on the helix the osculating
   // circle fits so well that the increments still fall fast (4.0e-1, 4.6e-3, 7.7e-7, 2.2e-14).
   const auto g = curve("cos(t)", "sin(t)", "0.2*t", 0.0, 12.566370614359172);
   const double p[3] = {1.5, 0.3, 0.7};

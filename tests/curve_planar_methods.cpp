@@ -1,4 +1,4 @@
-// The planar iteration of the spatial-curve paper's introduction, eq. (2) + foot point (4)
+// The planar iteration of [Curve]'s introduction, eq. (2) + foot point (4)
 // (`tangent_foot`), on the planar ellipse of tests/data/curve_planar_implicit_cases.json: a
 // first-order method that converges to an orthogonal point (the nearest one from these starts).
 #include <doctest/doctest.h>

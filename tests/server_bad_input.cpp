@@ -22,7 +22,7 @@ using json = nlohmann::json;
 
 namespace {
 
-// GSA paper, Example 1 (public case paperA_ex1), and its reference answer for (1, 2, 2).
+// [GSA] Example 1 (public case paperA_ex1), and its reference answer for (1, 2, 2).
 const json kSurface = json::parse(
     R"J({"type":"parametric_surface","x":"u+v","y":"sin(u)+2*cos(v)","z":"sin(u+v)","domain":{"u":[-25,25],"v":[-25,25]}})J");
 const json kPlanarCurve =
@@ -440,7 +440,7 @@ TEST_CASE("a batch of expensive solves does not hold the workers past the deadli
   config.threads = 2;
   TestServer s(config);
   auto c = s.client();
-  // The spatial-curve paper's Example 2 with its slowest method and the largest budget: ~40 ms a
+  // [Curve] Example 2 with its slowest method and the largest budget: ~40 ms a
   // point in Release, so 20,000 points would take minutes.
   const json curve = json::parse(
       R"J({"type":"implicit_curve","equations":["x^2/9+y^2/16+z^2/9+4*x*y-1","x^2+y^2+x-4*z"],"domain":{"x":[-300,300],"y":[-300,300],"z":[-300,300]}})J");

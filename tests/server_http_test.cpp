@@ -23,13 +23,13 @@ using json = nlohmann::json;
 
 namespace {
 
-// GSA paper, Example 1 (public case paperA_ex1).
+// [GSA] Example 1 (public case paperA_ex1).
 const char* const kSurfaceA1 =
     R"J({"type":"parametric_surface","x":"u+v","y":"sin(u)+2*cos(v)","z":"sin(u+v)","domain":{"u":[-25,25],"v":[-25,25]}})J";
 // Hybrid paper, counterexample 1: a paraboloid over [-2,2]^2.
 const char* const kParaboloid =
     R"J({"type":"parametric_surface","x":"u","y":"v","z":"1+u^2+v^2","domain":{"u":[-2,2],"v":[-2,2]}})J";
-// The spatial-curve paper's Example 1.
+// [Curve] Example 1.
 const char* const kCurveC1 =
     R"J({"type":"implicit_curve","equations":["x^2/9+y^2/16+z^2/9-1","x^2+y^2-4*z"],"domain":{"x":[-300,300],"y":[-300,300],"z":[-300,300]}})J";
 const char* const kPlanarCircle =

@@ -94,7 +94,7 @@ TEST_CASE("Summary fields of auto and of the papers' methods") {
     CHECK(r.summary.starts == 1);
     CHECK(r.summary.iterations >= 1);
   }
-  // without a start the papers' methods start from the domain's centre (1, 1): hybrid converges
+  // without a start the methods of [GSA] and [Hybrid] start from the domain's centre (1, 1): hybrid converges
   const ProjectionResult h = project(*g, {3, 4, 5}, "hybrid");
   CHECK(h.summary.status == Status::converged);
   CHECK(h.params[0] == doctest::Approx(0.5921398354615897).epsilon(1e-12));

@@ -4,7 +4,7 @@
 // projected Newton solve) - a different search from `auto`'s cell tree, so a rule of its that
 // prunes a basin it should not (seeding/surface_cells.hpp, solvers/surface/surface_auto.hpp)
 // shows as `auto` farther than the reference. On the Open CASCADE comparison's S1, S2, S3, a
-// torus, A1 (the GSA paper's Example 1 folded over [-25,25]^2), two sheets folded along curves
+// torus, A1 ([GSA] Example 1 folded over [-25,25]^2), two sheets folded along curves
 // and six more shapes, with points uniform in the box
 // twice the surface's size and points within 2% of its size from a random surface point.
 #include <doctest/doctest.h>

@@ -83,7 +83,7 @@ TEST_CASE("a solve in a known minimiser's basin is abandoned; one in another bas
 }
 
 TEST_CASE("a worse local minimum is abandoned against the best distance") {
-  // C5 of the hybrid paper: z = cos(u^2 + v^2) on [0,2]^2, p = (4, 5, 6) has several minima
+  // C5 of [Hybrid]: z = cos(u^2 + v^2) on [0,2]^2, p = (4, 5, 6) has several minima
   const auto g = make_surface("u", "v", "cos(u^2+v^2)", {0, 2}, {0, 2});
   const Vec3 p{4, 5, 6};
   const ConvergenceCriteria crit = criteria_for(*g);
@@ -111,8 +111,8 @@ TEST_CASE("a worse local minimum is abandoned against the best distance") {
 
 TEST_CASE("the early stop on a face: a known minimiser on the same edge ends a solve along it") {
   // A far point of the HTTP benchmark on S1: its nearest point is on the edge u = 3, and the
-  // cells along that edge all start solves there (the early stop used to need the ball inside
-  // the domain, so each ran to convergence).
+  // cells along that edge all start solves there (an early stop that needed the ball inside the
+  // domain would let each of them run to convergence).
   const auto g = make_surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-3, 3}, {-3, 3});
   const ConvergenceCriteria criteria = criteria_for(*g);
   const Vec3 p{9.85065, 2.36607, -1.00025};

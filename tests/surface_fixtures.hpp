@@ -24,7 +24,7 @@ inline std::shared_ptr<const ParametricSurface> make_surface(const std::string& 
   return std::dynamic_pointer_cast<const ParametricSurface>(compile_parametric_surface(def, {}));
 }
 
-// The GSA paper's Example 1 surface over [-w,w]^2 (w = 25: 8 periods each way, folded; w = 3: S1).
+// The [GSA] Example 1 surface over [-w,w]^2 (w = 25: 8 periods each way, folded; w = 3: S1).
 inline GeometryDefinition example1(double half_width) {
   GeometryDefinition def;
   def.type = GeometryType::parametric_surface;

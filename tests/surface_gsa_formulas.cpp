@@ -1,4 +1,4 @@
-// gsa_step evaluates the GSA paper's map with the terms that vanish identically left out
+// gsa_step evaluates [GSA]'s map with the terms that vanish identically left out
 // (C1 = <s_u, n> = C2 = <s_v, n> = 0, the normal part of q - p0): it must agree with the formulas
 // as printed, eqs. (4)-(20), transcribed here term by term, wherever the step is well conditioned.
 #include <doctest/doctest.h>
@@ -14,7 +14,7 @@ using namespace footpoint::test;
 
 namespace {
 
-// The GSA paper's increment exactly as printed (k_n = 0 not handled: not drawn here), and
+// [GSA]'s increment exactly as printed (k_n = 0 not handled: not drawn here), and
 // |k_n| |p - s|: the printed eqs. (14)-(17) lose about -log10 of it in digits.
 std::array<double, 3> printed_gsa_step(const Vec3& p, const SurfaceJet& j) {
   const Vec3 A = cross(j.su, j.sv);  // eq. (4)

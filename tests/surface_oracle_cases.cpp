@@ -3,9 +3,9 @@
 // (s_u = 0) and a seam, a torus (periodic in both parameters), a near-flat monkey saddle (k_n = 0
 // at the origin) and a plane, and the benchmark surfaces S1, S2, S3 with points in the box twice
 // their size (mostly edge and corner answers) and within 1% of them; far points and points on the
-// surface are among them. Then surfaces that need more than a fixed budget of cells or that caught
-// earlier versions out (each file's first points are the ones that did):
-//  - A1: the GSA paper's Example 1 over [-25,25]^2, folded and 8 periods each way (~16 parameter
+// surface are among them. Then surfaces that need more than a fixed budget of cells, or whose points sit
+// where a search easily goes wrong (each file's first points are the hardest):
+//  - A1: [GSA] Example 1 over [-25,25]^2, folded and 8 periods each way (~16 parameter
 //    pairs per foot point; the seeding's budget must grow to resolve it);
 //  - fold: a sheet folded along curves (s_u x s_v = 0), where two minima lie a cell apart;
 //  - fold_near: a sheet folded harder, and points nearer to it than the cells' model error, whose

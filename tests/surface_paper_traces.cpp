@@ -1,6 +1,6 @@
-// The papers' methods, run as published from the papers' starting values, against the papers'
-// iteration tables (GSA paper Tables 4, 5, 8, 9, 10) through options.trace, and the hybrid
-// paper's counterexamples C1-C5. Where a paper's text is wrong (tests/data/papers/README.md says
+// The methods of [GSA] and [Hybrid], run as published from the papers' starting values, against
+// the iteration tables of [GSA] (Tables 4, 5, 8, 9, 10) through options.trace, and [Hybrid]'s
+// counterexamples C1-C5. Where a paper's text is wrong (tests/data/papers/README.md says
 // where and by how much) the tests assert what the formulas really do and say so.
 #include <doctest/doctest.h>
 
@@ -19,12 +19,12 @@ struct Row {
   double du, dv;
 };
 
-// GSA paper, Example 1: s = (u+v, sin u + 2 cos v, sin(u+v)), p = (1, 2, 2); domain [-25, 25]^2
+// [GSA] Example 1: s = (u+v, sin u + 2 cos v, sin(u+v)), p = (1, 2, 2); domain [-25, 25]^2
 // as in tests/data/papers/public_cases.json (the paper states none).
 std::shared_ptr<const ParametricSurface> example1() {
   return make_surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-25, 25}, {-25, 25});
 }
-// GSA paper, Example 2: s = (u^4 v^3 + uv + u, u^3 + v^3, u + v), p = (3, 4, 5); domain [-5, 5]^2.
+// [GSA] Example 2: s = (u^4 v^3 + uv + u, u^3 + v^3, u + v), p = (3, 4, 5); domain [-5, 5]^2.
 std::shared_ptr<const ParametricSurface> example2() {
   return make_surface("u^4*v^3+u*v+u", "u^3+v^3", "u+v", {-5, 5}, {-5, 5});
 }

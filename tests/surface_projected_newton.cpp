@@ -63,10 +63,10 @@ TEST_CASE("a solve ends with the formulas' jet at its parameters, expanded or ev
 }
 
 TEST_CASE("a convex Newton step below the parameters' last bit ends a solve as converged") {
-  // The GSA paper's Example 1 over [-25,25]^2, from a start found by the brute-force sweep: the
+  // The [GSA] Example 1 over [-25,25]^2, from a start found by the brute-force sweep: the
   // fourth step (3e-13) is an expanded one, whose jet leaves the residual a hair above its
-  // rounding floor; the next Newton step is below the last bit of u = 17.77 (it used to end
-  // the solve as `degenerate`).
+  // rounding floor; the next Newton step is below the last bit of u = 17.77, which ends the
+  // solve as converged, not `degenerate`.
   const auto g = make_surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-25, 25}, {-25, 25});
   const ConvergenceCriteria criteria = convergence_criteria(Options{}, g->domain(), kLocalMaxIterations);
   const Vec3 p{0.29084437405683827, 0.12161836911652069, -0.35682163493964258};

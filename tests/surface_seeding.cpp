@@ -38,7 +38,7 @@ TEST_CASE("the cell budget adapts: fine on [-3,3]^2, grown past the target on [-
   const Tally tl = tally(large.cells());
   const std::size_t n = large.cells().cells().size();
   INFO("[-25,25]^2: " << n << " cells, " << tl.fine << " fine, " << tl.coarse << " coarse");
-  // the former fixed budget (4096 cells) left every cell unresolved here
+  // a fixed budget of 4096 cells leaves every cell unresolved here
   CHECK(n > static_cast<std::size_t>(defaults.target_cells));
   CHECK(tl.unresolved == 0);
   CHECK(large.cells().memory_bytes() >= n * sizeof(SurfaceCell));

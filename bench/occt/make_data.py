@@ -13,10 +13,10 @@ Per surface:
          normal, |t| <= 1% of the bounding box's diagonal (mostly interior nearest points);
   references  the global nearest point of each (tests/tools/gen_reference.py: distance to 50
          digits, parameters, where it lies);
-  bezier  for a polynomial surface, its exact Bernstein form on the domain (Farin, Curves and
-         Surfaces for CAGD, 5th ed., Sec. 5.8: b_kl = sum over i <= k, j <= l of
-         C(k,i)/C(n,i) C(l,j)/C(m,j) a_ij, a_ij the power coefficients in the affine parameters
-         s, t in [0,1]), every pole an exact rational rounded once to a double.
+  bezier  for a polynomial surface, its exact Bernstein form on the domain ([Farin], README's
+         References: b_kl = sum over i <= k, j <= l of C(k,i)/C(n,i) C(l,j)/C(m,j) a_ij, a_ij
+         the power coefficients in the affine parameters s, t in [0,1]), every pole an exact
+         rational rounded once to a double.
 """
 import argparse
 import json
