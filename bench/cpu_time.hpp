@@ -3,9 +3,9 @@
 // the per-point times, and the load average printed beside them.
 #pragma once
 
-#include <time.h>
-
 #include <algorithm>
+#include <cmath>
+#include <ctime>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -32,7 +32,7 @@ inline double timer_overhead_ns() {
 // The q-quantile (0 <= q <= 1) of v, the nearest rank.
 inline double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
+  const auto k = static_cast<std::size_t>(std::lround(q * static_cast<double>(v.size() - 1)));
   std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
   return v[k];
 }

@@ -22,6 +22,7 @@ constexpr int kRuns = 7;
 template <class F>
 double median(F&& run) {
   std::vector<double> t;
+  t.reserve(kRuns);
   for (int r = 0; r < kRuns; ++r) t.push_back(run());
   std::sort(t.begin(), t.end());
   return t[kRuns / 2];
@@ -100,7 +101,7 @@ int main() {
     const double us = per_point_us(*g, far, "auto", converged);
     std::printf("%-34s %12.2f %10zu %14.2f %9.1f%%\n", e.name, compile_ms, curve.discovery().samples.size(),
                 us, 100.0 * converged);
-    const std::vector<double> few(far.begin(), far.begin() + 3 * 500);
+    const std::vector<double> few(far.begin(), far.begin() + std::ptrdiff_t{3} * 500);
     for (const char* m : {"simplified", "complete"}) {
       const double paper_us = per_point_us(*g, few, m, converged);
       std::printf("  %-32s %12s %10s %14.2f %9.1f%%\n", m, "", "", paper_us, 100.0 * converged);

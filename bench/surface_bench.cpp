@@ -27,6 +27,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <random>
 #include <string>
@@ -312,6 +313,7 @@ std::vector<Vec3> http_points(int n, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> U(0.0, 1.0);
   std::vector<Vec3> points;
+  points.reserve(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) points.push_back({U(rng) * 40 - 20, U(rng) * 6 - 3, U(rng) * 3 - 1.5});
   return points;
 }
@@ -366,9 +368,7 @@ int comparison_mode(const std::string& dir, int reps, std::vector<std::string> n
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   std::vector<std::string> positional;
   std::string comparison, sections = "12345";
   int reps = 5;
@@ -382,12 +382,12 @@ int main(int argc, char** argv) {
     } else if (!std::strcmp(argv[i], "--sections") && i + 1 < argc) {
       sections = argv[++i];
     } else {
-      positional.push_back(argv[i]);
+      positional.emplace_back(argv[i]);
     }
   }
   if (!comparison.empty()) return comparison_mode(comparison, reps, positional);
 
-  const int n = positional.size() > 0 ? std::atoi(positional[0].c_str()) : 2000;
+  const int n = !positional.empty() ? std::atoi(positional[0].c_str()) : 2000;
   const int runs = positional.size() > 1 ? std::atoi(positional[1].c_str()) : 5;
   const double overhead = timer_overhead();
   std::printf(
@@ -427,4 +427,15 @@ int main(int argc, char** argv) {
   }
   std::printf("\n[%s]\n", load_average().c_str());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "surface_bench: %s\n", e.what());
+    return 1;
+  }
 }

@@ -13,8 +13,9 @@
 namespace footpoint::server {
 
 struct ApiError : std::runtime_error {
-  ApiError(int status, std::string code, std::string message, std::string field = {}, long position = -1)
-      : std::runtime_error(std::move(message)),
+  ApiError(int status, std::string code, const std::string& message, std::string field = {},
+           long position = -1)
+      : std::runtime_error(message),
         status(status),
         code(std::move(code)),
         field(std::move(field)),

@@ -270,7 +270,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       }));
 
   // Without this, httplib would put the exception text in a response header.
-  http.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
+  http.set_exception_handler([](const httplib::Request&, httplib::Response& res, const std::exception_ptr&) {
     set_response(res, Api::error_response(ApiError(500, "internal_error", "internal error")));
   });
 

@@ -1,7 +1,7 @@
 // footpoint-server: the HTTP/JSON service. Flags and environment variables: see --help
 // (server/config.hpp). Exits 0 after a graceful shutdown on SIGTERM or SIGINT.
 #include <pthread.h>
-#include <signal.h>
+#include <csignal>
 
 #include <atomic>
 #include <cstdio>
@@ -47,7 +47,9 @@ int main(int argc, char** argv) {
     });
     server.run();
     // run() also returns when listening fails; release the signal thread then.
-    if (!signalled.load()) pthread_kill(signals.native_handle(), SIGTERM);
+    // SIGTERM is blocked in every thread: it wakes the signal thread's sigwait, nothing else
+    if (!signalled.load())
+      pthread_kill(signals.native_handle(), SIGTERM);  // NOLINT(bugprone-bad-signal-to-kill-thread)
     signals.join();
     log_event(spdlog::level::info, "stopped");
   } catch (const std::exception& e) {

@@ -1,7 +1,7 @@
 #include "shutdown_signals.hpp"
 
 #include <pthread.h>
-#include <signal.h>
+#include <csignal>
 
 namespace footpoint::server {
 

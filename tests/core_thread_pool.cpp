@@ -47,6 +47,7 @@ TEST_CASE("several callers can submit at once") {
   ThreadPool pool(2);
   std::atomic<long> total{0};
   std::vector<std::thread> callers;
+  callers.reserve(6);
   for (int c = 0; c < 6; ++c)
     callers.emplace_back([&] {
       for (int rep = 0; rep < 20; ++rep)

@@ -109,7 +109,7 @@ TEST_CASE("auto is safe to call from several threads on one compiled curve") {
   def.domain = {{"x", {-300.0, 300.0}}, {"y", {-300.0, 300.0}}, {"z", {-300.0, 300.0}}};
   const auto g = compile_implicit_curve(def, {});
   constexpr int kPoints = 400;
-  std::vector<double> points(3 * kPoints);
+  std::vector<double> points(std::size_t{3} * kPoints);
   for (int i = 0; i < 3 * kPoints; ++i) points[static_cast<std::size_t>(i)] = 300.0 * std::sin(1.7 * i + 0.3);
   std::vector<double> serial(kPoints);
   for (int i = 0; i < kPoints; ++i)
@@ -117,6 +117,7 @@ TEST_CASE("auto is safe to call from several threads on one compiled curve") {
         g->project(&points[3 * static_cast<std::size_t>(i)], "auto", {}).distance;
   std::vector<double> parallel(kPoints);
   std::vector<std::thread> threads;
+  threads.reserve(4);
   for (int t = 0; t < 4; ++t)
     threads.emplace_back([&, t] {
       for (int i = t; i < kPoints; i += 4)

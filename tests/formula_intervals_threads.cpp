@@ -79,6 +79,7 @@ TEST_CASE("many threads evaluating one compiled program get bit-identical result
   evaluate(reference);
   std::vector<std::vector<double>> results(8);
   std::vector<std::thread> threads;
+  threads.reserve(results.size());
   for (auto& r : results) threads.emplace_back([&] { evaluate(r); });
   for (auto& t : threads) t.join();
   for (const auto& r : results) {

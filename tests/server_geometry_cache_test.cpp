@@ -89,6 +89,7 @@ TEST_CASE("concurrent requests for one new id compile it once and share it") {
   std::vector<std::shared_ptr<const CompiledGeometry>> got(kThreads);
   std::atomic<int> compiled{0}, ready{0};
   std::vector<std::thread> threads;
+  threads.reserve(kThreads);
   for (int i = 0; i < kThreads; ++i)
     threads.emplace_back([&, i] {
       ++ready;
@@ -119,6 +120,7 @@ TEST_CASE("a definition that does not compile leaves the cache as it was") {
   // Many threads failing on the same bad definition at once all get the error.
   std::atomic<int> errors{0};
   std::vector<std::thread> threads;
+  threads.reserve(6);
   for (int i = 0; i < 6; ++i)
     threads.emplace_back([&] {
       try {
@@ -135,6 +137,7 @@ TEST_CASE("a definition that does not compile leaves the cache as it was") {
 TEST_CASE("the cache stays consistent under concurrent mixed use") {
   GeometryCache cache({8, std::size_t{1} << 30});
   std::vector<std::thread> threads;
+  threads.reserve(4);
   std::atomic<int> wrong{0};
   for (int t = 0; t < 4; ++t)
     threads.emplace_back([&, t] {

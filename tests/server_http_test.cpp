@@ -51,7 +51,7 @@ json case_by_id(const std::string& id) {
 }
 
 json post_json(httplib::Client& c, const std::string& path, const std::string& body, int expected_status) {
-  auto r = c.Post(path.c_str(), body, "application/json");
+  auto r = c.Post(path, body, "application/json");
   REQUIRE(r);
   INFO(path << " " << body.substr(0, 300) << " -> " << r->body.substr(0, 500));
   REQUIRE(r->status == expected_status);
@@ -160,14 +160,14 @@ TEST_CASE("every endpoint answers as documented") {
   CHECK(json::parse(again->body)["geometry_id"] == id);
 
   // Read it back: the definition and the cache statistics.
-  auto info = c->Get(("/v1/geometries/" + id).c_str());
+  auto info = c->Get("/v1/geometries/" + id);
   REQUIRE(info);
   CHECK(info->status == 200);
   const json gi = json::parse(info->body);
   CHECK(gi["definition"] == reordered);
   CHECK(gi["cache"]["hits"].get<int>() >= 1);
   CHECK(gi["cache"]["memory_bytes"].get<long>() > 0);
-  auto head = c->Head(("/v1/geometries/" + id).c_str());
+  auto head = c->Head("/v1/geometries/" + id);
   REQUIRE(head);
   CHECK(head->status == 200);
   CHECK(head->body.empty());
@@ -216,16 +216,16 @@ TEST_CASE("every endpoint answers as documented") {
   CHECK(std::abs(circle["result"]["distance"].get<double>() - (std::hypot(3.0, 0.5) - 2.0)) <= 1e-12);
 
   // Delete: 204, then 404 with the code that tells the client to post the definition again.
-  auto del = c->Delete(("/v1/geometries/" + id).c_str());
+  auto del = c->Delete("/v1/geometries/" + id);
   REQUIRE(del);
   CHECK(del->status == 204);
-  auto gone = c->Get(("/v1/geometries/" + id).c_str());
+  auto gone = c->Get("/v1/geometries/" + id);
   REQUIRE(gone);
   CHECK(gone->status == 404);
   CHECK(json::parse(gone->body)["error"]["code"] == "geometry_not_found");
   const json lost = post_json(*c, "/v1/geometries/" + id + "/project", R"J({"point":[1,2,2]})J", 404);
   CHECK(lost["error"]["code"] == "geometry_not_found");
-  auto del2 = c->Delete(("/v1/geometries/" + id).c_str());
+  auto del2 = c->Delete("/v1/geometries/" + id);
   REQUIRE(del2);
   CHECK(del2->status == 404);
 
@@ -281,7 +281,7 @@ TEST_CASE("a batch of 10,000 points equals the same points sent one by one") {
     for (double x : pts[i]) w.number(x);
     w.end_array();
     w.end_object();
-    auto r = c->Post(("/v1/geometries/" + id + "/project").c_str(), w.str(), "application/json");
+    auto r = c->Post("/v1/geometries/" + id + "/project", w.str(), "application/json");
     REQUIRE(r);
     REQUIRE(r->status == 200);
     if (json::parse(r->body)["result"] != batch["results"][i]) ++differ;
@@ -318,7 +318,7 @@ TEST_CASE("results do not depend on the number of worker threads") {
 TEST_CASE("every error class: status, code and field, and the server keeps answering") {
   ServerConfig config;
   config.max_points = 100;
-  config.max_body_bytes = 64 * 1024;
+  config.max_body_bytes = std::size_t{64} * 1024;
   config.max_formula_length = 200;
   TestServer s(config);
   auto c = s.client();
@@ -402,11 +402,11 @@ TEST_CASE("every error class: status, code and field, and the server keeps answe
     CAPTURE(k.name);
     httplib::Result r{nullptr, httplib::Error::Unknown};
     if (k.method == "POST")
-      r = c->Post(k.path.c_str(), k.body, k.content_type.c_str());
+      r = c->Post(k.path, k.body, k.content_type);
     else if (k.method == "GET")
-      r = c->Get(k.path.c_str());
+      r = c->Get(k.path);
     else
-      r = c->Delete(k.path.c_str());
+      r = c->Delete(k.path);
     REQUIRE(r);
     CHECK(r->status == k.status);
     const json e = json::parse(r->body);
@@ -523,8 +523,8 @@ TEST_CASE("the cache evicts by count, keeps serving, and 404s tell the client to
   post_json(*c, "/v1/geometries/" + a + "/project", R"J({"point":[1,2,2]})J",
             200);                              // a is now the most recent
   const std::string d = create(*c, kCurveC1);  // evicts b
-  CHECK(c->Get(("/v1/geometries/" + a).c_str())->status == 200);
-  CHECK(c->Get(("/v1/geometries/" + d).c_str())->status == 200);
+  CHECK(c->Get("/v1/geometries/" + a)->status == 200);
+  CHECK(c->Get("/v1/geometries/" + d)->status == 200);
   const json lost = post_json(*c, "/v1/geometries/" + b + "/project", R"J({"point":[0,0,3]})J", 404);
   CHECK(lost["error"]["code"] == "geometry_not_found");
   CHECK(lost["error"]["message"].get<std::string>().find("POST its definition") != std::string::npos);
@@ -577,8 +577,7 @@ TEST_CASE("beyond --max-inflight, compute requests are shed with 503 overloaded"
     post_json(*c2, "/v1/geometries/" + id + "/project", heavy, 200);
   });
   wait_in_flight(*c, 1);
-  auto r =
-      c->Post(("/v1/geometries/" + id + "/project").c_str(), R"J({"point":[1,2,2]})J", "application/json");
+  auto r = c->Post("/v1/geometries/" + id + "/project", R"J({"point":[1,2,2]})J", "application/json");
   REQUIRE(r);
   CHECK(r->status == 503);
   CHECK(json::parse(r->body)["error"]["code"] == "overloaded");
@@ -607,7 +606,7 @@ TEST_CASE("beyond --max-inflight-points, a second batch is shed; a lone oversize
     CHECK(post_json(*c2, project, big, 200)["stats"]["points"] == 40000);
   });
   wait_metric(*c, "footpoint_points_in_flight", 40000);
-  auto r = c->Post(project.c_str(), R"J({"points":[[1,2,2],[0,0,3]]})J", "application/json");
+  auto r = c->Post(project, R"J({"points":[[1,2,2],[0,0,3]]})J", "application/json");
   REQUIRE(r);
   CHECK(r->status == 503);
   CHECK(json::parse(r->body)["error"]["code"] == "overloaded");

@@ -49,7 +49,9 @@ double brute_force(const ParametricSurface& g, const std::vector<Vec3>& grid, co
   std::vector<double> d(grid.size());
   double nearest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < grid.size(); ++i) nearest = std::min(nearest, d[i] = norm(grid[i] - p));
-  const auto at = [&](int i, int j) { return d[static_cast<std::size_t>(i * (kGrid + 1) + j)]; };
+  const auto at = [&](int i, int j) {
+    return d[static_cast<std::size_t>(i) * static_cast<std::size_t>(kGrid + 1) + static_cast<std::size_t>(j)];
+  };
   double best = std::numeric_limits<double>::infinity();
   for (int i = 0; i <= kGrid; ++i)
     for (int j = 0; j <= kGrid; ++j) {

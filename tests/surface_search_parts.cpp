@@ -112,7 +112,8 @@ TEST_CASE("the search tree holds every cell once, inside its parents' boxes") {
     for (int k = 0; k < node.children; ++k) {
       const std::int32_t child = node.child[k];
       if (child < 0) {
-        ++seen[static_cast<std::size_t>(~child)];
+        const std::int32_t leaf = ~child;
+        ++seen[static_cast<std::size_t>(leaf)];
         continue;
       }
       CHECK(static_cast<std::size_t>(child) > n);  // breadth first: children after their parent

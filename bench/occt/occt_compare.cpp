@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -179,9 +180,7 @@ std::vector<Timing> time_methods(const std::vector<Method>& methods, const Point
   return out;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   std::string dir = FOOTPOINT_OCCT_DIR;
   int reps = 5;
   std::vector<std::string> names;
@@ -191,7 +190,7 @@ int main(int argc, char** argv) {
     } else if (!std::strcmp(argv[i], "--data") && i + 1 < argc) {
       dir = argv[++i];
     } else {
-      names.push_back(argv[i]);
+      names.emplace_back(argv[i]);
     }
   }
   if (names.empty()) names = comparison_surface_names(dir);
@@ -231,4 +230,17 @@ int main(int argc, char** argv) {
   }
   std::printf("\n%s\n", load_average().c_str());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "occt_compare: %s\n", e.what());
+  } catch (const Standard_Failure& e) {
+    std::fprintf(stderr, "occt_compare: Open CASCADE: %s\n", e.GetMessageString());
+  }
+  return 1;
 }
