@@ -15,10 +15,11 @@ if(TARGET footpoint-server)
   set_tests_properties(deploy_layout PROPERTIES TIMEOUT 120)
 endif()
 
-# The shell scripts users run, when shellcheck is installed (it is not a build dependency).
+# The shell scripts users and CI run, when shellcheck is installed (install-deps.sh --test).
 find_program(FOOTPOINT_SHELLCHECK shellcheck)
 if(FOOTPOINT_SHELLCHECK)
+  file(GLOB FOOTPOINT_SCRIPTS ${CMAKE_SOURCE_DIR}/scripts/*.sh)
   add_test(NAME deploy_shellcheck
            COMMAND ${FOOTPOINT_SHELLCHECK} ${CMAKE_SOURCE_DIR}/deploy/check_layout.sh
-                   ${CMAKE_SOURCE_DIR}/examples/project_csv.sh)
+                   ${CMAKE_SOURCE_DIR}/examples/project_csv.sh ${FOOTPOINT_SCRIPTS} ${CMAKE_SOURCE_DIR}/.ci/run)
 endif()
