@@ -887,23 +887,18 @@ def build(case, quick=False, grid=None, samples=None, resolution=None):
     raise ValueError('unknown geometry kind %r' % kind)
 
 
-def point_record(geometry, p):
-    rec = geometry.project(p)
-    return rec
-
-
 def surface_output(args, geometry, points, command):
     formulas = {'x': args.x, 'y': args.y, 'z': args.z}
     return {'id': args.id or 'surface', 'title': args.title or '', 'formulas': formulas,
             'domain': {'u': list(args.u), 'v': list(args.v)}, 'generated_by': command,
-            'points': [{'p': list(p), 'oracle': point_record(geometry, p)} for p in points]}
+            'points': [{'p': list(p), 'oracle': geometry.project(p)} for p in points]}
 
 
 def curve_output(args, geometry, kind, formulas, domain, points, command):
     case = {'id': args.id or kind, 'kind': kind, 'formulas': formulas, 'domain': domain,
             'generated_by': command, 'points': []}
     for p in points:
-        rec = point_record(geometry, p)
+        rec = geometry.project(p)
         case['points'].append(dict({'p': list(p)}, **rec))
     if isinstance(geometry, ImplicitCurve):
         case['curve_info'] = geometry.info()
@@ -1095,7 +1090,7 @@ def main(argv=None):
         if isinstance(geometry, ParametricSurface):
             out = {'id': args.id or 'surface', 'title': args.title or '', 'geometry': definition,
                    'generated_by': command,
-                   'points': [{'p': list(p), 'oracle': point_record(geometry, p)} for p in points]}
+                   'points': [{'p': list(p), 'oracle': geometry.project(p)} for p in points]}
         else:
             out = curve_output(args, geometry, geometry.kind, definition.get('equations') or
                                {k: definition[k] for k in ('x', 'y', 'z') if k in definition},
