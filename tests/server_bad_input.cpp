@@ -71,7 +71,7 @@ struct Bad {
 
 // The answer to the good request, checked against the reference once.
 json good_answer(httplib::Client& c, const std::string& project) {
-  auto r = c.Post(project.c_str(), kGoodPoint, "application/json");
+  auto r = c.Post(project, kGoodPoint, "application/json");
   REQUIRE(r);
   REQUIRE(r->status == 200);
   return json::parse(r->body)["result"];
@@ -273,13 +273,13 @@ TEST_CASE("bad-input matrix: exact status and code for each kind, and the server
     const std::string path = k.path == "ID" ? project : k.path;
     httplib::Result r{nullptr, httplib::Error::Unknown};
     if (k.method == "POST")
-      r = c->Post(path.c_str(), k.body, k.content_type.c_str());
+      r = c->Post(path, k.body, k.content_type);
     else if (k.method == "PUT")
-      r = c->Put(path.c_str(), k.body, k.content_type.c_str());
+      r = c->Put(path, k.body, k.content_type);
     else if (k.method == "DELETE")
-      r = c->Delete(path.c_str());
+      r = c->Delete(path);
     else
-      r = c->Get(path.c_str());
+      r = c->Get(path);
     REQUIRE(r);
     CHECK(r->status == k.status);
     CHECK(r->get_header_value("Content-Type") == "application/json");
@@ -295,10 +295,10 @@ TEST_CASE("bad-input matrix: exact status and code for each kind, and the server
       CHECK(e["error"]["position"].get<long>() >= 0);
     // The server still answers the good request correctly: on this connection when the server
     // kept it open, and on a new one.
-    auto again = c->Post(project.c_str(), kGoodPoint, "application/json");
+    auto again = c->Post(project, kGoodPoint, "application/json");
     if (!again) {  // the server closed the connection after a body it would not read
       c = s.client();
-      again = c->Post(project.c_str(), kGoodPoint, "application/json");
+      again = c->Post(project, kGoodPoint, "application/json");
     }
     REQUIRE(again);
     CHECK(again->status == 200);
@@ -344,7 +344,7 @@ TEST_CASE("bad-input matrix: exact status and code for each kind, and the server
     const std::string response = raw_exchange(s.port(), k.request);
     CHECK(raw_status(response) == k.status);
     CHECK(raw_json(response)["error"]["code"] == k.code);
-    auto again = c->Post(project.c_str(), kGoodPoint, "application/json");
+    auto again = c->Post(project, kGoodPoint, "application/json");
     REQUIRE(again);
     CHECK(again->status == 200);
     CHECK(json::parse(again->body)["result"] == good);
@@ -471,7 +471,7 @@ TEST_CASE("a batch of expensive solves does not hold the workers past the deadli
   REQUIRE(created);
   const std::string id = json::parse(created->body)["geometry_id"];
   const auto t0 = std::chrono::steady_clock::now();
-  auto good = c->Post(("/v1/geometries/" + id + "/project").c_str(), kGoodPoint, "application/json");
+  auto good = c->Post("/v1/geometries/" + id + "/project", kGoodPoint, "application/json");
   REQUIRE(good);
   CHECK(good->status == 200);
   CHECK(std::fabs(json::parse(good->body)["result"]["distance"].get<double>() - 1.0788706069836736) <= 1e-14);

@@ -118,7 +118,7 @@ TEST_CASE("every response matches openapi.yaml") {
   };
   auto post = [&](const std::string& templ, const std::string& path, const std::string& body,
                   const char* type = "application/json") {
-    record("POST", templ, c->Post(path.c_str(), body, type), body);
+    record("POST", templ, c->Post(path, body, type), body);
   };
 
   const std::string surface =
@@ -137,8 +137,8 @@ TEST_CASE("every response matches openapi.yaml") {
   const std::string id = json::parse(samples.back().body)["geometry_id"];
   const std::string curve_id = json::parse(samples[6].body)["geometry_id"];
   const std::string geometry = "/v1/geometries/{id}", project = "/v1/geometries/{id}/project";
-  record("GET", geometry, c->Get(("/v1/geometries/" + id).c_str()));
-  record("GET", geometry, c->Get(("/v1/geometries/" + curve_id).c_str()));
+  record("GET", geometry, c->Get("/v1/geometries/" + id));
+  record("GET", geometry, c->Get("/v1/geometries/" + curve_id));
 
   const std::string mesh = "/v1/geometries/{id}/mesh";
   const std::string planar_id = json::parse(samples[7].body)["geometry_id"];
@@ -195,8 +195,8 @@ TEST_CASE("every response matches openapi.yaml") {
   post(
       "/v1/project", "/v1/project",
       R"J({"geometry":{"type":"parametric_curve","x":"t","y":"t","domain":{"t":[1,0]}},"point":[1,2]})J");  // 422
-  record("DELETE", geometry, c->Delete(("/v1/geometries/" + id).c_str()));  // 204
-  record("DELETE", geometry, c->Delete(("/v1/geometries/" + id).c_str()));  // 404
+  record("DELETE", geometry, c->Delete("/v1/geometries/" + id));  // 204
+  record("DELETE", geometry, c->Delete("/v1/geometries/" + id));  // 404
 
   // 503 while shutting down, on a connection opened before. httplib closes a connection that
   // is between two requests when the shutdown starts, so let it settle into its keep-alive wait.
