@@ -14,8 +14,16 @@
 // is then finite while the interval, which clips each function to its domain, only encloses the
 // defined part (0>=u^1.5-24 is 0 at u = -2.75, its enclosure over [-3,3] is [1,1]); an empty
 // enclosure (no point of the box in the domain) is accepted for the same reason (sqrt(u-1)^0).
-// Jets are evaluated for crashes and UB only: their value part may differ from values() in the
-// last bits (x^k is x^(k-2)*x*x there), and cancellation can magnify that without bound.
+// The same for interval jets (formula/interval_jet.hpp): where `lipschitz` (or `smooth`) holds
+// over a box of positive width, the point jets' gradient (and Hessian) at the listed points of the
+// box lie in the interval jets' enclosures. Point jets are computed in their own order of
+// operations (x^k is x^(k-2)*x*x there, polynomials term by term), so they carry their own
+// rounding: they are compared with the enclosures widened by 1e-9 of their magnitude - a wrong
+// derivative rule or a missed kink is off by far more. Formulas with a piecewise operator (abs,
+// min, max, sign, comparisons, ?:) are skipped there: at an exact tie on the box's edge the point
+// jets take the other branch's derivative (their documented convention) than the one the box is on.
+// Jets are otherwise evaluated for crashes and UB only: their value part may differ from values()
+// in the last bits, and cancellation can magnify that without bound.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -33,6 +41,7 @@ namespace {
 using footpoint::formula::CompileLimits;
 using footpoint::formula::FormulaError;
 using footpoint::formula::Interval;
+using footpoint::formula::IntervalJet2;
 using footpoint::formula::Jet2;
 using footpoint::formula::Jet3;
 using footpoint::formula::NamedFormula;
@@ -55,6 +64,16 @@ bool swallows_nan(std::string_view formula) {
   return formula.find_first_of("<>=!&|?") != std::string_view::npos ||
          formula.find("min") != std::string_view::npos || formula.find("max") != std::string_view::npos ||
          formula.find("sign") != std::string_view::npos;
+}
+
+bool piecewise(std::string_view formula) {
+  return swallows_nan(formula) || formula.find("abs") != std::string_view::npos;
+}
+
+bool near_enclosed(double value, const Interval& range) {
+  if (!std::isfinite(value) || !std::isfinite(range.lo) || !std::isfinite(range.hi)) return true;
+  const double slack = 1e-9 * std::abs(value) + 1e-300;
+  return range.lo - slack <= value && value <= range.hi + slack;
 }
 
 struct Box {
@@ -103,21 +122,43 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   Jet2<2> jets2[3];
   Jet3<2> jets3[3];
   Interval ranges[3];
+  IntervalJet2<2> interval_jets[3];
   for (const auto& p : points) {
     program.values(p, values);
     program.jets2<2>(p, jets2);
     program.jets3<2>(p, jets3);
+    const Interval at[2] = {{p[0], p[0]}, {p[1], p[1]}};
+    program.interval_jets2<2>(at, interval_jets);
   }
   for (std::size_t b = 0; b < std::size(boxes); ++b) {
     const Interval box[2] = {boxes[b].u, boxes[b].v};
     program.intervals(box, ranges);
+    program.interval_jets2<2>(box, interval_jets);
+    const bool wide = box[0].lo < box[0].hi && box[1].lo < box[1].hi && box[0].hi - box[0].lo < 1e3;
     for (std::size_t i = 0; i < std::size(points); ++i) {
       if (!inside[b][i]) continue;
       program.values(points[i], values);
-      for (std::size_t k = 0; k < n; ++k)
-        if (!swallows_nan(formulas[k].expression) && !enclosed(values[k], ranges[k]))
+      program.jets2<2>(points[i], jets2);
+      for (std::size_t k = 0; k < n; ++k) {
+        if (swallows_nan(formulas[k].expression)) continue;
+        if (!enclosed(values[k], ranges[k]))
           fail("value outside its interval", formulas, k, points[i][0], points[i][1], values[k],
                ranges[k].lo <= values[k] ? ranges[k].hi : ranges[k].lo);
+        if (!enclosed(values[k], interval_jets[k].v))
+          fail("value outside its interval jet", formulas, k, points[i][0], points[i][1], values[k],
+               interval_jets[k].v.lo);
+        const IntervalJet2<2>& r = interval_jets[k];
+        if (!wide || piecewise(formulas[k].expression) || !r.lipschitz) continue;
+        for (int d = 0; d < 2; ++d) {
+          if (!near_enclosed(jets2[k].g[d], r.g[d]))
+            fail("gradient outside its interval jet", formulas, k, points[i][0], points[i][1], jets2[k].g[d],
+                 r.g[d].lo <= jets2[k].g[d] ? r.g[d].hi : r.g[d].lo);
+          for (int e = 0; e < 2 && r.smooth; ++e)
+            if (!near_enclosed(jets2[k].h[d][e], r.h[d][e]))
+              fail("Hessian outside its interval jet", formulas, k, points[i][0], points[i][1],
+                   jets2[k].h[d][e], r.h[d][e].lo <= jets2[k].h[d][e] ? r.h[d][e].hi : r.h[d][e].lo);
+        }
+      }
     }
   }
   return 0;

@@ -1,7 +1,7 @@
 // A compiled set of formulas: muparser parses each formula string once, its bytecode is read into
 // an immutable expression tape (static single assignment, constants folded, common subexpressions
 // shared across the formulas) and that tape is evaluated for plain values, second- or third-order
-// jets, or intervals. A Program is immutable after compile() and safe to evaluate from many
+// jets, intervals or interval jets. A Program is immutable after compile() and safe to evaluate from many
 // threads at once without locks (scratch space is thread-local).
 #pragma once
 #include <chrono>
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "formula/interval.hpp"
+#include "formula/interval_jet.hpp"
 #include "formula/jet.hpp"
 
 namespace footpoint::formula {
@@ -67,6 +68,11 @@ class Program {
   void jets3(const double* x, Jet3<N>* out) const;
   // Rigorous enclosures of every formula's range over the box x[i] (outward rounded).
   void intervals(const Interval* x, Interval* out) const;
+  // Rigorous enclosures over the box x[i] of every formula's value, gradient and Hessian, with
+  // flags saying which of them hold where the box meets a kink or a jump (the contract:
+  // formula/interval_jet.hpp). Requires N == num_inputs().
+  template <int N>
+  void interval_jets2(const Interval* x, IntervalJet2<N>* out) const;
 
   struct Tape;  // opaque
 
