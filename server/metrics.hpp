@@ -22,8 +22,8 @@
 #include "cache/geometry_cache.hpp"
 #include "prometheus_text.hpp"
 #include "registry_metrics.hpp"
+#include "geometry/projection_result.hpp"
 #include "route.hpp"
-#include "solvers/result.hpp"
 
 namespace footpoint::server {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
 
 namespace footpoint::server {
 

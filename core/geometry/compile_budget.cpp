@@ -1,6 +1,6 @@
 #include "geometry/compile_budget.hpp"
 
-#include "geometry/geometry.hpp"
+#include "geometry/geometry_error.hpp"
 
 namespace footpoint {
 

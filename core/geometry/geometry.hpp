@@ -12,7 +12,8 @@
 #include <vector>
 
 #include "formula/program.hpp"
-#include "solvers/result.hpp"
+#include "geometry/geometry_error.hpp"
+#include "geometry/projection_result.hpp"
 
 namespace footpoint {
 
@@ -40,20 +41,6 @@ struct GeometryDefinition {
 // canonical texts; a replica compiles from them). canonical(parse_canonical(t)) == t for every
 // text accepted; any other text throws GeometryError with code "bad_canonical".
 GeometryDefinition parse_canonical(std::string_view text);
-
-// A definition that cannot be compiled: `code` is a stable machine-readable code
-// (formula_syntax, unknown_variable, empty_formula, formula_too_long, bad_domain, ...), `field`
-// names the offending field ("x", "equations[1]", "domain.u"), `position` the character (or -1).
-struct GeometryError : std::runtime_error {
-  GeometryError(std::string code, std::string field, int position, std::string message)
-      : std::runtime_error(std::move(message)),
-        code(std::move(code)),
-        field(std::move(field)),
-        position(position) {}
-  std::string code;
-  std::string field;
-  int position;
-};
 
 struct MethodInfo {
   std::string name;

@@ -1,18 +1,13 @@
-// Implicit curves inside a box: a spatial curve C = {f1 = 0} ∩ {f2 = 0} (the spatial-curve paper's
-// eq. (5)) or a planar curve f(x, y) = 0. Planar curves are embedded in 3-D as f1 = f(x, y),
-// f2 = z (so grad f2 = e_z and T = grad f1 x grad f2 = (f_y, -f_x, 0) is the planar tangent):
-// discovery, sampling and the global search are then written once for both.
+// The equations of an implicit curve and their exact jets: a spatial curve C = {f1 = 0} ∩ {f2 = 0}
+// ([Curve] eq. (5)) or a planar curve f(x, y) = 0, inside a box. Planar curves are embedded in 3-D
+// as f1 = f(x, y), f2 = z (so grad f2 = e_z and T = grad f1 x grad f2 = (f_y, -f_x, 0) is the
+// planar tangent): discovery, sampling and the global search are then written once for both.
 #pragma once
 #include <array>
-#include <string_view>
-#include <vector>
+#include <utility>
 
 #include "formula/program.hpp"
-#include "geometry/geometry.hpp"
 #include "geometry/vec.hpp"
-#include "seeding/curve_discovery.hpp"
-#include "seeding/curve_sample_index.hpp"
-#include "seeding/curve_samples.hpp"
 
 namespace footpoint {
 
@@ -36,7 +31,7 @@ struct ImplicitJet {
   std::array<double, 2> f{};
   std::array<Vec3, 2> grad{};
   std::array<Mat3, 2> hess{};
-  // The tangent T = grad f1 x grad f2 (the spatial-curve paper, eq. (7)).
+  // The tangent T = grad f1 x grad f2 ([Curve] eq. (7)).
   Vec3 tangent() const { return cross(grad[0], grad[1]); }
 };
 
@@ -56,28 +51,6 @@ class ImplicitEquations {
  private:
   formula::Program program_;
   bool planar_;
-};
-
-class ImplicitCurve final : public CompiledGeometry {
- public:
-  ImplicitCurve(GeometryDefinition def, ImplicitEquations equations, Box3 box);
-
-  int point_dim() const override { return equations_.planar() ? 2 : 3; }
-  int num_params() const override { return 0; }
-  const std::vector<MethodInfo>& methods() const override;
-  ProjectionResult project(const double* p, std::string_view method, const Options& options) const override;
-  std::size_t memory_bytes() const override;
-
-  const ImplicitEquations& equations() const { return equations_; }
-  const Box3& box() const { return box_; }
-  const CurveDiscovery& discovery() const { return discovery_; }
-  const CurveSampleIndex& sample_index() const { return index_; }
-
- private:
-  ImplicitEquations equations_;
-  Box3 box_;
-  CurveDiscovery discovery_;  // samples of every piece of the curve in the box (for `auto`)
-  CurveSampleIndex index_;
 };
 
 }  // namespace footpoint

@@ -1,14 +1,10 @@
-// Parametric curves c(t) = (x(t), y(t)[, z(t)]), t in [tmin, tmax], in the plane or in space.
-// Planar curves are embedded in 3-D with z = 0.
+// c(t) = (x(t), y(t)[, z(t)]), t in [tmin, tmax], and its exact derivatives from the formula tape,
+// in the plane or in space. Planar curves are embedded in 3-D with z = 0.
 #pragma once
-#include <string_view>
-#include <vector>
+#include <utility>
 
 #include "formula/program.hpp"
-#include "geometry/geometry.hpp"
 #include "geometry/vec.hpp"
-#include "seeding/curve_sample_index.hpp"
-#include "seeding/curve_samples.hpp"
 
 namespace footpoint {
 
@@ -47,30 +43,6 @@ class CurveFormulas {
 struct ParamInterval {
   double tmin, tmax;
   bool contains(double t) const { return t >= tmin && t <= tmax; }
-};
-
-class ParametricCurve final : public CompiledGeometry {
- public:
-  ParametricCurve(GeometryDefinition def, CurveFormulas formulas, ParamInterval domain);
-
-  int point_dim() const override { return formulas_.dim(); }
-  int num_params() const override { return 1; }
-  const std::vector<MethodInfo>& methods() const override;
-  ProjectionResult project(const double* p, std::string_view method, const Options& options) const override;
-  std::size_t memory_bytes() const override;
-
-  const CurveFormulas& formulas() const { return formulas_; }
-  const ParamInterval& domain() const { return domain_; }
-  // Dense samples along the curve (params holds t) with their k-d tree, for `auto` and for the
-  // default start of the local methods.
-  const CurveSamples& samples() const { return samples_; }
-  const CurveSampleIndex& sample_index() const { return index_; }
-
- private:
-  CurveFormulas formulas_;
-  ParamInterval domain_;
-  CurveSamples samples_;
-  CurveSampleIndex index_;
 };
 
 }  // namespace footpoint

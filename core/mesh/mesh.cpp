@@ -2,8 +2,8 @@
 
 #include <stdexcept>
 
-#include "geometry/implicit_curve.hpp"
-#include "geometry/parametric_curve.hpp"
+#include "geometry/implicit_curve_geometry.hpp"
+#include "geometry/parametric_curve_geometry.hpp"
 #include "geometry/parametric_surface_geometry.hpp"
 #include "mesh/curve_mesh.hpp"
 #include "mesh/surface_mesh.hpp"

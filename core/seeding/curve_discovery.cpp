@@ -5,12 +5,13 @@
 #include <cmath>
 
 #include "geometry/compile_budget.hpp"
+#include "geometry/curve_correction.hpp"
+#include "geometry/geometry_error.hpp"
 #include "geometry/implicit_curve.hpp"
+#include "geometry/implicit_curve_differentials.hpp"
+#include "geometry/singular_point.hpp"
 #include "seeding/curve_enclosure.hpp"
 #include "seeding/curve_tracing.hpp"
-#include "solvers/curve/curve_correction.hpp"
-#include "solvers/curve/implicit_curve_differentials.hpp"
-#include "solvers/curve/singular_point.hpp"
 
 namespace footpoint {
 namespace {

@@ -41,6 +41,8 @@ class CurveSampleIndex {
   // the distance), nearest first. margin = infinity lists every discrete local minimum.
   std::int32_t nearest_and_local_minima(Vec3 p, double margin, SampleCandidates& out, double& nearest2) const;
 
+  // The samples it indexes.
+  const CurveSamples& samples() const { return samples_; }
   std::size_t memory_bytes() const;
 
  private:

@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "geometry/compile_budget.hpp"
-#include "solvers/curve/curve_correction.hpp"
-#include "solvers/curve/implicit_curve_differentials.hpp"
-#include "solvers/curve/singular_point.hpp"
+#include "geometry/curve_correction.hpp"
+#include "geometry/implicit_curve_differentials.hpp"
+#include "geometry/singular_point.hpp"
 
 namespace footpoint {
 

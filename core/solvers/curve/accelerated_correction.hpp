@@ -9,9 +9,9 @@
 // (18) has -err1, -err2, which is what makes dV a correction; we follow eq. (18).)
 #pragma once
 #include "geometry/implicit_curve.hpp"
+#include "geometry/projection_result.hpp"
 #include "solvers/curve/iteration_control.hpp"
 #include "solvers/curve/steepest_descent.hpp"
-#include "solvers/result.hpp"
 
 namespace footpoint::curve {
 

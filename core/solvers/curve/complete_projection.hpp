@@ -3,7 +3,7 @@
 // (Q back onto the curve), then Algorithm 3 (eq. (19)) until the iterates stop moving.
 #pragma once
 #include "geometry/implicit_curve.hpp"
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
 
 namespace footpoint::curve {
 

@@ -40,17 +40,18 @@ bool circle_step(const CurveJet& j, Vec3 p, double& dt) {
 
 }  // namespace
 
-ProjectionResult curvature_circle(const ParametricCurve& curve, Vec3 p, const Options& options) {
+ProjectionResult curvature_circle(const CurveFormulas& formulas, const ParamInterval& domain,
+                                  const CurveSampleIndex& index, Vec3 p, const Options& options) {
   std::vector<std::array<double, 3>> trace;
   // Linear convergence when p is off the curve (the GSA paper's Remark 2).
   const IterationControl control = make_control(options, 1000, &trace);
-  double t = parametric_start(curve, p, options);
+  double t = parametric_start(domain, index, p, options);
   Status status = Status::max_iterations;
   double step = 0.0, previous = kInfinity;
   int n = 0;
   while (n < control.max_iterations) {
     double dt = 0.0;
-    if (!circle_step(curve.formulas().jet(t), p, dt)) {
+    if (!circle_step(formulas.jet(t), p, dt)) {
       status = Status::degenerate;
       break;
     }
@@ -65,12 +66,12 @@ ProjectionResult curvature_circle(const ParametricCurve& curve, Vec3 p, const Op
     const auto progress = control.progress(step, std::fabs(t), previous);
     if (progress == IterationControl::Progress::converged ||
         (progress == IterationControl::Progress::at_floor &&
-         parametric_residual_met(parametric_result(curve, p, t, "curvature_circle"), control))) {
+         parametric_residual_met(parametric_result(formulas, domain, p, t, "curvature_circle"), control))) {
       status = Status::converged;
       break;
     }
   }
-  return finish_parametric_result(curve, p, t, "curvature_circle", status, n, step, control,
+  return finish_parametric_result(formulas, domain, p, t, "curvature_circle", status, n, step, control,
                                   std::move(trace));
 }
 

@@ -11,12 +11,14 @@
 // dt = <p - c, c'> / |c'|^2.
 #pragma once
 #include "geometry/parametric_curve.hpp"
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
+#include "seeding/curve_sample_index.hpp"
 
 namespace footpoint::curve {
 
 // The method `curvature_circle` from options.initial[0] or the nearest sample's t; outside_domain
 // when it converges outside [tmin, tmax].
-ProjectionResult curvature_circle(const ParametricCurve& curve, Vec3 p, const Options& options);
+ProjectionResult curvature_circle(const CurveFormulas& formulas, const ParamInterval& domain,
+                                  const CurveSampleIndex& index, Vec3 p, const Options& options);
 
 }  // namespace footpoint::curve

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "solvers/curve/curve_correction.hpp"
-#include "solvers/curve/implicit_curve_differentials.hpp"
+#include "geometry/curve_correction.hpp"
+#include "geometry/implicit_curve_differentials.hpp"
 
 namespace footpoint::curve {
 

@@ -3,8 +3,8 @@
 // until the curve point stops moving.
 #pragma once
 #include "geometry/implicit_curve.hpp"
+#include "geometry/projection_result.hpp"
 #include "solvers/curve/iteration_control.hpp"
-#include "solvers/result.hpp"
 
 namespace footpoint::curve {
 

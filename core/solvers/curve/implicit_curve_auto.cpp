@@ -20,10 +20,18 @@ struct Found {
   bool met = false;       // its residuals meet the tolerance
 };
 
+// What the search reads: the curve's equations and box, its samples and their k-d tree.
+struct Curve {
+  const ImplicitEquations& equations;
+  const Box3& box;
+  const CurveDiscovery& discovery;
+  const CurveSampleIndex& index;
+};
+
 // The residuals of x, where a singular point found at discovery is one whatever the angle between
 // the normals says (planar curves: grad f = 0, but grad f2 = e_z).
-void fill_residuals(const ImplicitCurve& curve, Vec3 p, const Found& f, Summary& s) {
-  fill_implicit_residuals(curve.equations(), curve.box(), p, f.x, s);
+void fill_residuals(const Curve& curve, Vec3 p, const Found& f, Summary& s) {
+  fill_implicit_residuals(curve.equations, curve.box, p, f.x, s);
   if (f.singular) {
     s.location = Location::singular_point;
     s.orthogonality = {0.0, 0.0};
@@ -32,9 +40,9 @@ void fill_residuals(const ImplicitCurve& curve, Vec3 p, const Found& f, Summary&
 }
 
 // The local minimum belonging to sample i.
-Found solve_from(const ImplicitCurve& curve, Vec3 p, std::int32_t i, const IterationControl& control,
+Found solve_from(const Curve& curve, Vec3 p, std::int32_t i, const IterationControl& control,
                  std::vector<std::array<double, 3>>* trace) {
-  const CurveSamples& s = curve.discovery().samples;
+  const CurveSamples& s = curve.discovery.samples;
   const Vec3 start = s.points[static_cast<std::size_t>(i)];
   const double start_distance = norm(p - start);
   Found f;
@@ -46,7 +54,7 @@ Found solve_from(const ImplicitCurve& curve, Vec3 p, std::int32_t i, const Itera
     f.singular = kind == SampleKind::singular_point;
     return f;
   }
-  const Box3& box = curve.box();
+  const Box3& box = curve.box;
   const double h = s.spacing;
   IterationControl c = control;
   c.trace = trace;
@@ -57,10 +65,10 @@ Found solve_from(const ImplicitCurve& curve, Vec3 p, std::int32_t i, const Itera
     return m.converged && box.contains(m.x, slack) && norm(p - m.x) <= start_distance + slack &&
            m.second_variation >= -1e-9 * std::max(1.0, start_distance);
   };
-  LocalMinimum m = lagrange_newton(curve.equations(), p, start, 2.0 * h, c);
+  LocalMinimum m = lagrange_newton(curve.equations, p, start, 2.0 * h, c);
   if (!acceptable(m)) {
     if (trace) trace->clear();
-    m = curve_descent(curve.equations(), p, start, h, c);
+    m = curve_descent(curve.equations, p, start, h, c);
     if (!acceptable(m)) return f;
   }
   f.x = m.x;
@@ -73,9 +81,11 @@ Found solve_from(const ImplicitCurve& curve, Vec3 p, std::int32_t i, const Itera
 
 }  // namespace
 
-ProjectionResult implicit_curve_auto(const ImplicitCurve& curve, Vec3 p, const Options& options) {
-  const ImplicitEquations& eq = curve.equations();
-  const CurveSamples& s = curve.discovery().samples;
+ProjectionResult implicit_curve_auto(const ImplicitEquations& eq, const Box3& box,
+                                     const CurveDiscovery& discovery, const CurveSampleIndex& index, Vec3 p,
+                                     const Options& options) {
+  const Curve curve{eq, box, discovery, index};
+  const CurveSamples& s = discovery.samples;
   const double h = s.spacing;
   ProjectionResult r;
   r.dim = eq.planar() ? 2 : 3;
@@ -87,8 +97,8 @@ ProjectionResult implicit_curve_auto(const ImplicitCurve& curve, Vec3 p, const O
   // minimum of the samples is a candidate, else only those that can hold the nearest point.
   SampleCandidates candidates;
   double d0sq = 0.0;
-  const std::int32_t nearest = curve.sample_index().nearest_and_local_minima(
-      p, options.all_minima ? kInfinity : 0.5 * h, candidates, d0sq);
+  const std::int32_t nearest =
+      index.nearest_and_local_minima(p, options.all_minima ? kInfinity : 0.5 * h, candidates, d0sq);
   if (nearest < 0) {
     // No point of the curve in the box.
     r.summary.status = Status::degenerate;
@@ -98,13 +108,13 @@ ProjectionResult implicit_curve_auto(const ImplicitCurve& curve, Vec3 p, const O
   const Vec3 s0 = s.points[static_cast<std::size_t>(nearest)];
   if (d0 - 0.5 * h > options.max_distance) {
     // Every curve point is farther than max_distance (the h/2 bound); report the nearest sample.
-    r = implicit_result(eq, curve.box(), p, s0, "auto");
+    r = implicit_result(eq, box, p, s0, "auto");
     r.summary.status = Status::beyond_max_distance;
     r.summary.starts = 0;
     return r;
   }
   const IterationControl control = make_control(options, 60, nullptr);
-  const double slack = 1e-12 * std::max({1.0, d0, curve.discovery().scale});
+  const double slack = 1e-12 * std::max({1.0, d0, discovery.scale});
 
   // The nearest candidate whose residuals meet the tolerance, and the nearest of all. A local
   // solve that stopped short of the tolerance (next to a singular point the Lagrange system is
@@ -127,7 +137,7 @@ ProjectionResult implicit_curve_auto(const ImplicitCurve& curve, Vec3 p, const O
     fill_residuals(curve, p, f, fs);
     f.met = implicit_residuals_met(fs, f.x, control);
     if (options.all_minima) {
-      const double same = 1e-8 * std::max(1.0, curve.discovery().scale);
+      const double same = 1e-8 * std::max(1.0, discovery.scale);
       const bool known = std::any_of(minima.begin(), minima.end(), [&](const Minimum& m) {
         return norm(Vec3{m.foot[0], m.foot[1], m.foot[2]} - f.x) <= same;
       });
@@ -145,7 +155,7 @@ ProjectionResult implicit_curve_auto(const ImplicitCurve& curve, Vec3 p, const O
   }
   if (!best.valid) {
     // No local solve succeeded (should not happen): the nearest sample, not converged.
-    r = implicit_result(eq, curve.box(), p, s0, "auto");
+    r = implicit_result(eq, box, p, s0, "auto");
     r.summary.status = Status::degenerate;
     r.summary.starts = starts;
     return r;
@@ -154,7 +164,7 @@ ProjectionResult implicit_curve_auto(const ImplicitCurve& curve, Vec3 p, const O
     best = best_met;
     best_trace.swap(best_met_trace);
   }
-  r = implicit_result(eq, curve.box(), p, best.x, "auto");
+  r = implicit_result(eq, box, p, best.x, "auto");
   fill_residuals(curve, p, best, r.summary);
   r.summary.iterations = best.iterations;
   r.summary.step_norm = best.step;

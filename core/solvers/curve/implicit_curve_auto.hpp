@@ -12,10 +12,15 @@
 // of the samples is refined and the distinct minima are returned, best first.
 #pragma once
 #include "geometry/implicit_curve.hpp"
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
+#include "seeding/curve_discovery.hpp"
+#include "seeding/curve_sample_index.hpp"
 
 namespace footpoint::curve {
 
-ProjectionResult implicit_curve_auto(const ImplicitCurve& curve, Vec3 p, const Options& options);
+// `discovery` holds the samples of the curve {equations = 0} in `box`, `index` their k-d tree.
+ProjectionResult implicit_curve_auto(const ImplicitEquations& equations, const Box3& box,
+                                     const CurveDiscovery& discovery, const CurveSampleIndex& index, Vec3 p,
+                                     const Options& options);
 
 }  // namespace footpoint::curve

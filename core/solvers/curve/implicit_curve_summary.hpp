@@ -5,8 +5,8 @@
 #include <string>
 
 #include "geometry/implicit_curve.hpp"
+#include "geometry/projection_result.hpp"
 #include "solvers/curve/iteration_control.hpp"
-#include "solvers/result.hpp"
 
 namespace footpoint::curve {
 

@@ -6,7 +6,7 @@
 #include <limits>
 #include <vector>
 
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
 
 namespace footpoint::curve {
 

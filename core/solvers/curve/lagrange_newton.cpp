@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "solvers/curve/dense_solve.hpp"
-#include "solvers/curve/implicit_curve_differentials.hpp"
+#include "geometry/dense_solve.hpp"
+#include "geometry/implicit_curve_differentials.hpp"
 
 namespace footpoint::curve {
 namespace {

@@ -43,9 +43,8 @@ bool find_bracket(const CurveFormulas& f, Vec3 p, double& a, double& b) {
 }
 
 // The local minimum of the distance near sample i (between its neighbours).
-Found solve_from(const ParametricCurve& curve, Vec3 p, std::int32_t i, const IterationControl& control) {
-  const CurveSamples& s = curve.samples();
-  const CurveFormulas& f = curve.formulas();
+Found solve_from(const CurveFormulas& f, const CurveSamples& s, Vec3 p, std::int32_t i,
+                 const IterationControl& control) {
   const auto at = [&](std::int32_t k) { return s.params[static_cast<std::size_t>(k)]; };
   const std::int32_t before = s.prev[static_cast<std::size_t>(i)];
   const std::int32_t after = s.next[static_cast<std::size_t>(i)];
@@ -81,18 +80,20 @@ Found solve_from(const ParametricCurve& curve, Vec3 p, std::int32_t i, const Ite
 
 }  // namespace
 
-ProjectionResult parametric_curve_auto(const ParametricCurve& curve, Vec3 p, const Options& options) {
-  const CurveSamples& s = curve.samples();
+ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const ParamInterval& domain,
+                                       const CurveSampleIndex& index, Vec3 p, const Options& options) {
+  const CurveSamples& s = index.samples();
   const double h = s.spacing;
   // The nearest sample and the candidates in one pass; with all_minima every discrete local
   // minimum of the samples is a candidate, else only those that can hold the nearest point.
   SampleCandidates candidates;
   double d0sq = 0.0;
-  const std::int32_t nearest = curve.sample_index().nearest_and_local_minima(
-      p, options.all_minima ? kInfinity : 0.5 * h, candidates, d0sq);
+  const std::int32_t nearest =
+      index.nearest_and_local_minima(p, options.all_minima ? kInfinity : 0.5 * h, candidates, d0sq);
   const double d0 = std::sqrt(d0sq);
   if (d0 - 0.5 * h > options.max_distance) {
-    ProjectionResult r = parametric_result(curve, p, s.params[static_cast<std::size_t>(nearest)], "auto");
+    ProjectionResult r =
+        parametric_result(formulas, domain, p, s.params[static_cast<std::size_t>(nearest)], "auto");
     r.summary.status = Status::beyond_max_distance;
     r.summary.starts = 0;
     return r;
@@ -110,16 +111,16 @@ ProjectionResult parametric_curve_auto(const ParametricCurve& curve, Vec3 p, con
     if (!options.all_minima && std::sqrt(c.distance2) - 0.5 * h > best.distance + slack) break;
     ++starts;
     trace.clear();
-    const Found f = solve_from(curve, p, c.index, control);
+    const Found f = solve_from(formulas, s, p, c.index, control);
     if (!(f.distance < kInfinity)) continue;
     if (options.all_minima) {
-      const Vec3 x = curve.formulas().point(f.t);
+      const Vec3 x = formulas.point(f.t);
       const double same = 1e-8 * std::max(1.0, norm(x));
       const bool known = std::any_of(minima.begin(), minima.end(), [&](const Minimum& m) {
         return norm(Vec3{m.foot[0], m.foot[1], m.foot[2]} - x) <= same;
       });
       if (!known) {
-        const bool end = f.t <= curve.domain().tmin || f.t >= curve.domain().tmax;
+        const bool end = f.t <= domain.tmin || f.t >= domain.tmax;
         minima.push_back(
             {{x.x, x.y, x.z}, {f.t, 0.0}, f.distance, end ? Location::endpoint : Location::interior});
       }
@@ -129,7 +130,7 @@ ProjectionResult parametric_curve_auto(const ParametricCurve& curve, Vec3 p, con
       if (options.trace) best_trace.swap(trace);
     }
   }
-  ProjectionResult r = parametric_result(curve, p, best.t, "auto");
+  ProjectionResult r = parametric_result(formulas, domain, p, best.t, "auto");
   r.summary.iterations = best.iterations;
   r.summary.step_norm = best.step;
   r.summary.starts = starts;

@@ -7,10 +7,13 @@
 // distance minus h/2 can still beat the best found.
 #pragma once
 #include "geometry/parametric_curve.hpp"
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
+#include "seeding/curve_sample_index.hpp"
 
 namespace footpoint::curve {
 
-ProjectionResult parametric_curve_auto(const ParametricCurve& curve, Vec3 p, const Options& options);
+// `index` is the k-d tree of the curve's dense samples (seeding/curve_parametric_samples).
+ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const ParamInterval& domain,
+                                       const CurveSampleIndex& index, Vec3 p, const Options& options);
 
 }  // namespace footpoint::curve

@@ -5,10 +5,11 @@
 
 namespace footpoint::curve {
 
-ProjectionResult parametric_result(const ParametricCurve& curve, Vec3 p, double t, const char* method) {
-  const CurveJet j = curve.formulas().jet(t);
+ProjectionResult parametric_result(const CurveFormulas& formulas, const ParamInterval& domain, Vec3 p,
+                                   double t, const char* method) {
+  const CurveJet j = formulas.jet(t);
   ProjectionResult r;
-  r.dim = curve.point_dim();
+  r.dim = formulas.dim();
   r.num_params = 1;
   r.foot = {j.c.x, j.c.y, j.c.z};
   r.params = {t, 0.0};
@@ -23,11 +24,11 @@ ProjectionResult parametric_result(const ParametricCurve& curve, Vec3 p, double 
   }
   const double denominator = std::max(norm(d), 1e-3 * std::max(1.0, norm(j.c))) * speed;
   const double along = dot(d, j.d1);  // <p - c, c'>
-  const ParamInterval& dom = curve.domain();
-  if (t <= dom.tmin || t >= dom.tmax) {
+  if (t <= domain.tmin || t >= domain.tmax) {
     // At tmin the admissible direction is +c'; a minimum there needs <p - c, c'> <= 0 (moving
     // inwards does not approach p), at tmax <p - c, c'> >= 0. Only a violation is a residual.
-    r.summary.orthogonality[0] = (t <= dom.tmin ? std::max(0.0, along) : std::max(0.0, -along)) / denominator;
+    r.summary.orthogonality[0] =
+        (t <= domain.tmin ? std::max(0.0, along) : std::max(0.0, -along)) / denominator;
     r.summary.location = Location::endpoint;
     r.summary.on_boundary = true;
   } else {
@@ -41,23 +42,23 @@ bool parametric_residual_met(const ProjectionResult& r, const IterationControl& 
   return r.summary.orthogonality[0] <= control.residual_tolerance;
 }
 
-double parametric_start(const ParametricCurve& curve, Vec3 p, const Options& options) {
+double parametric_start(const ParamInterval& domain, const CurveSampleIndex& index, Vec3 p,
+                        const Options& options) {
   if (options.initial) return (*options.initial)[0];
   double d2 = 0.0;
-  const std::int32_t i = curve.sample_index().nearest(p, d2);
-  return i >= 0 ? curve.samples().params[static_cast<std::size_t>(i)]
-                : 0.5 * (curve.domain().tmin + curve.domain().tmax);
+  const std::int32_t i = index.nearest(p, d2);
+  return i >= 0 ? index.samples().params[static_cast<std::size_t>(i)] : 0.5 * (domain.tmin + domain.tmax);
 }
 
-ProjectionResult finish_parametric_result(const ParametricCurve& curve, Vec3 p, double t, const char* method,
-                                          Status status, int iterations, double step,
-                                          const IterationControl& control,
+ProjectionResult finish_parametric_result(const CurveFormulas& formulas, const ParamInterval& domain, Vec3 p,
+                                          double t, const char* method, Status status, int iterations,
+                                          double step, const IterationControl& control,
                                           std::vector<std::array<double, 3>> trace) {
-  ProjectionResult r = parametric_result(curve, p, t, method);
+  ProjectionResult r = parametric_result(formulas, domain, p, t, method);
   r.summary.iterations = iterations;
   r.summary.step_norm = step;
   if (status == Status::converged) {
-    if (!curve.domain().contains(t))
+    if (!domain.contains(t))
       status = Status::outside_domain;
     else if (!parametric_residual_met(r, control))
       status = Status::degenerate;

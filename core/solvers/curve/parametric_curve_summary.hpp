@@ -6,15 +6,17 @@
 #include <vector>
 
 #include "geometry/parametric_curve.hpp"
+#include "geometry/projection_result.hpp"
+#include "seeding/curve_sample_index.hpp"
 #include "solvers/curve/iteration_control.hpp"
-#include "solvers/result.hpp"
 
 namespace footpoint::curve {
 
 // A result for c(t) as the foot of p: dim, num_params 1, params[0] = t, foot, distance,
 // orthogonality, location (endpoint when t is tmin or tmax) and on_boundary. When p is (almost) on
 // the curve the orthogonality is measured against max(|p - c|, 1e-3 max(1, |c|)).
-ProjectionResult parametric_result(const ParametricCurve& curve, Vec3 p, double t, const char* method);
+ProjectionResult parametric_result(const CurveFormulas& formulas, const ParamInterval& domain, Vec3 p,
+                                   double t, const char* method);
 
 // Whether the result's orthogonality meets the control's residual tolerance.
 bool parametric_residual_met(const ProjectionResult& r, const IterationControl& control);
@@ -22,12 +24,14 @@ bool parametric_residual_met(const ProjectionResult& r, const IterationControl& 
 // The result of a local method's loop that ended at t with `status` after `iterations` steps, the
 // last of length `step`: converged only if t is in the domain (else outside_domain) and the
 // residual meets the tolerance (else degenerate: the iterates stalled); max_distance applied.
-ProjectionResult finish_parametric_result(const ParametricCurve& curve, Vec3 p, double t, const char* method,
-                                          Status status, int iterations, double step,
-                                          const IterationControl& control,
+ProjectionResult finish_parametric_result(const CurveFormulas& formulas, const ParamInterval& domain, Vec3 p,
+                                          double t, const char* method, Status status, int iterations,
+                                          double step, const IterationControl& control,
                                           std::vector<std::array<double, 3>> trace);
 
-// The start of a local method: options.initial[0], else the parameter of the sample nearest p.
-double parametric_start(const ParametricCurve& curve, Vec3 p, const Options& options);
+// The start of a local method: options.initial[0], else the parameter of the sample nearest p (the
+// samples of `index`, t in their params), else the middle of the domain.
+double parametric_start(const ParamInterval& domain, const CurveSampleIndex& index, Vec3 p,
+                        const Options& options);
 
 }  // namespace footpoint::curve

@@ -6,15 +6,16 @@
 
 namespace footpoint::curve {
 
-ProjectionResult parametric_newton(const ParametricCurve& curve, Vec3 p, const Options& options) {
+ProjectionResult parametric_newton(const CurveFormulas& formulas, const ParamInterval& domain,
+                                   const CurveSampleIndex& index, Vec3 p, const Options& options) {
   std::vector<std::array<double, 3>> trace;
   const IterationControl control = make_control(options, 100, &trace);
-  double t = parametric_start(curve, p, options);
+  double t = parametric_start(domain, index, p, options);
   Status status = Status::max_iterations;
   double step = 0.0, previous = kInfinity;
   int n = 0;
   while (n < control.max_iterations) {
-    const CurveJet j = curve.formulas().jet(t);
+    const CurveJet j = formulas.jet(t);
     const Vec3 d = j.c - p;
     const double g = dot(d, j.d1);
     const double dg = dot(j.d1, j.d1) + dot(d, j.d2);
@@ -40,7 +41,8 @@ ProjectionResult parametric_newton(const ParametricCurve& curve, Vec3 p, const O
       break;
     }
   }
-  return finish_parametric_result(curve, p, t, "newton", status, n, step, control, std::move(trace));
+  return finish_parametric_result(formulas, domain, p, t, "newton", status, n, step, control,
+                                  std::move(trace));
 }
 
 double bracketed_newton(const CurveFormulas& formulas, Vec3 p, double a, double b, double t0,

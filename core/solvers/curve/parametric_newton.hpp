@@ -4,14 +4,16 @@
 // with exact derivatives: t <- t - g / g'.
 #pragma once
 #include "geometry/parametric_curve.hpp"
+#include "geometry/projection_result.hpp"
+#include "seeding/curve_sample_index.hpp"
 #include "solvers/curve/iteration_control.hpp"
-#include "solvers/result.hpp"
 
 namespace footpoint::curve {
 
 // The method `newton`: unconstrained Newton from options.initial[0] or the nearest sample's t.
 // outside_domain when it converges outside [tmin, tmax].
-ProjectionResult parametric_newton(const ParametricCurve& curve, Vec3 p, const Options& options);
+ProjectionResult parametric_newton(const CurveFormulas& formulas, const ParamInterval& domain,
+                                   const CurveSampleIndex& index, Vec3 p, const Options& options);
 
 // Safeguarded Newton inside the bracket [a, b] where g(a) <= 0 <= g(b) (a minimum of phi lies
 // inside): a Newton step that leaves the bracket, or that a non-positive g' makes meaningless, is

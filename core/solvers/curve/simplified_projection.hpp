@@ -6,7 +6,7 @@
 // (eq. (19) without the correction vector) until the iterates stop moving.
 #pragma once
 #include "geometry/implicit_curve.hpp"
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
 
 namespace footpoint::curve {
 

@@ -6,8 +6,8 @@
 // near its start; it does not look for the foot point.
 #pragma once
 #include "geometry/implicit_curve.hpp"
+#include "geometry/projection_result.hpp"
 #include "solvers/curve/iteration_control.hpp"
-#include "solvers/result.hpp"
 
 namespace footpoint::curve {
 

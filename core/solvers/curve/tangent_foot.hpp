@@ -7,7 +7,7 @@
 // paper's Algorithm 1) or options.initial.
 #pragma once
 #include "geometry/implicit_curve.hpp"
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
 
 namespace footpoint::curve {
 

@@ -5,7 +5,7 @@
 // hybrid paper's counterexamples C1-C5 are surfaces where it does not.
 #pragma once
 #include "geometry/parametric_surface.hpp"
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
 #include "solvers/surface/paper_iteration.hpp"
 
 namespace footpoint::surface {

@@ -8,7 +8,7 @@
 // the terms that vanish identically (C1 = C2 = 0, the normal part of q - p0) not computed.
 #pragma once
 #include "geometry/parametric_surface.hpp"
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
 #include "solvers/surface/paper_iteration.hpp"
 
 namespace footpoint::surface {

@@ -6,7 +6,7 @@
 #include <array>
 
 #include "geometry/parametric_surface.hpp"
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
 
 namespace footpoint::surface {
 

@@ -4,7 +4,7 @@
 // any stationary point of the distance, minimum or not.
 #pragma once
 #include "geometry/parametric_surface.hpp"
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
 #include "solvers/surface/paper_iteration.hpp"
 
 namespace footpoint::surface {

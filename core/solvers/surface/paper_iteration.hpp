@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "geometry/parametric_surface.hpp"
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
 #include "solvers/surface/surface_convergence.hpp"
 #include "solvers/surface/surface_result.hpp"
 

@@ -37,7 +37,7 @@
 #include <vector>
 
 #include "geometry/parametric_surface.hpp"
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
 #include "solvers/surface/surface_convergence.hpp"
 
 namespace footpoint::surface {

@@ -37,8 +37,8 @@
 // the same foot point on a periodic or folded parametrisation, or a worse local minimum).
 #pragma once
 #include "geometry/parametric_surface.hpp"
+#include "geometry/projection_result.hpp"
 #include "seeding/surface_cells.hpp"
-#include "solvers/result.hpp"
 
 namespace footpoint::surface {
 

@@ -2,7 +2,7 @@
 // residuals and where the parameters lie in the domain.
 #pragma once
 #include "geometry/parametric_surface.hpp"
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
 
 namespace footpoint::surface {
 

@@ -1,8 +1,8 @@
-#include "solvers/curve/singular_point.hpp"
+#include "geometry/singular_point.hpp"
 
 #include <cmath>
 
-#include "solvers/curve/dense_solve.hpp"
+#include "geometry/dense_solve.hpp"
 
 namespace footpoint::curve {
 

@@ -1,4 +1,4 @@
-#include "solvers/result.hpp"
+#include "geometry/projection_result.hpp"
 
 #include <algorithm>
 

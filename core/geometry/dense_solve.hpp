@@ -1,12 +1,12 @@
 // Small dense linear systems A x = b (N <= 5) by Gaussian elimination with partial pivoting, on
-// the stack: the curve solvers' Newton steps (the Lagrange system is 5 x 5) allocate nothing.
+// the stack: the Newton steps on curves (the Lagrange system of `auto` is 5 x 5) allocate nothing.
 #pragma once
 #include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
 
-namespace footpoint::curve {
+namespace footpoint {
 
 template <int N>
 using Matrix = std::array<std::array<double, N>, N>;
@@ -48,4 +48,4 @@ bool dense_solve(Matrix<N> a, Vector<N>& b,
   return true;
 }
 
-}  // namespace footpoint::curve
+}  // namespace footpoint

@@ -1,8 +1,8 @@
-#include "solvers/curve/curve_correction.hpp"
+#include "geometry/curve_correction.hpp"
 
 #include <cmath>
 
-#include "solvers/curve/dense_solve.hpp"
+#include "geometry/dense_solve.hpp"
 
 namespace footpoint::curve {
 namespace {

@@ -1,6 +1,6 @@
-#include "solvers/curve/implicit_curve_differentials.hpp"
+#include "geometry/implicit_curve_differentials.hpp"
 
-#include "solvers/curve/dense_solve.hpp"
+#include "geometry/dense_solve.hpp"
 
 namespace footpoint::curve {
 

@@ -1,4 +1,4 @@
-#include "geometry/parametric_curve.hpp"
+#include "geometry/parametric_curve_geometry.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -34,9 +34,9 @@ const std::vector<MethodInfo>& ParametricCurve::methods() const {
 ProjectionResult ParametricCurve::project(const double* p, std::string_view method,
                                           const Options& options) const {
   const Vec3 q{p[0], p[1], formulas_.dim() == 3 ? p[2] : 0.0};
-  if (method == "auto") return curve::parametric_curve_auto(*this, q, options);
-  if (method == "newton") return curve::parametric_newton(*this, q, options);
-  if (method == "curvature_circle") return curve::curvature_circle(*this, q, options);
+  if (method == "auto") return curve::parametric_curve_auto(formulas_, domain_, index_, q, options);
+  if (method == "newton") return curve::parametric_newton(formulas_, domain_, index_, q, options);
+  if (method == "curvature_circle") return curve::curvature_circle(formulas_, domain_, index_, q, options);
   throw std::invalid_argument("parametric_curve has no method '" + std::string(method) + "'");
 }
 

@@ -1,0 +1,24 @@
+// Why a geometry definition cannot be compiled: thrown by the compilers of the definitions and by
+// the seeding they run (a search structure too intricate for its budget or its deadline).
+#pragma once
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace footpoint {
+
+// A definition that cannot be compiled: `code` is a stable machine-readable code
+// (formula_syntax, unknown_variable, empty_formula, formula_too_long, bad_domain, ...), `field`
+// names the offending field ("x", "equations[1]", "domain.u"), `position` the character (or -1).
+struct GeometryError : std::runtime_error {
+  GeometryError(std::string code, std::string field, int position, std::string message)
+      : std::runtime_error(std::move(message)),
+        code(std::move(code)),
+        field(std::move(field)),
+        position(position) {}
+  std::string code;
+  std::string field;
+  int position;
+};
+
+}  // namespace footpoint

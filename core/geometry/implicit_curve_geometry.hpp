@@ -1,0 +1,37 @@
+// The compiled implicit curve: its equations and box (geometry/implicit_curve.hpp), the samples of
+// every piece of it that `auto` precomputes with their k-d tree, and projection by method name.
+#pragma once
+#include <string_view>
+#include <vector>
+
+#include "geometry/geometry.hpp"
+#include "geometry/implicit_curve.hpp"
+#include "seeding/curve_discovery.hpp"
+#include "seeding/curve_sample_index.hpp"
+#include "seeding/curve_samples.hpp"
+
+namespace footpoint {
+
+class ImplicitCurve final : public CompiledGeometry {
+ public:
+  ImplicitCurve(GeometryDefinition def, ImplicitEquations equations, Box3 box);
+
+  int point_dim() const override { return equations_.planar() ? 2 : 3; }
+  int num_params() const override { return 0; }
+  const std::vector<MethodInfo>& methods() const override;
+  ProjectionResult project(const double* p, std::string_view method, const Options& options) const override;
+  std::size_t memory_bytes() const override;
+
+  const ImplicitEquations& equations() const { return equations_; }
+  const Box3& box() const { return box_; }
+  const CurveDiscovery& discovery() const { return discovery_; }
+  const CurveSampleIndex& sample_index() const { return index_; }
+
+ private:
+  ImplicitEquations equations_;
+  Box3 box_;
+  CurveDiscovery discovery_;  // samples of every piece of the curve in the box (for `auto`)
+  CurveSampleIndex index_;
+};
+
+}  // namespace footpoint

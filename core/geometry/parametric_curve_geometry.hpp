@@ -1,0 +1,38 @@
+// The compiled parametric curve: its formulas and parameter interval (geometry/parametric_curve.hpp),
+// the dense samples `auto` precomputes with their k-d tree, and projection by method name.
+#pragma once
+#include <string_view>
+#include <vector>
+
+#include "geometry/geometry.hpp"
+#include "geometry/parametric_curve.hpp"
+#include "seeding/curve_sample_index.hpp"
+#include "seeding/curve_samples.hpp"
+
+namespace footpoint {
+
+class ParametricCurve final : public CompiledGeometry {
+ public:
+  ParametricCurve(GeometryDefinition def, CurveFormulas formulas, ParamInterval domain);
+
+  int point_dim() const override { return formulas_.dim(); }
+  int num_params() const override { return 1; }
+  const std::vector<MethodInfo>& methods() const override;
+  ProjectionResult project(const double* p, std::string_view method, const Options& options) const override;
+  std::size_t memory_bytes() const override;
+
+  const CurveFormulas& formulas() const { return formulas_; }
+  const ParamInterval& domain() const { return domain_; }
+  // Dense samples along the curve (params holds t) with their k-d tree, for `auto` and for the
+  // default start of the local methods.
+  const CurveSamples& samples() const { return samples_; }
+  const CurveSampleIndex& sample_index() const { return index_; }
+
+ private:
+  CurveFormulas formulas_;
+  ParamInterval domain_;
+  CurveSamples samples_;
+  CurveSampleIndex index_;
+};
+
+}  // namespace footpoint
