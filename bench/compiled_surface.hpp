@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "geometry/geometry.hpp"
-#include "geometry/parametric_surface_geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
+#include "compiled/parametric_surface_geometry.hpp"
 
 namespace footpoint::bench {
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/implicit_curve_geometry.hpp"
-#include "geometry/parametric_curve_geometry.hpp"
+#include "compiled/implicit_curve_geometry.hpp"
+#include "compiled/parametric_curve_geometry.hpp"
 
 using namespace footpoint;
 

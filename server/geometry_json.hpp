@@ -7,7 +7,7 @@
 #pragma once
 #include <string>
 
-#include "geometry/geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
 #include "json_reader.hpp"
 #include "json_writer.hpp"
 

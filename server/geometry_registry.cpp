@@ -10,7 +10,7 @@
 #include <cerrno>
 #include <vector>
 
-#include "geometry/sha256.hpp"
+#include "compiled/sha256.hpp"
 #include "request_log.hpp"
 
 namespace footpoint::server {

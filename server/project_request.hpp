@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "geometry/geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
 
 namespace footpoint::server {
 

@@ -4,7 +4,7 @@
 
 #include <chrono>
 
-#include "geometry/geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
 
 using namespace footpoint;
 

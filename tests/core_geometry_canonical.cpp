@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
 
 using namespace footpoint;
 using json = nlohmann::json;

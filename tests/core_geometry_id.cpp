@@ -2,8 +2,8 @@
 // same id (on every replica), a different one a different id.
 #include <doctest/doctest.h>
 
-#include "geometry/geometry.hpp"
-#include "geometry/sha256.hpp"
+#include "compiled/compiled_geometry.hpp"
+#include "compiled/sha256.hpp"
 
 using footpoint::GeometryDefinition;
 using footpoint::GeometryType;

@@ -28,8 +28,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "compiled/compiled_geometry.hpp"
 #include "formula/program.hpp"
-#include "geometry/geometry.hpp"
 
 using footpoint::compile_geometry;
 using footpoint::CompiledGeometry;

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "geometry/parametric_curve_geometry.hpp"
+#include "compiled/parametric_curve_geometry.hpp"
 
 using namespace footpoint;
 using nlohmann::json;

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "geometry/implicit_curve_geometry.hpp"
+#include "compiled/implicit_curve_geometry.hpp"
 
 using namespace footpoint;
 

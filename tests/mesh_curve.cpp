@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "geometry/implicit_curve_geometry.hpp"
+#include "compiled/implicit_curve_geometry.hpp"
 #include "mesh/mesh.hpp"
 
 using namespace footpoint;

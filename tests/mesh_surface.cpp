@@ -11,7 +11,7 @@
 #include <numbers>
 #include <utility>
 
-#include "geometry/parametric_surface_geometry.hpp"
+#include "compiled/parametric_surface_geometry.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/surface_mesh.hpp"
 

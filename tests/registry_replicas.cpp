@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-#include "geometry/geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
 #include "registry_support.hpp"
 
 using namespace footpoint;

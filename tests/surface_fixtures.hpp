@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/geometry.hpp"
-#include "geometry/parametric_surface_geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
+#include "compiled/parametric_surface_geometry.hpp"
 
 namespace footpoint::test {
 

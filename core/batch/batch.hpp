@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "batch/thread_pool.hpp"
-#include "geometry/geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
 
 namespace footpoint {
 

@@ -19,7 +19,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "geometry/geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
 
 namespace footpoint {
 

@@ -1,7 +1,7 @@
 // Meshes of curves: polylines with a unit tangent per vertex.
 #pragma once
-#include "geometry/implicit_curve_geometry.hpp"
-#include "geometry/parametric_curve_geometry.hpp"
+#include "compiled/implicit_curve_geometry.hpp"
+#include "compiled/parametric_curve_geometry.hpp"
 #include "mesh/mesh.hpp"
 
 namespace footpoint {

@@ -2,9 +2,9 @@
 
 #include <stdexcept>
 
-#include "geometry/implicit_curve_geometry.hpp"
-#include "geometry/parametric_curve_geometry.hpp"
-#include "geometry/parametric_surface_geometry.hpp"
+#include "compiled/implicit_curve_geometry.hpp"
+#include "compiled/parametric_curve_geometry.hpp"
+#include "compiled/parametric_surface_geometry.hpp"
 #include "mesh/curve_mesh.hpp"
 #include "mesh/surface_mesh.hpp"
 

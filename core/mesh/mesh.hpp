@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
 #include "geometry/vec.hpp"
 
 namespace footpoint {

@@ -8,7 +8,7 @@
 #pragma once
 #include <array>
 
-#include "geometry/parametric_surface_geometry.hpp"
+#include "compiled/parametric_surface_geometry.hpp"
 #include "mesh/mesh.hpp"
 
 namespace footpoint {

@@ -24,7 +24,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
 
 using namespace footpoint;
 using nlohmann::json;

@@ -1,5 +1,5 @@
 // SHA-256 as specified in FIPS 180-4 §6.2 (message schedule, 64 rounds, Merkle–Damgård padding).
-#include "geometry/sha256.hpp"
+#include "compiled/sha256.hpp"
 
 #include <cstring>
 

@@ -1,4 +1,4 @@
-#include "geometry/parametric_curve_geometry.hpp"
+#include "compiled/parametric_curve_geometry.hpp"
 
 #include <stdexcept>
 #include <string>

@@ -4,7 +4,7 @@
 #include <string_view>
 #include <vector>
 
-#include "geometry/geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
 #include "geometry/parametric_surface.hpp"
 #include "seeding/surface_cells.hpp"
 

@@ -2,7 +2,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "geometry/parametric_surface_geometry.hpp"
+#include "compiled/parametric_surface_geometry.hpp"
 #include "solvers/surface/first_order.hpp"
 #include "solvers/surface/gsa.hpp"
 #include "solvers/surface/hybrid.hpp"

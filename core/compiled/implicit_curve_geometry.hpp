@@ -4,7 +4,7 @@
 #include <string_view>
 #include <vector>
 
-#include "geometry/geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
 #include "geometry/implicit_curve.hpp"
 #include "seeding/curve_discovery.hpp"
 #include "seeding/curve_sample_index.hpp"

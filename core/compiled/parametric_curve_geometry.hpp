@@ -4,7 +4,7 @@
 #include <string_view>
 #include <vector>
 
-#include "geometry/geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
 #include "geometry/parametric_curve.hpp"
 #include "seeding/curve_sample_index.hpp"
 #include "seeding/curve_samples.hpp"

@@ -1,13 +1,13 @@
-#include "geometry/geometry.hpp"
+#include "compiled/geometry_definition.hpp"
 
-#include <algorithm>
+#include <cctype>
 #include <charconv>
-#include <cmath>
 #include <string_view>
 #include <system_error>
 #include <vector>
 
-#include "geometry/sha256.hpp"
+#include "compiled/sha256.hpp"
+#include "geometry/geometry_error.hpp"
 
 namespace footpoint {
 
@@ -146,37 +146,6 @@ GeometryDefinition parse_canonical(std::string_view text) {
   // no whitespace), so that the text and the definition have one id.
   if (def.canonical() != text) bad_canonical("it is not in canonical form");
   return def;
-}
-
-bool CompiledGeometry::has_method(std::string_view name) const {
-  const auto& m = methods();
-  return std::any_of(m.begin(), m.end(), [&](const MethodInfo& info) { return info.name == name; });
-}
-
-formula::Program compile_formulas(const GeometryDefinition& def, const std::vector<std::string>& variables,
-                                  const formula::CompileLimits& limits) {
-  try {
-    return formula::Program::compile(def.formulas, variables, def.constants, limits);
-  } catch (const formula::FormulaError& e) {
-    throw GeometryError(formula::to_string(e.kind), e.formula, e.position, e.what());
-  }
-}
-
-void validate_domain(const GeometryDefinition& def, const std::vector<std::string>& names) {
-  for (const auto& name : names) {
-    auto it =
-        std::find_if(def.domain.begin(), def.domain.end(), [&](const auto& d) { return d.first == name; });
-    if (it == def.domain.end())
-      throw GeometryError("bad_domain", "domain." + name, -1, "domain." + name + " is missing");
-    const auto [lo, hi] = it->second;
-    if (!std::isfinite(lo) || !std::isfinite(hi))
-      throw GeometryError("bad_domain", "domain." + name, -1, "domain." + name + " must be finite");
-    if (!(lo < hi))
-      throw GeometryError("bad_domain", "domain." + name, -1,
-                          "domain." + name + " must be an interval [lo, hi] with lo < hi");
-  }
-  if (def.domain.size() != names.size())
-    throw GeometryError("bad_domain", "domain", -1, "domain has unexpected entries");
 }
 
 }  // namespace footpoint

@@ -1,4 +1,4 @@
-#include "geometry/implicit_curve_geometry.hpp"
+#include "compiled/implicit_curve_geometry.hpp"
 
 #include <stdexcept>
 #include <string>

@@ -1,0 +1,58 @@
+#include "compiled/compiled_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include "geometry/compile_budget.hpp"
+
+namespace footpoint {
+
+bool CompiledGeometry::has_method(std::string_view name) const {
+  const auto& m = methods();
+  return std::any_of(m.begin(), m.end(), [&](const MethodInfo& info) { return info.name == name; });
+}
+
+formula::Program compile_formulas(const GeometryDefinition& def, const std::vector<std::string>& variables,
+                                  const formula::CompileLimits& limits) {
+  try {
+    return formula::Program::compile(def.formulas, variables, def.constants, limits);
+  } catch (const formula::FormulaError& e) {
+    throw GeometryError(formula::to_string(e.kind), e.formula, e.position, e.what());
+  }
+}
+
+void validate_domain(const GeometryDefinition& def, const std::vector<std::string>& names) {
+  for (const auto& name : names) {
+    auto it =
+        std::find_if(def.domain.begin(), def.domain.end(), [&](const auto& d) { return d.first == name; });
+    if (it == def.domain.end())
+      throw GeometryError("bad_domain", "domain." + name, -1, "domain." + name + " is missing");
+    const auto [lo, hi] = it->second;
+    if (!std::isfinite(lo) || !std::isfinite(hi))
+      throw GeometryError("bad_domain", "domain." + name, -1, "domain." + name + " must be finite");
+    if (!(lo < hi))
+      throw GeometryError("bad_domain", "domain." + name, -1,
+                          "domain." + name + " must be an interval [lo, hi] with lo < hi");
+  }
+  if (def.domain.size() != names.size())
+    throw GeometryError("bad_domain", "domain", -1, "domain has unexpected entries");
+}
+
+std::shared_ptr<const CompiledGeometry> compile_geometry(const GeometryDefinition& def,
+                                                         const formula::CompileLimits& limits) {
+  const CompileBudget budget(limits.deadline);
+  switch (def.type) {
+    case GeometryType::parametric_surface:
+      return compile_parametric_surface(def, limits);
+    case GeometryType::parametric_curve:
+      return compile_parametric_curve(def, limits);
+    case GeometryType::implicit_curve:
+      return compile_implicit_curve(def, limits);
+  }
+  throw GeometryError("bad_type", "type", -1, "unknown geometry type");
+}
+
+}  // namespace footpoint

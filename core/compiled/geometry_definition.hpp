@@ -1,0 +1,40 @@
+// Geometry definitions: what a client posts (the formulas, the domain or box, user constants), in
+// a canonical text form whose SHA-256 hash is the geometry's id.
+#pragma once
+#include <array>
+#include <map>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "formula/program.hpp"
+
+namespace footpoint {
+
+enum class GeometryType { parametric_surface, parametric_curve, implicit_curve };
+const char* to_string(GeometryType t);
+
+struct GeometryDefinition {
+  GeometryType type = GeometryType::parametric_surface;
+  // parametric_surface: x, y, z (in u, v); parametric_curve: x, y[, z] (in t);
+  // implicit_curve: equations[0][, equations[1]] (in x, y[, z]).
+  std::vector<formula::NamedFormula> formulas;
+  // Parameter domain (surfaces: u, v; curves: t) or box (implicit: x, y[, z]), in that order.
+  std::vector<std::pair<std::string, std::array<double, 2>>> domain;
+  std::map<std::string, double> constants;
+
+  // Deterministic text form: same definition -> same text (formula whitespace removed, numbers
+  // in shortest round-trip form). id() is a SHA-256 content hash of it (32 hex digits), so every
+  // replica computes the same id for the same definition.
+  std::string canonical() const;
+  std::string id() const;
+};
+
+// The inverse of canonical(): the definition whose canonical text is `text`, with the formula
+// names and domain variables a posted definition of its type has (a shared registry stores
+// canonical texts; a replica compiles from them). canonical(parse_canonical(t)) == t for every
+// text accepted; any other text throws GeometryError with code "bad_canonical".
+GeometryDefinition parse_canonical(std::string_view text);
+
+}  // namespace footpoint
