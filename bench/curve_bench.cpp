@@ -47,11 +47,12 @@ double per_point_us(const CompiledGeometry& g, const std::vector<double>& points
   const int dim = g.point_dim();
   const std::size_t n = points.size() / static_cast<std::size_t>(dim);
   std::size_t ok = 0;
+  const GeometryMethod m = g.method(method).value();
   const double s = median([&] {
     ok = 0;
     const auto t0 = std::chrono::steady_clock::now();
     for (std::size_t i = 0; i < n; ++i)
-      ok += g.project(&points[i * static_cast<std::size_t>(dim)], method, {}).summary.converged() ? 1 : 0;
+      ok += m.project(&points[i * static_cast<std::size_t>(dim)], {}).summary.converged() ? 1 : 0;
     return seconds_since(t0) / static_cast<double>(n);
   });
   converged = static_cast<double>(ok) / static_cast<double>(n);

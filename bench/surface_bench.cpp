@@ -85,6 +85,7 @@ struct Timed {
 
 Timed time_points(const ParametricSurface& g, const std::vector<Vec3>& points, const char* method,
                   const std::vector<Options>& options, int runs, double overhead) {
+  const GeometryMethod m = g.method(method).value();
   std::vector<std::vector<double>> cpu(points.size()), wall(points.size());
   Timed t;
   t.results.resize(points.size());
@@ -93,7 +94,7 @@ Timed time_points(const ParametricSurface& g, const std::vector<Vec3>& points, c
       const double p[3] = {points[i].x, points[i].y, points[i].z};
       const auto w0 = Clock::now();
       const double c0 = cpu_ns();
-      t.results[i] = g.project(p, method, options.empty() ? Options{} : options[i]);
+      t.results[i] = m.project(p, options.empty() ? Options{} : options[i]);
       const double c1 = cpu_ns();
       const auto w1 = Clock::now();
       cpu[i].push_back(std::max(0.0, c1 - c0 - overhead));
@@ -110,7 +111,7 @@ Timed time_points(const ParametricSurface& g, const std::vector<Vec3>& points, c
     const double c0 = cpu_ns();
     for (std::size_t i = 0; i < points.size(); ++i) {
       const double p[3] = {points[i].x, points[i].y, points[i].z};
-      sink += g.project(p, method, options.empty() ? Options{} : options[i]).distance;
+      sink += m.project(p, options.empty() ? Options{} : options[i]).distance;
     }
     batch.push_back((cpu_ns() - c0) / static_cast<double>(points.size()));
     if (sink == -1.0) std::printf(" ");
@@ -236,7 +237,7 @@ void section_from_start(const std::vector<std::shared_ptr<const ParametricSurfac
     std::vector<Options> starts;
     for (const Vec3& p : sets[k].near) {
       const double q[3] = {p.x, p.y, p.z};
-      const ProjectionResult r = g.project(q, "auto", Options{});
+      const ProjectionResult r = g.project(q, "auto", Options{}).value();
       Options o;
       o.initial = std::array<double, 3>{r.params[0] + 0.01 * (b.umax - b.umin),
                                         r.params[1] - 0.01 * (b.vmax - b.vmin), 0};
@@ -290,8 +291,7 @@ void section_batch(const ParametricSurface& g) {
   double rate[3] = {0, 0, 0};
   for (unsigned threads : {1u, 2u}) {
     ThreadPool pool(threads);
-    BatchRequest req;
-    req.geometry = &g;
+    BatchRequest req{g.method("auto").value()};
     req.points = coords.data();
     req.count = count;
     std::vector<double> walls;

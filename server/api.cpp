@@ -174,58 +174,17 @@ ApiResponse Api::openapi() const {
 ApiResponse Api::methods() {
   std::lock_guard lock(methods_mutex_);
   if (methods_body_.empty()) {
-    // Each type's methods are those its compiled geometries offer: compile a small sample of
-    // each (planar and spatial where the type has both) and list the union, in order.
-    struct Sample {
-      GeometryType type;
-      std::vector<GeometryDefinition> defs;
-    };
-    auto def = [](GeometryType t, std::vector<formula::NamedFormula> f,
-                  std::vector<std::pair<std::string, std::array<double, 2>>> d) {
-      GeometryDefinition g;
-      g.type = t;
-      g.formulas = std::move(f);
-      g.domain = std::move(d);
-      return g;
-    };
-    const std::vector<Sample> samples = {
-        {GeometryType::parametric_surface,
-         {def(GeometryType::parametric_surface, {{"x", "u"}, {"y", "v"}, {"z", "u*v"}},
-              {{"u", {0, 1}}, {"v", {0, 1}}})}},
-        {GeometryType::parametric_curve,
-         {def(GeometryType::parametric_curve, {{"x", "t"}, {"y", "t^2"}}, {{"t", {0, 1}}}),
-          def(GeometryType::parametric_curve, {{"x", "t"}, {"y", "t^2"}, {"z", "t^3"}}, {{"t", {0, 1}}})}},
-        {GeometryType::implicit_curve,
-         {def(GeometryType::implicit_curve, {{"equations[0]", "x^2+y^2-1"}},
-              {{"x", {-2, 2}}, {"y", {-2, 2}}}),
-          def(GeometryType::implicit_curve, {{"equations[0]", "x^2+y^2+z^2-4"}, {"equations[1]", "z-1"}},
-              {{"x", {-3, 3}}, {"y", {-3, 3}}, {"z", {-3, 3}}})}},
-    };
     JsonWriter w;
     w.begin_object();
     w.key("geometry_types");
     w.begin_array();
-    for (const auto& sample : samples) {
-      std::vector<MethodInfo> methods;
-      for (const auto& d : sample.defs) {
-        std::shared_ptr<const CompiledGeometry> g;
-        try {
-          g = compile_geometry(d);
-        } catch (const std::exception&) {
-          continue;  // this type is not available in this build
-        }
-        for (const auto& m : g->methods()) {
-          bool seen = false;
-          for (const auto& have : methods) seen = seen || have.name == m.name;
-          if (!seen) methods.push_back(m);
-        }
-      }
+    for (const GeometryType type : kGeometryTypes) {
       w.begin_object();
       w.key("type");
-      w.string(to_string(sample.type));
+      w.string(to_string(type));
       w.key("methods");
       w.begin_array();
-      for (const auto& m : methods) {
+      for (const MethodInfo& m : methods_of(type)) {
         w.begin_object();
         w.key("name");
         w.string(m.name);
@@ -394,12 +353,10 @@ ApiResponse Api::project(std::string_view id, std::string_view body) {
   }
   ProjectRequest request = read_project_request(body, inline_geometry, config_.max_points);
   if (inline_geometry) geometry = compile(*request.geometry, "geometry.").geometry;
-  check_project_request(request, *geometry);
+  const GeometryMethod method = check_project_request(request, *geometry);
   const PointsReservation reserved(in_flight_points_, request.count, config_.max_inflight_points);
 
-  BatchRequest batch;
-  batch.geometry = geometry.get();
-  batch.method = request.method;
+  BatchRequest batch{method};
   batch.options = request.options;
   batch.points = request.coords.data();
   batch.count = request.count;

@@ -257,7 +257,7 @@ ProjectRequest read_project_request(std::string_view body, bool inline_geometry,
   }
 }
 
-void check_project_request(const ProjectRequest& request, const CompiledGeometry& geometry) {
+GeometryMethod check_project_request(const ProjectRequest& request, const CompiledGeometry& geometry) {
   const int dim = geometry.point_dim();
   const char* type = to_string(geometry.definition().type);
   if (request.point_length != dim)
@@ -265,12 +265,8 @@ void check_project_request(const ProjectRequest& request, const CompiledGeometry
                    std::string(request.single ? "point" : "points") + " must have " + std::to_string(dim) +
                        " coordinates for this " + type + ", got " + std::to_string(request.point_length),
                    request.single ? "point" : "points[0]");
-  if (!geometry.has_method(request.method)) {
-    std::string names;
-    for (const auto& m : geometry.methods()) names += (names.empty() ? "" : ", ") + m.name;
-    throw ApiError(400, "unknown_method",
-                   "unknown method '" + request.method + "' for a " + type + " (" + names + ")", "method");
-  }
+  const auto method = geometry.method(request.method);
+  if (!method) throw ApiError(400, "unknown_method", method.error().message, "method");
   if (request.initial_length != 0) {
     const int expected = geometry.num_params() > 0 ? geometry.num_params() : dim;
     if (request.initial_length != expected)
@@ -283,6 +279,7 @@ void check_project_request(const ProjectRequest& request, const CompiledGeometry
                          ")",
                      "options.initial");
   }
+  return *method;
 }
 
 }  // namespace footpoint::server

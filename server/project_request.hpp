@@ -31,7 +31,8 @@ struct ProjectRequest {
 // "geometry"; the other route rejects it.
 ProjectRequest read_project_request(std::string_view body, bool inline_geometry, std::size_t max_points);
 
-// Checks the request against the geometry it targets: point dimension, method, starts.
-void check_project_request(const ProjectRequest& request, const CompiledGeometry& geometry);
+// Checks the request against the geometry it targets (point dimension, method, starts) and returns
+// the geometry's method it names.
+GeometryMethod check_project_request(const ProjectRequest& request, const CompiledGeometry& geometry);
 
 }  // namespace footpoint::server

@@ -438,7 +438,7 @@ TEST_CASE("auto: every answer is a point of the geometry at the stated distance,
     // The sampling itself must cover the geometry: a few thousand points at least.
     REQUIRE(s.samples.size() > 2000);
     for (const P3& p : points_around(s, rng, 60)) {
-      const ProjectionResult r = s.compiled->project(p.data(), "auto", Options{});
+      const ProjectionResult r = s.compiled->project(p.data(), "auto", Options{}).value();
       ++answers;
       if (!check_honest(s, "auto", p, r)) continue;
       if (!r.summary.converged()) continue;
@@ -461,8 +461,8 @@ TEST_CASE("every method: converged only when the answer is a foot point of the g
     for (const auto& m : s.compiled->methods()) {
       if (m.name == "auto") continue;
       for (const P3& p : points_around(s, rng, 6)) {
-        const ProjectionResult r = s.compiled->project(p.data(), m.name, Options{});
-        check_honest(s, m.name, p, r);
+        const ProjectionResult r = s.compiled->project(p.data(), m.name, Options{}).value();
+        check_honest(s, std::string(m.name), p, r);
       }
     }
   }

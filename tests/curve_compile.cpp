@@ -24,7 +24,7 @@ std::string code_of(void (*f)()) {
 
 std::vector<std::string> names(const CompiledGeometry& g) {
   std::vector<std::string> n;
-  for (const auto& m : g.methods()) n.push_back(m.name);
+  for (const auto& m : g.methods()) n.emplace_back(m.name);
   return n;
 }
 
@@ -47,8 +47,11 @@ TEST_CASE("implicit curves: spatial (two equations) and planar (one)") {
   const auto planar = compile_implicit_curve(def, {});
   CHECK(planar->point_dim() == 2);
   CHECK(names(*planar) == std::vector<std::string>{"auto", "tangent_foot"});
-  CHECK_THROWS_AS(planar->project(std::array<double, 2>{1.0, 1.0}.data(), "simplified", {}),
-                  std::invalid_argument);
+  // A spatial method on a planar curve: an error value naming the planar curve's methods.
+  const auto unknown = planar->project(std::array<double, 2>{1.0, 1.0}.data(), "simplified", {});
+  REQUIRE(!unknown.has_value());
+  CHECK(unknown.error().message == "unknown method 'simplified' for a implicit_curve (auto, tangent_foot)");
+  CHECK_THROWS_AS(unknown.value(), std::logic_error);
 }
 
 TEST_CASE("parametric curves: planar and spatial") {
@@ -114,7 +117,7 @@ TEST_CASE("auto is safe to call from several threads on one compiled curve") {
   std::vector<double> serial(kPoints);
   for (int i = 0; i < kPoints; ++i)
     serial[static_cast<std::size_t>(i)] =
-        g->project(&points[3 * static_cast<std::size_t>(i)], "auto", {}).distance;
+        g->project(&points[3 * static_cast<std::size_t>(i)], "auto", {}).value().distance;
   std::vector<double> parallel(kPoints);
   std::vector<std::thread> threads;
   threads.reserve(4);
@@ -122,7 +125,7 @@ TEST_CASE("auto is safe to call from several threads on one compiled curve") {
     threads.emplace_back([&, t] {
       for (int i = t; i < kPoints; i += 4)
         parallel[static_cast<std::size_t>(i)] =
-            g->project(&points[3 * static_cast<std::size_t>(i)], "auto", {}).distance;
+            g->project(&points[3 * static_cast<std::size_t>(i)], "auto", {}).value().distance;
     });
   for (auto& th : threads) th.join();
   CHECK(parallel == serial);

@@ -168,7 +168,7 @@ TEST_CASE("discovery: a curve too intricate for its box is refused, never answer
   // In a small box the same curve is resolved (cells bisected until f is nearly flat across each):
   // `auto` finds a point at least as near as that one.
   def.domain = {{"x", {0.9, 1.1}}, {"y", {1.9, 2.1}}};
-  const ProjectionResult small = compile_implicit_curve(def, {})->project(p, "auto", {});
+  const ProjectionResult small = compile_implicit_curve(def, {})->project(p, "auto", {}).value();
   CHECK(small.distance <= bound * (1.0 + 1e-9));
 
   def.domain = {{"x", {-300.0, 300.0}}, {"y", {-300.0, 300.0}}};
@@ -180,6 +180,6 @@ TEST_CASE("discovery: a curve too intricate for its box is refused, never answer
     CHECK(e.field == "domain");
     return;
   }
-  const ProjectionResult r = g->project(p, "auto", {});
+  const ProjectionResult r = g->project(p, "auto", {}).value();
   CHECK(r.distance <= bound * (1.0 + 1e-9));
 }

@@ -61,7 +61,7 @@ void check_records(const std::string& id) {
       const json& pt = c["points"][k];
       const json& row = rows[k];
       const double p[3] = {pt["p"][0], pt["p"][1], pt["p"][2]};
-      const ProjectionResult r = g->project(p, method, {});
+      const ProjectionResult r = g->project(p, method, {}).value();
       const double global = pt["oracle"]["distance"];
       const double size = std::max(1.0, norm3(r.foot));
       // The record pins where the method goes when that is a property of the method, not of
@@ -80,7 +80,7 @@ void check_records(const std::string& id) {
       moved.initial = std::array<double, 3>{p[0] - 0.1 + 1e-9, p[1] - 0.1 - 1e-9, p[2] - 0.1 + 1e-9};
       const double p_moved[3] = {p[0] * (1 + 1e-13), p[1] * (1 - 1e-13), p[2] * (1 + 1e-13)};
       const bool reproducible =
-          same_end(g->project(p, method, moved)) && same_end(g->project(p_moved, method, {}));
+          same_end(g->project(p, method, moved).value()) && same_end(g->project(p_moved, method, {}).value());
       CAPTURE(reproducible);
       if (reproducible) {
         CHECK(std::string(to_string(r.summary.status)) == row["status"].get<std::string>());
@@ -132,7 +132,7 @@ TEST_CASE("Algorithm 5 on Example 1 lands where a transcription of eq. (20) land
     CAPTURE(k);
     const json& pt = c["points"][static_cast<std::size_t>(k - 1)];
     const double p[3] = {pt["p"][0], pt["p"][1], pt["p"][2]};
-    const ProjectionResult r = g->project(p, "simplified", {});
+    const ProjectionResult r = g->project(p, "simplified", {}).value();
     REQUIRE(r.summary.status == Status::converged);
     const json& published = c["paper_reported"][static_cast<std::size_t>(k - 1)]["foot"];
     double d = 0.0;
@@ -148,7 +148,7 @@ TEST_CASE("Algorithm 5 on Example 1 lands where a transcription of eq. (20) land
   for (int k : {5, 7}) {
     const json& pt = c["points"][static_cast<std::size_t>(k - 1)];
     const double p[3] = {pt["p"][0], pt["p"][1], pt["p"][2]};
-    const ProjectionResult r = g->project(p, "simplified", {});
+    const ProjectionResult r = g->project(p, "simplified", {}).value();
     CHECK(std::fabs(r.distance - pt["oracle"]["distance"].get<double>()) <= 1e-12 * r.distance);
   }
 }
@@ -159,19 +159,19 @@ TEST_CASE("paper algorithms: options.initial replaces X0, trace records the incr
   const double p[3] = {217.0, 273.0, 129.0};
   Options o;
   o.trace = true;
-  const ProjectionResult a = g->project(p, "simplified", o);
+  const ProjectionResult a = g->project(p, "simplified", o).value();
   REQUIRE(a.summary.status == Status::converged);
   // Landing (Algorithm 1) and eq. (20) steps are all recorded, the last ones tiny.
   CHECK(a.trace.size() >= static_cast<std::size_t>(a.summary.iterations));
   CHECK(norm3(a.trace.back()) <= 1e-12);
   // From a start on the far side of the loop it converges to the other stationary point.
   o.initial = std::array<double, 3>{-1.3, -2.5, 1.97};
-  const ProjectionResult b = g->project(p, "simplified", o);
+  const ProjectionResult b = g->project(p, "simplified", o).value();
   REQUIRE(b.summary.status == Status::converged);
   CHECK(b.distance > a.distance + 1.0);
   CHECK(b.summary.orthogonality[0] <= 1e-12);
   // max_distance below what it converged to.
   Options near;
   near.max_distance = 0.5 * a.distance;
-  CHECK(g->project(p, "simplified", near).summary.status == Status::beyond_max_distance);
+  CHECK(g->project(p, "simplified", near).value().summary.status == Status::beyond_max_distance);
 }

@@ -50,7 +50,7 @@ void check_auto(const std::string& id) {
   for (const json& pt : c["points"]) {
     CAPTURE(++k);
     const double p[3] = {pt["p"][0], pt["p"][1], pt["p"][2]};
-    const ProjectionResult r = g->project(p, "auto", {});
+    const ProjectionResult r = g->project(p, "auto", {}).value();
     const json& o = pt["oracle"];
     const double ref = o["distance"];
     CHECK(r.summary.status == Status::converged);
@@ -127,7 +127,7 @@ TEST_CASE("auto options: all_minima, trace, max_distance") {
   SUBCASE("all_minima: Example 1's loop has one minimum of the distance per test point") {
     Options o;
     o.all_minima = true;
-    const ProjectionResult r = g->project(p, "auto", o);
+    const ProjectionResult r = g->project(p, "auto", o).value();
     REQUIRE(r.minima.size() == pt["oracle"]["local_minima"].size());
     CHECK(std::fabs(r.minima[0].distance - ref) <= 1e-12 * ref);
     CHECK(r.minima[0].location == Location::interior);
@@ -135,20 +135,20 @@ TEST_CASE("auto options: all_minima, trace, max_distance") {
   SUBCASE("trace: the Newton increments of the winning local solve, shrinking to rounding") {
     Options o;
     o.trace = true;
-    const ProjectionResult r = g->project(p, "auto", o);
+    const ProjectionResult r = g->project(p, "auto", o).value();
     REQUIRE(r.trace.size() == static_cast<std::size_t>(r.summary.iterations));
     const auto& last = r.trace.back();
     CHECK(std::hypot(last[0], last[1], last[2]) <= 1e-13);
-    CHECK(g->project(p, "auto", {}).trace.empty());
+    CHECK(g->project(p, "auto", {}).value().trace.empty());
   }
   SUBCASE("max_distance below the distance: beyond_max_distance") {
     Options o;
     o.max_distance = 0.5 * ref;
-    CHECK(g->project(p, "auto", o).summary.status == Status::beyond_max_distance);
+    CHECK(g->project(p, "auto", o).value().summary.status == Status::beyond_max_distance);
     o.max_distance = ref - 1e-6;
-    CHECK(g->project(p, "auto", o).summary.status == Status::beyond_max_distance);
+    CHECK(g->project(p, "auto", o).value().summary.status == Status::beyond_max_distance);
     o.max_distance = ref + 1e-6;
-    const ProjectionResult r = g->project(p, "auto", o);
+    const ProjectionResult r = g->project(p, "auto", o).value();
     CHECK(r.summary.status == Status::converged);
     CHECK(std::fabs(r.distance - ref) <= 1e-12 * ref);
   }

@@ -46,7 +46,7 @@ TEST_CASE("newton and curvature_circle reach the oracle's interior nearest point
       for (int i = 0; i < g->point_dim(); ++i) p[i] = pt["p"][i];
       for (const char* method : {"newton", "curvature_circle"}) {
         CAPTURE(method);
-        const ProjectionResult r = g->project(p, method, {});
+        const ProjectionResult r = g->project(p, method, {}).value();
         CHECK(r.summary.status == Status::converged);
         CHECK(r.summary.orthogonality[0] <= 1e-12);
         CHECK(std::fabs(r.distance - pt["distance"].get<double>()) <= 1e-12 * pt["distance"].get<double>());
@@ -64,10 +64,10 @@ TEST_CASE("newton and curvature_circle from a given start") {
   const double p[2] = {0.5, 0.3};
   Options o;
   o.initial = std::array<double, 3>{4.5, 0.0, 0.0};
-  const ProjectionResult nearest = g->project(p, "auto", {});
+  const ProjectionResult nearest = g->project(p, "auto", {}).value();
   for (const char* method : {"newton", "curvature_circle"}) {
     CAPTURE(method);
-    const ProjectionResult r = g->project(p, method, o);
+    const ProjectionResult r = g->project(p, method, o).value();
     REQUIRE(r.summary.status == Status::converged);
     CHECK(r.summary.orthogonality[0] <= 1e-12);
     CHECK(r.params[0] > 4.0);
@@ -79,11 +79,11 @@ TEST_CASE("newton and curvature_circle from a given start") {
   const auto arc = curve("t", "t^2", nullptr, -1.0, 2.0);
   const double q[2] = {3.0, 9.5};  // nearest on the full parabola near t = 3.06, beyond tmax = 2
   o.initial = std::array<double, 3>{3.0, 0.0, 0.0};
-  const ProjectionResult r = arc->project(q, "newton", o);
+  const ProjectionResult r = arc->project(q, "newton", o).value();
   CHECK(r.summary.status == Status::outside_domain);
   CHECK(r.params[0] > 2.0);
   // auto answers the endpoint c(2) = (2, 4) with the first-order condition there.
-  const ProjectionResult a = arc->project(q, "auto", {});
+  const ProjectionResult a = arc->project(q, "auto", {}).value();
   CHECK(a.summary.status == Status::converged);
   CHECK(a.summary.location == Location::endpoint);
   CHECK(a.summary.on_boundary);
@@ -98,8 +98,8 @@ TEST_CASE("curvature_circle and newton agree on the helix and trace their increm
   Options o;
   o.initial = std::array<double, 3>{6.0, 0.0, 0.0};
   o.trace = true;
-  const ProjectionResult n = g->project(p, "newton", o);
-  const ProjectionResult c = g->project(p, "curvature_circle", o);
+  const ProjectionResult n = g->project(p, "newton", o).value();
+  const ProjectionResult c = g->project(p, "curvature_circle", o).value();
   REQUIRE(n.summary.status == Status::converged);
   REQUIRE(c.summary.status == Status::converged);
   CHECK(std::fabs(n.params[0] - c.params[0]) <= 1e-12);

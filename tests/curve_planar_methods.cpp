@@ -33,7 +33,7 @@ TEST_CASE("tangent_foot on the ellipse x^2/9 + y^2/4 = 1") {
     CAPTURE(c.p[0]);
     Options o;
     o.trace = true;
-    const ProjectionResult r = g->project(c.p, "tangent_foot", o);
+    const ProjectionResult r = g->project(c.p, "tangent_foot", o).value();
     CHECK(r.summary.status == Status::converged);
     CHECK(r.dim == 2);
     CHECK(r.foot[2] == 0.0);

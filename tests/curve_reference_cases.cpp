@@ -75,7 +75,7 @@ void check_file(const std::string& name) {
       CAPTURE(k++);
       double p[3] = {0.0, 0.0, 0.0};
       for (int i = 0; i < dim; ++i) p[i] = pt["p"][i];
-      const ProjectionResult r = g->project(p, "auto", {});
+      const ProjectionResult r = g->project(p, "auto", {}).value();
       const double ref = pt["distance"];
       CHECK(r.summary.status == Status::converged);
       // The global distance to 1e-12 relative.
@@ -129,7 +129,7 @@ void check_all_minima(const std::string& name) {
       if (pt["ambiguous"].get<bool>()) continue;
       double p[3] = {0.0, 0.0, 0.0};
       for (int i = 0; i < dim; ++i) p[i] = pt["p"][i];
-      const ProjectionResult r = g->project(p, "auto", o);
+      const ProjectionResult r = g->project(p, "auto", o).value();
       REQUIRE(!r.minima.empty());
       CHECK(std::fabs(r.minima.front().distance - pt["distance"].get<double>()) <=
             1e-12 * r.distance + 1e-15);

@@ -254,7 +254,7 @@ TEST_CASE("HTTP answers equal the core's answers to the last bit") {
   const auto pts = random_points(200, 7, -6, 6);
   const json batch = post_json(*c, "/v1/geometries/" + id + "/project", points_body(pts), 200);
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    const ProjectionResult direct = geometry->project(pts[i].data(), "auto", Options{});
+    const ProjectionResult direct = geometry->project(pts[i].data(), "auto", Options{}).value();
     const json& r = batch["results"][i];
     CHECK(r["distance"].get<double>() == direct.distance);
     for (int k = 0; k < 3; ++k) CHECK(r["foot_point"][k].get<double>() == direct.foot[k]);

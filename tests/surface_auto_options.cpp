@@ -145,12 +145,19 @@ TEST_CASE("methods(), and an unknown method") {
   const auto g = make_surface("u", "v", "0", {0, 1}, {0, 1});
   std::vector<std::string> names;
   for (const MethodInfo& m : g->methods()) {
-    names.push_back(m.name);
+    names.emplace_back(m.name);
     CHECK(!m.description.empty());
   }
   CHECK(names == std::vector<std::string>{"auto", "gsa", "first_order", "hybrid", "newton"});
-  CHECK(g->has_method("gsa"));
-  CHECK_THROWS_AS(project(*g, {0, 0, 1}, "bisection"), std::invalid_argument);
+  CHECK(g->method("gsa").has_value());
+  CHECK(g->method("gsa")->info().name == "gsa");
+  // An unknown name is an error value naming the methods there are, not an exception.
+  const std::array<double, 3> p{0, 0, 1};
+  const auto unknown = g->project(p.data(), "bisection", {});
+  REQUIRE(!unknown.has_value());
+  CHECK(unknown.error().message ==
+        "unknown method 'bisection' for a parametric_surface (auto, gsa, first_order, hybrid, newton)");
+  CHECK(!g->method("").has_value());
   CHECK(g->point_dim() == 3);
   CHECK(g->num_params() == 2);
   CHECK(g->memory_bytes() > sizeof(ParametricSurface));

@@ -43,7 +43,7 @@ inline ParametricSurface compile_with(const GeometryDefinition& def, const Surfa
 
 inline ProjectionResult project(const CompiledGeometry& g, std::array<double, 3> p, std::string_view method,
                                 const Options& options = {}) {
-  return g.project(p.data(), method, options);
+  return g.project(p.data(), method, options).value();
 }
 
 inline Options start_at(double u, double v) {
@@ -93,7 +93,7 @@ inline void check_auto_against_oracle(const ParametricSurface& g, const nlohmann
   const std::array<double, 3> p = point.at("p").get<std::array<double, 3>>();
   const nlohmann::json& o = point.at("oracle");
   const double d_ref = o.at("distance").get<double>();
-  const ProjectionResult r = g.project(p.data(), "auto", Options{});
+  const ProjectionResult r = g.project(p.data(), "auto", Options{}).value();
   INFO("p = (" << p[0] << ", " << p[1] << ", " << p[2] << "), oracle d = " << d_ref << " type "
                << o.at("type").get<std::string>() << "; auto d = " << r.distance << " at (" << r.params[0]
                << ", " << r.params[1] << "), status " << std::string(to_string(r.summary.status))

@@ -207,10 +207,11 @@ int run(int argc, char** argv) {
   for (const std::string& name : names) {
     const ComparisonSurface s = read_comparison_surface(dir + "/data/" + name + ".json");
     const auto g = compile_surface(s.x, s.y, s.z, s.u, s.v);
-    std::vector<Method> methods = {{"footpoint auto", [g](const std::array<double, 3>& p) {
-                                      const ProjectionResult r = g->project(p.data(), "auto", Options{});
-                                      return Answer{r.summary.status == Status::converged, r.distance};
-                                    }}};
+    std::vector<Method> methods = {
+        {"footpoint auto", [g, method = g->method("auto").value()](const std::array<double, 3>& p) {
+           const ProjectionResult r = method.project(p.data(), Options{});
+           return Answer{r.summary.status == Status::converged, r.distance};
+         }}};
     OcctSurface occt;
     if (make_occt(s, occt))
       for (Method& m : occt_methods(occt)) methods.push_back(std::move(m));

@@ -13,7 +13,8 @@ constexpr std::size_t kClockStride = 4;
 
 std::vector<ProjectionResult> project_batch(ThreadPool& pool, const BatchRequest& request) {
   std::vector<ProjectionResult> results(request.count);
-  const int dim = request.geometry->point_dim();
+  const CompiledGeometry& geometry = request.method.geometry();
+  const int dim = geometry.point_dim();
   // Chunks small enough to balance the pool and to check the deadline often, large enough that
   // the per-task overhead (~1 µs) stays negligible next to the solves.
   const std::size_t chunk = std::clamp<std::size_t>(request.count / (8 * pool.size() + 1), 16, 1024);
@@ -26,14 +27,14 @@ std::vector<ProjectionResult> project_batch(ThreadPool& pool, const BatchRequest
       if ((i - begin) % kClockStride == 0) late = std::chrono::steady_clock::now() >= request.deadline;
       if (late) {
         r.dim = dim;
-        r.num_params = request.geometry->num_params();
-        r.summary.method = request.method;
+        r.num_params = geometry.num_params();
+        r.summary.method = request.method.info().name;
         r.summary.status = Status::deadline_exceeded;
         r.summary.starts = 0;
         continue;
       }
       if (!request.initials.empty()) options.initial = request.initials[i];
-      r = request.geometry->project(request.points + i * dim, request.method, options);
+      r = request.method.project(request.points + i * dim, options);
     }
   });
   return results;

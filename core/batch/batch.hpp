@@ -5,7 +5,6 @@
 #pragma once
 #include <array>
 #include <chrono>
-#include <string>
 #include <vector>
 
 #include "batch/thread_pool.hpp"
@@ -14,10 +13,10 @@
 namespace footpoint {
 
 struct BatchRequest {
-  const CompiledGeometry* geometry = nullptr;
-  std::string method = "auto";
+  explicit BatchRequest(GeometryMethod m) : method(m) {}
+  GeometryMethod method;           // the geometry and the method that projects its points
   Options options;                 // shared by all points
-  const double* points = nullptr;  // count * geometry->point_dim() coordinates
+  const double* points = nullptr;  // count * method.geometry().point_dim() coordinates
   std::size_t count = 0;
   std::vector<std::array<double, 3>> initials;  // empty, or one start per point
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();

@@ -10,9 +10,33 @@
 
 namespace footpoint {
 
-bool CompiledGeometry::has_method(std::string_view name) const {
-  const auto& m = methods();
-  return std::any_of(m.begin(), m.end(), [&](const MethodInfo& info) { return info.name == name; });
+Expected<GeometryMethod, UnknownMethod> CompiledGeometry::method(std::string_view name) const {
+  const std::vector<MethodInfo>& m = methods();
+  for (std::size_t i = 0; i < m.size(); ++i)
+    if (m[i].name == name) return GeometryMethod(*this, i);
+  std::string names;
+  for (const MethodInfo& info : m) (names += names.empty() ? "" : ", ") += info.name;
+  return UnknownMethod{"unknown method '" + std::string(name) + "' for a " + to_string(definition_.type) +
+                       " (" + names + ")"};
+}
+
+Expected<ProjectionResult, UnknownMethod> CompiledGeometry::project(const double* p, std::string_view name,
+                                                                    const Options& options) const {
+  const auto m = method(name);
+  if (!m) return m.error();
+  return m->project(p, options);
+}
+
+const std::vector<MethodInfo>& methods_of(GeometryType type) {
+  switch (type) {
+    case GeometryType::parametric_surface:
+      return parametric_surface_methods();
+    case GeometryType::parametric_curve:
+      return parametric_curve_methods();
+    case GeometryType::implicit_curve:
+      break;
+  }
+  return implicit_curve_methods();
 }
 
 formula::Program compile_formulas(const GeometryDefinition& def, const std::vector<std::string>& variables,

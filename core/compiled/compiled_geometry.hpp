@@ -1,22 +1,43 @@
 // Compiled geometries (what the cache holds): a definition is validated and compiled once; the
 // compiled object is immutable, shared by all threads, and answers projections by method name.
 #pragma once
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "compiled/expected.hpp"
 #include "compiled/geometry_definition.hpp"
+#include "compiled/method_table.hpp"
 #include "formula/program.hpp"
 #include "geometry/geometry_error.hpp"
 #include "geometry/projection_result.hpp"
 
 namespace footpoint {
 
-struct MethodInfo {
-  std::string name;
-  std::string description;  // one line
-  std::string paper;        // e.g. "gsa-parametric-surface (Algorithm 1)" or "" for our own
+// A method name the geometry does not have.
+struct UnknownMethod {
+  std::string message;  // names the geometry type and the methods it has
+};
+
+class CompiledGeometry;
+
+// A method of one compiled geometry, found by name (CompiledGeometry::method): projects the
+// geometry's points with it.
+class GeometryMethod {
+ public:
+  const CompiledGeometry& geometry() const { return *geometry_; }
+  const MethodInfo& info() const;
+  // Projects the point p (geometry().point_dim() coordinates). Never throws for numerical trouble:
+  // that is reported in the result's Summary.
+  ProjectionResult project(const double* p, const Options& options) const;
+
+ private:
+  friend class CompiledGeometry;
+  GeometryMethod(const CompiledGeometry& geometry, std::size_t index) : geometry_(&geometry), index_(index) {}
+  const CompiledGeometry* geometry_;
+  std::size_t index_;  // in geometry().methods()
 };
 
 class CompiledGeometry {
@@ -31,30 +52,48 @@ class CompiledGeometry {
 
   virtual int point_dim() const = 0;   // 3, or 2 for planar curves
   virtual int num_params() const = 0;  // 2 surfaces, 1 parametric curves, 0 implicit curves
+  // The rows of its type's method table that apply to this geometry (planar or spatial curves
+  // have methods of their own), in the table's order.
   virtual const std::vector<MethodInfo>& methods() const = 0;
-  bool has_method(std::string_view name) const;
-  // Projects the point p (point_dim() coordinates). `method` must be one of methods().
-  // Never throws for numerical trouble: that is reported in the result's Summary.
-  virtual ProjectionResult project(const double* p, std::string_view method,
-                                   const Options& options) const = 0;
+  // The method called `name`, or UnknownMethod naming the methods there are.
+  Expected<GeometryMethod, UnknownMethod> method(std::string_view name) const;
+  // Projects the point p (point_dim() coordinates) with the method called `name`.
+  Expected<ProjectionResult, UnknownMethod> project(const double* p, std::string_view name,
+                                                    const Options& options) const;
   virtual std::size_t memory_bytes() const = 0;
 
  private:
+  friend class GeometryMethod;
+  // Projects p with methods()[index].
+  virtual ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const = 0;
+
   GeometryDefinition definition_;
   std::string id_;
 };
+
+inline const MethodInfo& GeometryMethod::info() const { return geometry_->methods()[index_]; }
+inline ProjectionResult GeometryMethod::project(const double* p, const Options& options) const {
+  return geometry_->project_with(index_, p, options);
+}
+
+// Every method of a geometry type (planar and spatial curves' together), in its table's order.
+const std::vector<MethodInfo>& methods_of(GeometryType type);
 
 // Validates and compiles a definition (including what `auto` precomputes). Throws GeometryError.
 std::shared_ptr<const CompiledGeometry> compile_geometry(const GeometryDefinition& def,
                                                          const formula::CompileLimits& limits = {});
 
-// Per-type compilers (one per geometry file); compile_geometry dispatches to them.
+// Per-type compilers and method tables (one per geometry file); compile_geometry and methods_of
+// dispatch to them.
 std::shared_ptr<const CompiledGeometry> compile_parametric_surface(const GeometryDefinition& def,
                                                                    const formula::CompileLimits& limits);
 std::shared_ptr<const CompiledGeometry> compile_parametric_curve(const GeometryDefinition& def,
                                                                  const formula::CompileLimits& limits);
 std::shared_ptr<const CompiledGeometry> compile_implicit_curve(const GeometryDefinition& def,
                                                                const formula::CompileLimits& limits);
+const std::vector<MethodInfo>& parametric_surface_methods();
+const std::vector<MethodInfo>& parametric_curve_methods();
+const std::vector<MethodInfo>& implicit_curve_methods();
 
 // Shared by the per-type compilers: compiles formulas over variables, turning FormulaError into
 // GeometryError, and checks that each domain interval is finite with lo < hi.

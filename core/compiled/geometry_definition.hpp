@@ -13,6 +13,8 @@
 namespace footpoint {
 
 enum class GeometryType { parametric_surface, parametric_curve, implicit_curve };
+inline constexpr GeometryType kGeometryTypes[] = {
+    GeometryType::parametric_surface, GeometryType::parametric_curve, GeometryType::implicit_curve};
 const char* to_string(GeometryType t);
 
 struct GeometryDefinition {

@@ -1,6 +1,5 @@
 #include "compiled/implicit_curve_geometry.hpp"
 
-#include <stdexcept>
 #include <string>
 
 #include "solvers/curve/accelerated_correction.hpp"
@@ -15,38 +14,56 @@ namespace footpoint {
 
 namespace {
 
-const std::vector<MethodInfo>& spatial_methods() {
-  static const std::vector<MethodInfo> methods{
-      {"auto",
-       "global nearest point in the box: interval subdivision finds every piece of the curve, samples "
-       "seed Newton on the Lagrange system; singular points and box-face crossings are candidates",
-       ""},
-      {"steepest_descent",
-       "Newton steepest-descent steps alternately onto f1 = 0 and f2 = 0 (lands on the curve)",
-       "spatial-algebraic-curve (Algorithm 1, eq. (9))"},
-      {"foot_point_march",
-       "Algorithm 1 and the tangent foot point Q alternated until the curve point stops moving",
-       "spatial-algebraic-curve (Algorithms 1 + 2, eqs. (10)-(13))"},
-      {"accelerated", "Algorithm 1, then the accelerating and correcting iteration",
-       "spatial-algebraic-curve (Algorithm 3, eqs. (14)-(19))"},
-      {"complete", "Algorithm 1, five rounds of Algorithms 2 + 1, then Algorithm 3",
-       "spatial-algebraic-curve (Algorithm 4)"},
-      {"simplified", "Algorithm 1, then eq. (20) until the iterates stop moving",
-       "spatial-algebraic-curve (Algorithm 5, eq. (20))"},
-  };
-  return methods;
+// The solvers of the spatial-curve paper [Curve] take the curve's equations and box.
+template <ProjectionResult (*solve)(const ImplicitEquations&, const Box3&, Vec3, const Options&)>
+ProjectionResult in_box(const ImplicitCurve& c, Vec3 p, const Options& o) {
+  return solve(c.equations(), c.box(), p, o);
 }
 
-const std::vector<MethodInfo>& planar_methods() {
-  static const std::vector<MethodInfo> methods{
-      {"auto",
-       "global nearest point in the box: interval subdivision finds every piece of the curve, samples "
-       "seed Newton on the Lagrange system; singular points and box-edge crossings are candidates",
-       ""},
-      {"tangent_foot", "Newton steps (2) onto the curve, then the tangent foot point (4), until they agree",
-       "spatial-algebraic-curve (introduction, eqs. (2) and (4))"},
-  };
-  return methods;
+// The method table of implicit curves: `auto` for both, the planar iteration of [Curve]'s
+// introduction for planar curves, its Algorithms 1-5 for spatial ones.
+constexpr Method<ImplicitCurve> kMethods[] = {
+    {{"auto",
+      "global nearest point in the box: interval subdivision finds every piece of the curve, samples "
+      "seed Newton on the Lagrange system; singular points and the crossings of the box's edges "
+      "(planar) or faces (spatial) are candidates",
+      ""},
+     [](const ImplicitCurve& c, Vec3 p, const Options& o) {
+       return curve::implicit_curve_auto(c.equations(), c.box(), c.discovery(), c.sample_index(), p, o);
+     }},
+    {{"tangent_foot", "Newton steps (2) onto the curve, then the tangent foot point (4), until they agree",
+      "spatial-algebraic-curve (introduction, eqs. (2) and (4))"},
+     in_box<curve::tangent_foot>,
+     PointDims::planar},
+    {{"steepest_descent",
+      "Newton steepest-descent steps alternately onto f1 = 0 and f2 = 0 (lands on the curve)",
+      "spatial-algebraic-curve (Algorithm 1, eq. (9))"},
+     in_box<curve::steepest_descent>,
+     PointDims::spatial},
+    {{"foot_point_march",
+      "Algorithm 1 and the tangent foot point Q alternated until the curve point stops moving",
+      "spatial-algebraic-curve (Algorithms 1 + 2, eqs. (10)-(13))"},
+     in_box<curve::foot_point_march>,
+     PointDims::spatial},
+    {{"accelerated", "Algorithm 1, then the accelerating and correcting iteration",
+      "spatial-algebraic-curve (Algorithm 3, eqs. (14)-(19))"},
+     in_box<curve::accelerated>,
+     PointDims::spatial},
+    {{"complete", "Algorithm 1, five rounds of Algorithms 2 + 1, then Algorithm 3",
+      "spatial-algebraic-curve (Algorithm 4)"},
+     in_box<curve::complete_projection>,
+     PointDims::spatial},
+    {{"simplified", "Algorithm 1, then eq. (20) until the iterates stop moving",
+      "spatial-algebraic-curve (Algorithm 5, eq. (20))"},
+     in_box<curve::simplified_projection>,
+     PointDims::spatial},
+};
+
+const MethodTable<ImplicitCurve>& table(PointDims dims) {
+  static const MethodTable<ImplicitCurve> planar(kMethods, PointDims::planar);
+  static const MethodTable<ImplicitCurve> spatial(kMethods, PointDims::spatial);
+  static const MethodTable<ImplicitCurve> every(kMethods, PointDims::any);
+  return dims == PointDims::planar ? planar : dims == PointDims::spatial ? spatial : every;
 }
 
 }  // namespace
@@ -58,26 +75,16 @@ ImplicitCurve::ImplicitCurve(GeometryDefinition def, ImplicitEquations equations
       discovery_(discover_implicit_curve(equations_, box_)),
       index_(discovery_.samples) {}
 
-const std::vector<MethodInfo>& ImplicitCurve::methods() const {
-  return equations_.planar() ? planar_methods() : spatial_methods();
+PointDims ImplicitCurve::dims() const { return equations_.planar() ? PointDims::planar : PointDims::spatial; }
+
+const std::vector<MethodInfo>& ImplicitCurve::methods() const { return table(dims()).infos(); }
+
+ProjectionResult ImplicitCurve::project_with(std::size_t index, const double* p,
+                                             const Options& options) const {
+  return table(dims()).project(index, *this, {p[0], p[1], equations_.planar() ? 0.0 : p[2]}, options);
 }
 
-ProjectionResult ImplicitCurve::project(const double* p, std::string_view method,
-                                        const Options& options) const {
-  const bool planar = equations_.planar();
-  const Vec3 q{p[0], p[1], planar ? 0.0 : p[2]};
-  if (method == "auto") return curve::implicit_curve_auto(equations_, box_, discovery_, index_, q, options);
-  if (planar) {
-    if (method == "tangent_foot") return curve::tangent_foot(equations_, box_, q, options);
-  } else {
-    if (method == "steepest_descent") return curve::steepest_descent(equations_, box_, q, options);
-    if (method == "foot_point_march") return curve::foot_point_march(equations_, box_, q, options);
-    if (method == "accelerated") return curve::accelerated(equations_, box_, q, options);
-    if (method == "complete") return curve::complete_projection(equations_, box_, q, options);
-    if (method == "simplified") return curve::simplified_projection(equations_, box_, q, options);
-  }
-  throw std::invalid_argument("implicit_curve has no method '" + std::string(method) + "'");
-}
+const std::vector<MethodInfo>& implicit_curve_methods() { return table(PointDims::any).infos(); }
 
 std::size_t ImplicitCurve::memory_bytes() const {
   return sizeof(*this) + equations_.program().memory_bytes() + discovery_.samples.memory_bytes() +

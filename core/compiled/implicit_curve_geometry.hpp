@@ -1,7 +1,7 @@
 // The compiled implicit curve: its equations and box (geometry/implicit_curve.hpp), the samples of
 // every piece of it that `auto` precomputes with their k-d tree, and projection by method name.
 #pragma once
-#include <string_view>
+#include <cstddef>
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
@@ -19,7 +19,6 @@ class ImplicitCurve final : public CompiledGeometry {
   int point_dim() const override { return equations_.planar() ? 2 : 3; }
   int num_params() const override { return 0; }
   const std::vector<MethodInfo>& methods() const override;
-  ProjectionResult project(const double* p, std::string_view method, const Options& options) const override;
   std::size_t memory_bytes() const override;
 
   const ImplicitEquations& equations() const { return equations_; }
@@ -28,6 +27,9 @@ class ImplicitCurve final : public CompiledGeometry {
   const CurveSampleIndex& sample_index() const { return index_; }
 
  private:
+  PointDims dims() const;
+  ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
+
   ImplicitEquations equations_;
   Box3 box_;
   CurveDiscovery discovery_;  // samples of every piece of the curve in the box (for `auto`)

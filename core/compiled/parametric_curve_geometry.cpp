@@ -1,6 +1,5 @@
 #include "compiled/parametric_curve_geometry.hpp"
 
-#include <stdexcept>
 #include <string>
 
 #include "seeding/curve_parametric_samples.hpp"
@@ -9,6 +8,37 @@
 #include "solvers/curve/parametric_newton.hpp"
 
 namespace footpoint {
+namespace {
+
+// Every method takes the formulas, the domain and the samples' k-d tree (`auto`'s seeds, the
+// local methods' default start).
+template <ProjectionResult (*solve)(const CurveFormulas&, const ParamInterval&, const CurveSampleIndex&, Vec3,
+                                    const Options&)>
+ProjectionResult on_samples(const ParametricCurve& c, Vec3 p, const Options& o) {
+  return solve(c.formulas(), c.domain(), c.sample_index(), p, o);
+}
+
+// The method table of parametric curves, planar and spatial alike.
+constexpr Method<ParametricCurve> kMethods[] = {
+    {{"auto",
+      "global nearest point over [tmin, tmax], ends included: dense adaptive samples seed bracketed "
+      "Newton at every candidate minimum",
+      ""},
+     on_samples<curve::parametric_curve_auto>},
+    {{"newton", "Newton's method on <c(t) - p, c'(t)> = 0 from options.initial or the nearest sample", ""},
+     on_samples<curve::parametric_newton>},
+    {{"curvature_circle",
+      "curvature circle iteration (Hu-Wallner) from options.initial or the nearest sample",
+      "gsa-parametric-surface (Section 3, eqs. (21)-(22))"},
+     on_samples<curve::curvature_circle>},
+};
+
+const MethodTable<ParametricCurve>& table() {
+  static const MethodTable<ParametricCurve> t(kMethods, PointDims::any);
+  return t;
+}
+
+}  // namespace
 
 ParametricCurve::ParametricCurve(GeometryDefinition def, CurveFormulas formulas, ParamInterval domain)
     : CompiledGeometry(std::move(def)),
@@ -17,28 +47,14 @@ ParametricCurve::ParametricCurve(GeometryDefinition def, CurveFormulas formulas,
       samples_(sample_parametric_curve(formulas_, domain_)),
       index_(samples_) {}
 
-const std::vector<MethodInfo>& ParametricCurve::methods() const {
-  static const std::vector<MethodInfo> methods{
-      {"auto",
-       "global nearest point over [tmin, tmax], ends included: dense adaptive samples seed bracketed "
-       "Newton at every candidate minimum",
-       ""},
-      {"newton", "Newton's method on <c(t) - p, c'(t)> = 0 from options.initial or the nearest sample", ""},
-      {"curvature_circle",
-       "curvature circle iteration (Hu-Wallner) from options.initial or the nearest sample",
-       "gsa-parametric-surface (Section 3, eqs. (21)-(22))"},
-  };
-  return methods;
+const std::vector<MethodInfo>& ParametricCurve::methods() const { return table().infos(); }
+
+ProjectionResult ParametricCurve::project_with(std::size_t index, const double* p,
+                                               const Options& options) const {
+  return table().project(index, *this, {p[0], p[1], formulas_.dim() == 3 ? p[2] : 0.0}, options);
 }
 
-ProjectionResult ParametricCurve::project(const double* p, std::string_view method,
-                                          const Options& options) const {
-  const Vec3 q{p[0], p[1], formulas_.dim() == 3 ? p[2] : 0.0};
-  if (method == "auto") return curve::parametric_curve_auto(formulas_, domain_, index_, q, options);
-  if (method == "newton") return curve::parametric_newton(formulas_, domain_, index_, q, options);
-  if (method == "curvature_circle") return curve::curvature_circle(formulas_, domain_, index_, q, options);
-  throw std::invalid_argument("parametric_curve has no method '" + std::string(method) + "'");
-}
+const std::vector<MethodInfo>& parametric_curve_methods() { return table().infos(); }
 
 std::size_t ParametricCurve::memory_bytes() const {
   return sizeof(*this) + formulas_.program().memory_bytes() + samples_.memory_bytes() + index_.memory_bytes();

@@ -1,7 +1,7 @@
 // The compiled parametric curve: its formulas and parameter interval (geometry/parametric_curve.hpp),
 // the dense samples `auto` precomputes with their k-d tree, and projection by method name.
 #pragma once
-#include <string_view>
+#include <cstddef>
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
@@ -18,7 +18,6 @@ class ParametricCurve final : public CompiledGeometry {
   int point_dim() const override { return formulas_.dim(); }
   int num_params() const override { return 1; }
   const std::vector<MethodInfo>& methods() const override;
-  ProjectionResult project(const double* p, std::string_view method, const Options& options) const override;
   std::size_t memory_bytes() const override;
 
   const CurveFormulas& formulas() const { return formulas_; }
@@ -29,6 +28,8 @@ class ParametricCurve final : public CompiledGeometry {
   const CurveSampleIndex& sample_index() const { return index_; }
 
  private:
+  ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
+
   CurveFormulas formulas_;
   ParamInterval domain_;
   CurveSamples samples_;

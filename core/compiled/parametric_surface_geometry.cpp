@@ -1,8 +1,7 @@
-#include <algorithm>
-#include <stdexcept>
+#include "compiled/parametric_surface_geometry.hpp"
+
 #include <string>
 
-#include "compiled/parametric_surface_geometry.hpp"
 #include "solvers/surface/first_order.hpp"
 #include "solvers/surface/gsa.hpp"
 #include "solvers/surface/hybrid.hpp"
@@ -13,22 +12,38 @@ namespace footpoint {
 
 namespace {
 
-const std::vector<MethodInfo>& surface_methods() {
-  static const std::vector<MethodInfo> methods = {
-      {"auto",
-       "global nearest point over the closed domain (edges and corners included): cached cell bounds, "
-       "bound-constrained Newton from the surviving cells",
-       ""},
-      {"gsa", "Geometric Strategy Algorithm: normal-curvature sphere step, unclamped from a start",
-       "gsa-parametric-surface (Algorithm 1, eqs. (3)-(20))"},
-      {"first_order", "tangent-plane (H-H-H) first-order iteration, unclamped from a start",
-       "gsa-parametric-surface (eq. (2)); hybrid-second-order-surface (eq. (5))"},
-      {"hybrid", "first-order steps until the Newton map contracts, then Newton, unclamped from a start",
-       "hybrid-second-order-surface (Algorithm 1, eqs. (22)-(24))"},
-      {"newton", "Newton's method on <p - s, s_u> = <p - s, s_v> = 0, unclamped from a start",
-       "hybrid-second-order-surface (eq. (22)); gsa-parametric-surface (Table 9)"},
-  };
-  return methods;
+// The papers' methods take the formulas and the domain, and start from options.initial.
+template <ProjectionResult (*solve)(const SurfaceFormulas&, const ParamBox&, const Vec3&, const Options&)>
+ProjectionResult from_start(const ParametricSurface& s, Vec3 p, const Options& o) {
+  return solve(s.formulas(), s.domain(), p, o);
+}
+
+// The method table of parametric surfaces.
+constexpr Method<ParametricSurface> kMethods[] = {
+    {{"auto",
+      "global nearest point over the closed domain (edges and corners included): cached cell bounds, "
+      "bound-constrained Newton from the surviving cells",
+      ""},
+     [](const ParametricSurface& s, Vec3 p, const Options& o) {
+       return surface::project_auto(s.cells(), s.formulas(), s.domain(), p, o);
+     }},
+    {{"gsa", "Geometric Strategy Algorithm: normal-curvature sphere step, unclamped from a start",
+      "gsa-parametric-surface (Algorithm 1, eqs. (3)-(20))"},
+     from_start<surface::project_gsa>},
+    {{"first_order", "tangent-plane (H-H-H) first-order iteration, unclamped from a start",
+      "gsa-parametric-surface (eq. (2)); hybrid-second-order-surface (eq. (5))"},
+     from_start<surface::project_first_order>},
+    {{"hybrid", "first-order steps until the Newton map contracts, then Newton, unclamped from a start",
+      "hybrid-second-order-surface (Algorithm 1, eqs. (22)-(24))"},
+     from_start<surface::project_hybrid>},
+    {{"newton", "Newton's method on <p - s, s_u> = <p - s, s_v> = 0, unclamped from a start",
+      "hybrid-second-order-surface (eq. (22)); gsa-parametric-surface (Table 9)"},
+     from_start<surface::project_newton>},
+};
+
+const MethodTable<ParametricSurface>& table() {
+  static const MethodTable<ParametricSurface> t(kMethods, PointDims::spatial);
+  return t;
 }
 
 std::array<double, 2> domain_of(const GeometryDefinition& def, const std::string& name) {
@@ -46,18 +61,14 @@ ParametricSurface::ParametricSurface(GeometryDefinition def, formula::Program pr
       box_(box),
       cells_(formulas_, box_, seeding) {}
 
-const std::vector<MethodInfo>& ParametricSurface::methods() const { return surface_methods(); }
+const std::vector<MethodInfo>& ParametricSurface::methods() const { return table().infos(); }
 
-ProjectionResult ParametricSurface::project(const double* p, std::string_view method,
-                                            const Options& options) const {
-  const Vec3 point{p[0], p[1], p[2]};
-  if (method == "auto") return surface::project_auto(cells_, formulas_, box_, point, options);
-  if (method == "gsa") return surface::project_gsa(formulas_, box_, point, options);
-  if (method == "first_order") return surface::project_first_order(formulas_, box_, point, options);
-  if (method == "hybrid") return surface::project_hybrid(formulas_, box_, point, options);
-  if (method == "newton") return surface::project_newton(formulas_, box_, point, options);
-  throw std::invalid_argument("parametric_surface has no method '" + std::string(method) + "'");
+ProjectionResult ParametricSurface::project_with(std::size_t index, const double* p,
+                                                 const Options& options) const {
+  return table().project(index, *this, {p[0], p[1], p[2]}, options);
 }
+
+const std::vector<MethodInfo>& parametric_surface_methods() { return table().infos(); }
 
 std::size_t ParametricSurface::memory_bytes() const {
   return sizeof(*this) + formulas_.program().memory_bytes() + cells_.memory_bytes();

@@ -1,7 +1,7 @@
 // The compiled parametric surface: s(u, v) = (x, y, z) over [umin, umax] x [vmin, vmax], the
 // seeding data of `auto`, and projection by method name (auto, gsa, first_order, hybrid, newton).
 #pragma once
-#include <string_view>
+#include <cstddef>
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
@@ -19,7 +19,6 @@ class ParametricSurface final : public CompiledGeometry {
   int point_dim() const override { return 3; }
   int num_params() const override { return 2; }
   const std::vector<MethodInfo>& methods() const override;
-  ProjectionResult project(const double* p, std::string_view method, const Options& options) const override;
   std::size_t memory_bytes() const override;
 
   const SurfaceFormulas& formulas() const { return formulas_; }
@@ -27,6 +26,8 @@ class ParametricSurface final : public CompiledGeometry {
   const SurfaceCells& cells() const { return cells_; }
 
  private:
+  ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
+
   SurfaceFormulas formulas_;
   ParamBox box_;
   SurfaceCells cells_;

@@ -229,7 +229,7 @@ int main(int argc, char** argv) {
           const std::array<double, 3> q{glo[0] + (ghi[0] - glo[0]) * i / 4,
                                         glo[1] + (ghi[1] - glo[1]) * j / 4,
                                         dim == 3 ? glo[2] + (ghi[2] - glo[2]) * l / 4 : 0.0};
-          const ProjectionResult r = g->project(q.data(), "auto", Options{});
+          const ProjectionResult r = g->project(q.data(), "auto", Options{}).value();
           if (std::isfinite(r.distance)) grow(r.foot);
         }
     double size = 0.0;
@@ -243,7 +243,7 @@ int main(int argc, char** argv) {
     }
     points.insert(points.end(), box_points.begin(), box_points.end());
     for (int n = 0; n < kNearPoints; ++n) {
-      const ProjectionResult r = g->project(box_points[n % kBoxPoints].data(), "auto", Options{});
+      const ProjectionResult r = g->project(box_points[n % kBoxPoints].data(), "auto", Options{}).value();
       std::array<double, 3> p = r.foot;
       for (int k = 0; k < dim; ++k) p[k] += (stream.uniform() - 0.5) * 0.04 * size;
       points.push_back(p);
@@ -254,8 +254,8 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < points.size(); ++i) {
       const double* p = points[i].data();
       for (const MethodInfo& m : g->methods()) {
-        std::printf("%zu %s default", i, m.name.c_str());
-        print(g->project(p, m.name, Options{}));
+        std::printf("%zu %s default", i, std::string(m.name).c_str());
+        print(g->project(p, m.name, Options{}).value());
         if (i % 4 == 1) {  // a start: parameters in the domain, or a point near p
           Options o;
           std::array<double, 3> s{0, 0, 0};
@@ -266,22 +266,22 @@ int main(int argc, char** argv) {
           if (g->num_params() == 0)
             for (int k = 0; k < dim; ++k) s[k] = p[k] + (stream.uniform() - 0.5) * 0.2 * size;
           o.initial = s;
-          std::printf("%zu %s initial", i, m.name.c_str());
-          print(g->project(p, m.name, o));
+          std::printf("%zu %s initial", i, std::string(m.name).c_str());
+          print(g->project(p, m.name, o).value());
         }
         if (i % 5 == 2) {
           Options o;
           o.trace = true;
           o.all_minima = true;
-          std::printf("%zu %s trace+minima", i, m.name.c_str());
-          print(g->project(p, m.name, o));
+          std::printf("%zu %s trace+minima", i, std::string(m.name).c_str());
+          print(g->project(p, m.name, o).value());
         }
         if (i % 7 == 3) {
           Options o;
           o.max_distance = 0.01 * size;
           o.tolerance = 1e-10;
-          std::printf("%zu %s max_distance+tolerance", i, m.name.c_str());
-          print(g->project(p, m.name, o));
+          std::printf("%zu %s max_distance+tolerance", i, std::string(m.name).c_str());
+          print(g->project(p, m.name, o).value());
         }
       }
     }
