@@ -4,11 +4,10 @@
 
 #include "geometry/dense_solve.hpp"
 #include "geometry/implicit_curve_differentials.hpp"
+#include "solvers/curve/steepest_descent.hpp"
 
 namespace footpoint::curve {
 namespace {
-
-constexpr double kDivergence = 1e12;
 
 // Minimum-norm dV with <grad f1, dV> = -err1, <grad f2, dV> = -err2: dV = -J^T (J J^T)^{-1} err.
 bool minimum_norm_correction(const ImplicitJet& j, Vec3& dv) {
@@ -44,11 +43,7 @@ bool correction_vector(const ImplicitJet& jz, Vec3 big_dv, Vec3& dv) {
 }  // namespace
 
 bool newton_onto_equation(const ImplicitEquations& equations, int i, Vec3 y, Vec3& z) {
-  const ImplicitJet j = equations.jet(y);
-  const double g2 = norm2(j.grad[i]);
-  if (!(g2 > 0.0)) return false;
-  z = y - (j.f[i] / g2) * j.grad[i];
-  return true;
+  return newton_onto_surface(equations.jet(y), i, y, z);
 }
 
 bool newton_onto_orthogonality(const ImplicitJet& jz, Vec3 z, Vec3 p, Vec3& u) {
@@ -61,36 +56,28 @@ bool newton_onto_orthogonality(const ImplicitJet& jz, Vec3 z, Vec3 p, Vec3& u) {
 
 Landing accelerate_onto_foot(const ImplicitEquations& equations, Vec3 p, Vec3 x0,
                              const IterationControl& control) {
-  Landing out;
-  out.x = x0;
-  const double limit = kDivergence * std::max(1.0, norm(x0) + norm(p));
-  double previous = kInfinity;
-  for (int n = 0;; ++n) {
-    if (n >= control.max_iterations) {
-      out.status = Status::max_iterations;
-      return out;
-    }
+  // Eq. (19): Y and Z by the Newton steps onto f1 = 0 and f2 = 0, U by the one onto F = 0, then
+  // X_{n+1} = U + dV.
+  auto eq19 = [&](Vec3 x, Vec3& x1) {
     Vec3 y, z, u, dv;
-    if (!newton_onto_equation(equations, 0, out.x, y) || !newton_onto_equation(equations, 1, y, z)) {
-      out.status = Status::degenerate;
-      return out;
-    }
+    if (!newton_onto_equation(equations, 0, x, y) || !newton_onto_equation(equations, 1, y, z)) return false;
     const ImplicitJet jz = equations.jet(z);
-    if (!newton_onto_orthogonality(jz, z, p, u) || !correction_vector(jz, u - z, dv)) {
-      out.status = Status::degenerate;
-      return out;
-    }
-    const Vec3 x1 = u + dv;
-    if (take_paper_step(equations, p, x1, n, limit, previous, control, true, out)) return out;
-  }
+    if (!newton_onto_orthogonality(jz, z, p, u) || !correction_vector(jz, u - z, dv)) return false;
+    x1 = u + dv;
+    return true;
+  };
+  const double limit = kPaperDivergence * std::max(1.0, norm(x0) + norm(p));
+  return iterate_paper_map(equations, PaperGoal::foot_of(p), x0, limit, control, eq19);
 }
 
 ProjectionResult accelerated(const ImplicitEquations& equations, const Box3& box, Vec3 p,
                              const Options& options) {
-  return land_then(equations, box, p, options, "accelerated",
-                   [&](const Landing& l, const IterationControl& control) {
-                     return accelerate_onto_foot(equations, p, l.x, control);
-                   });
+  std::vector<std::array<double, 3>> trace;
+  const IterationControl control = make_control(options, kPaperIterations, &trace);
+  // Algorithm 3 starts on the curve: Algorithm 1 from the paper's start first.
+  Landing l = land_on_curve(equations, paper_start(p, options, equations.planar()), control);
+  if (l.status == Status::converged) l = accelerate_onto_foot(equations, p, l.x, control);
+  return paper_result(equations, box, p, "accelerated", l, control, PaperGoal::foot_of(p), std::move(trace));
 }
 
 }  // namespace footpoint::curve

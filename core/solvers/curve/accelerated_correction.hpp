@@ -1,4 +1,4 @@
-// The spatial-curve paper's Algorithm 3, accelerating and geometric correcting method, eq. (19):
+// [Curve] Algorithm 3, the accelerating and geometric correcting method, eq. (19):
 //   Y_n     = X_n - f1(X_n) / |grad f1(X_n)|^2 grad f1(X_n),
 //   Z_n     = Y_n - f2(Y_n) / |grad f2(Y_n)|^2 grad f2(Y_n),
 //   U_n     = Z_n - F(Z_n) / |grad F(Z_n)|^2 grad F(Z_n),          F = <T, P - X>  (eq. (7))
@@ -11,7 +11,7 @@
 #include "geometry/implicit_curve.hpp"
 #include "geometry/projection_result.hpp"
 #include "solvers/curve/iteration_control.hpp"
-#include "solvers/curve/steepest_descent.hpp"
+#include "solvers/curve/paper_iteration.hpp"
 
 namespace footpoint::curve {
 
@@ -26,7 +26,8 @@ Landing accelerate_onto_foot(const ImplicitEquations& equations, Vec3 p, Vec3 x0
 ProjectionResult accelerated(const ImplicitEquations& equations, const Box3& box, Vec3 p,
                              const Options& options);
 
-// One step Z = Y - f_i(Y) / |grad f_i|^2 grad f_i of eqs. (9), (19), (20); false if grad f_i = 0.
+// One step Z = Y - f_i(Y) / |grad f_i|^2 grad f_i of eqs. (19), (20) (newton_onto_surface at the jet
+// of Y); false if grad f_i = 0.
 bool newton_onto_equation(const ImplicitEquations& equations, int i, Vec3 y, Vec3& z);
 
 // The step U = Z - F(Z) / |grad F(Z)|^2 grad F(Z) of eqs. (19), (20); false if grad F = 0.

@@ -2,6 +2,7 @@
 
 #include "solvers/curve/accelerated_correction.hpp"
 #include "solvers/curve/foot_point_march.hpp"
+#include "solvers/curve/paper_iteration.hpp"
 #include "solvers/curve/steepest_descent.hpp"
 
 namespace footpoint::curve {
@@ -11,21 +12,22 @@ constexpr int kFootPointRounds = 5;
 
 ProjectionResult complete_projection(const ImplicitEquations& equations, const Box3& box, Vec3 p,
                                      const Options& options) {
-  // Step 1: Algorithm 1 (land_then).
-  return land_then(equations, box, p, options, "complete", [&](Landing l, const IterationControl& control) {
-    // Steps 2-3, five times: Algorithm 2, then Algorithm 1 from the foot point Q.
-    for (int i = 0; i < kFootPointRounds && l.status == Status::converged; ++i) {
-      Vec3 q;
-      if (!foot_point(equations, p, l.x, q)) {
-        l.status = Status::degenerate;
-        break;
-      }
-      l = land_on_curve(equations, q, control);
+  std::vector<std::array<double, 3>> trace;
+  const IterationControl control = make_control(options, kPaperIterations, &trace);
+  // Step 1: Algorithm 1.
+  Landing l = land_on_curve(equations, paper_start(p, options, equations.planar()), control);
+  // Steps 2-3, five times: Algorithm 2, then Algorithm 1 from the foot point Q.
+  for (int i = 0; i < kFootPointRounds && l.status == Status::converged; ++i) {
+    Vec3 q;
+    if (!foot_point(equations, p, l.x, q)) {
+      l.status = Status::degenerate;
+      break;
     }
-    // Step 4: Algorithm 3.
-    if (l.status == Status::converged) l = accelerate_onto_foot(equations, p, l.x, control);
-    return l;
-  });
+    l = land_on_curve(equations, q, control);
+  }
+  // Step 4: Algorithm 3.
+  if (l.status == Status::converged) l = accelerate_onto_foot(equations, p, l.x, control);
+  return paper_result(equations, box, p, "complete", l, control, PaperGoal::foot_of(p), std::move(trace));
 }
 
 }  // namespace footpoint::curve

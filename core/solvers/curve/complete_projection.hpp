@@ -1,4 +1,4 @@
-// The spatial-curve paper's Algorithm 4, the complete algorithm: Algorithm 1 from the start
+// [Curve] Algorithm 4, the complete algorithm: Algorithm 1 from the start
 // (X0 = P - (0.1, 0.1, 0.1)), five rounds of Algorithm 2 (foot point Q) followed by Algorithm 1
 // (Q back onto the curve), then Algorithm 3 (eq. (19)) until the iterates stop moving.
 #pragma once

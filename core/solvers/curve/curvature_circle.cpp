@@ -2,8 +2,7 @@
 
 #include <cmath>
 
-#include "solvers/curve/iteration_control.hpp"
-#include "solvers/curve/parametric_curve_summary.hpp"
+#include "solvers/curve/parametric_iteration.hpp"
 
 namespace footpoint::curve {
 namespace {
@@ -42,37 +41,17 @@ bool circle_step(const CurveJet& j, Vec3 p, double& dt) {
 
 ProjectionResult curvature_circle(const CurveFormulas& formulas, const ParamInterval& domain,
                                   const CurveSampleIndex& index, Vec3 p, const Options& options) {
-  std::vector<std::array<double, 3>> trace;
-  // Linear convergence when p is off the curve (the GSA paper's Remark 2).
-  const IterationControl control = make_control(options, 1000, &trace);
-  double t = parametric_start(domain, index, p, options);
-  Status status = Status::max_iterations;
-  double step = 0.0, previous = kInfinity;
-  int n = 0;
-  while (n < control.max_iterations) {
-    double dt = 0.0;
-    if (!circle_step(formulas.jet(t), p, dt)) {
-      status = Status::degenerate;
-      break;
-    }
-    if (!std::isfinite(dt)) {
-      status = Status::non_finite;
-      break;
-    }
-    t += dt;
-    ++n;
-    step = std::fabs(dt);
-    control.record(dt);
-    const auto progress = control.progress(step, std::fabs(t), previous);
-    if (progress == IterationControl::Progress::converged ||
-        (progress == IterationControl::Progress::at_floor &&
-         parametric_residual_met(parametric_result(formulas, domain, p, t, "curvature_circle"), control))) {
-      status = Status::converged;
-      break;
-    }
-  }
-  return finish_parametric_result(formulas, domain, p, t, "curvature_circle", status, n, step, control,
-                                  std::move(trace));
+  auto circle = [&](const CurveJet& j) {
+    ParamStep s;
+    if (!circle_step(j, p, s.dt))
+      s.failure = Status::degenerate;
+    else if (!std::isfinite(s.dt))
+      s.failure = Status::non_finite;
+    return s;
+  };
+  // Linear convergence when p is off the curve ([GSA] Remark 2): a larger budget.
+  return iterate_parametric("curvature_circle", formulas, domain, index, p, options, 1000,
+                            AtFloor::converged_if_orthogonal, circle);
 }
 
 }  // namespace footpoint::curve

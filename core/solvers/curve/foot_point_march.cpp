@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include "solvers/curve/steepest_descent.hpp"
-
 namespace footpoint::curve {
 
 bool foot_point(const ImplicitEquations& equations, Vec3 p, Vec3 p_i, Vec3& q) {
@@ -25,41 +23,14 @@ ProjectionResult foot_point_march(const ImplicitEquations& equations, const Box3
   // paper: "slower and slower"); from Example 1's test points it is still far from converged after
   // 10,000 rounds, so the default budget stops it early and says so (max_iterations).
   const IterationControl control = make_control(options, 500, &trace);
-  IterationControl inner = control;
-  inner.max_iterations = options.max_iterations > 0 ? options.max_iterations : kPaperIterations;
-  inner.trace = nullptr;
-
-  Landing l = land_on_curve(equations, paper_start(p, options, equations.planar()), inner);
-  Vec3 x = l.x;
-  Status status = l.status;
-  double step = l.step;
-  int rounds = 0;
-  double previous = kInfinity;
-  while (status == Status::converged) {
-    if (rounds >= control.max_iterations) {
-      status = Status::max_iterations;
-      break;
-    }
-    Vec3 q;
-    if (!foot_point(equations, p, x, q)) {
-      status = Status::degenerate;
-      break;
-    }
-    l = land_on_curve(equations, q, inner);
-    if (l.status != Status::converged) {
-      status = l.status;
-      break;
-    }
-    const Vec3 dx = l.x - x;
-    step = norm(dx);
-    x = l.x;
-    ++rounds;
-    control.record(dx.x, dx.y, dx.z);
-    if (paper_iteration_done(equations, p, x, step, previous, control, true)) break;
-  }
-  ProjectionResult r = paper_result(equations, box, p, x, "foot_point_march", status, rounds, step, control);
-  r.trace = std::move(trace);
-  return r;
+  IterationControl landing = control;
+  landing.max_iterations = options.max_iterations > 0 ? options.max_iterations : kPaperIterations;
+  landing.trace = nullptr;
+  const Landing start = land_on_curve(equations, paper_start(p, options, equations.planar()), landing);
+  const Landing end = march_on_curve(equations, p, start, control, landing,
+                                     [&](Vec3 x, Vec3& q) { return foot_point(equations, p, x, q); });
+  return paper_result(equations, box, p, "foot_point_march", end, control, PaperGoal::foot_of(p),
+                      std::move(trace));
 }
 
 }  // namespace footpoint::curve

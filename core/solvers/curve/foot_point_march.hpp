@@ -1,10 +1,12 @@
-// The spatial-curve paper's Algorithm 2 (computing the foot point Q, eqs. (10)-(13)) and the method
-// `foot_point_march`: Algorithms 1 and 2 run alternately, as in the for-loop of Algorithm 4 but
-// until the curve point stops moving.
+// [Curve] Algorithm 2 (computing the foot point Q, eqs. (10)-(13)), the march that alternates a
+// foot point with Algorithm 1 back onto the curve, and the method `foot_point_march`: Algorithms 2
+// and 1 alternately, as in the for-loop of Algorithm 4 but until the curve point stops moving.
 #pragma once
 #include "geometry/implicit_curve.hpp"
 #include "geometry/projection_result.hpp"
 #include "solvers/curve/iteration_control.hpp"
+#include "solvers/curve/paper_iteration.hpp"
+#include "solvers/curve/steepest_descent.hpp"
 
 namespace footpoint::curve {
 
@@ -13,6 +15,43 @@ namespace footpoint::curve {
 // point of the segment Q0 P with |Q0 Q| = |P_I Q0| / 2, Q = d (P - Q0) + Q0 with d = d1 / d2,
 // d1 = |P_I Q0| / 2, d2 = |Q0 P| (eqs. (12)-(13)). Returns false when T = 0 (singular point).
 bool foot_point(const ImplicitEquations& equations, Vec3 p, Vec3 p_i, Vec3& q);
+
+// The march from `start` (where Algorithm 1 landed): rounds of a foot point q of p from the curve
+// point x (`foot(x, q)`; false where there is none: degenerate), then Algorithm 1 from q back onto
+// the curve (with `landing`), until the curve points stop moving where they are orthogonal
+// (paper_iteration_done) or `control`'s budget of rounds is spent. Each round's increment of the
+// curve point is recorded; the iterations are the rounds. A landing that fails ends the march at
+// the last curve point with the landing's status.
+template <class FootPoint>
+Landing march_on_curve(const ImplicitEquations& equations, Vec3 p, const Landing& start,
+                       const IterationControl& control, const IterationControl& landing, FootPoint&& foot) {
+  Landing out{start.x, 0, start.step, start.status};
+  const PaperGoal goal = PaperGoal::foot_of(p);
+  double previous = kInfinity;
+  while (out.status == Status::converged) {
+    if (out.iterations >= control.max_iterations) {
+      out.status = Status::max_iterations;
+      break;
+    }
+    Vec3 q;
+    if (!foot(out.x, q)) {
+      out.status = Status::degenerate;
+      break;
+    }
+    const Landing l = land_on_curve(equations, q, landing);
+    if (l.status != Status::converged) {
+      out.status = l.status;
+      break;
+    }
+    const Vec3 dx = l.x - out.x;
+    out.step = norm(dx);
+    out.x = l.x;
+    ++out.iterations;
+    control.record(dx.x, dx.y, dx.z);
+    if (paper_iteration_done(equations, goal, out.x, out.step, previous, control)) break;
+  }
+  return out;
+}
 
 ProjectionResult foot_point_march(const ImplicitEquations& equations, const Box3& box, Vec3 p,
                                   const Options& options);

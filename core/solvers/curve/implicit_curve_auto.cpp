@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solvers/curve/auto_result.hpp"
 #include "solvers/curve/curve_descent.hpp"
 #include "solvers/curve/implicit_curve_summary.hpp"
 #include "solvers/curve/lagrange_newton.hpp"
@@ -137,12 +138,8 @@ ProjectionResult implicit_curve_auto(const ImplicitEquations& eq, const Box3& bo
     fill_residuals(curve, p, f, fs);
     f.met = implicit_residuals_met(fs, f.x, control);
     if (options.all_minima) {
-      const double same = 1e-8 * std::max(1.0, discovery.scale);
-      const bool known = std::any_of(minima.begin(), minima.end(), [&](const Minimum& m) {
-        return norm(Vec3{m.foot[0], m.foot[1], m.foot[2]} - f.x) <= same;
-      });
-      if (!known)
-        minima.push_back({{f.x.x, f.x.y, eq.planar() ? 0.0 : f.x.z}, {0.0, 0.0}, f.distance, fs.location});
+      add_distinct_minimum(minima, f.x, 1e-8 * std::max(1.0, discovery.scale),
+                           {{f.x.x, f.x.y, eq.planar() ? 0.0 : f.x.z}, {0.0, 0.0}, f.distance, fs.location});
     }
     if (f.met && f.distance < best_met.distance) {
       best_met = f;
@@ -166,17 +163,8 @@ ProjectionResult implicit_curve_auto(const ImplicitEquations& eq, const Box3& bo
   }
   r = implicit_result(eq, box, p, best.x, "auto");
   fill_residuals(curve, p, best, r.summary);
-  r.summary.iterations = best.iterations;
-  r.summary.step_norm = best.step;
-  r.summary.starts = starts;
-  r.summary.status = best.met ? Status::converged : Status::degenerate;
-  if (r.distance > options.max_distance) r.summary.status = Status::beyond_max_distance;
-  if (options.all_minima) {
-    std::sort(minima.begin(), minima.end(),
-              [](const Minimum& a, const Minimum& b) { return a.distance < b.distance; });
-    r.minima = std::move(minima);
-  }
-  if (options.trace) r.trace = std::move(best_trace);
+  finish_auto_result(r, best.met, best.iterations, best.step, starts, options, std::move(minima),
+                     std::move(best_trace));
   return r;
 }
 

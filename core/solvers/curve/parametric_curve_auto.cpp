@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solvers/curve/auto_result.hpp"
 #include "solvers/curve/iteration_control.hpp"
 #include "solvers/curve/parametric_curve_summary.hpp"
 #include "solvers/curve/parametric_newton.hpp"
@@ -115,15 +116,10 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
     if (!(f.distance < kInfinity)) continue;
     if (options.all_minima) {
       const Vec3 x = formulas.point(f.t);
-      const double same = 1e-8 * std::max(1.0, norm(x));
-      const bool known = std::any_of(minima.begin(), minima.end(), [&](const Minimum& m) {
-        return norm(Vec3{m.foot[0], m.foot[1], m.foot[2]} - x) <= same;
-      });
-      if (!known) {
-        const bool end = f.t <= domain.tmin || f.t >= domain.tmax;
-        minima.push_back(
-            {{x.x, x.y, x.z}, {f.t, 0.0}, f.distance, end ? Location::endpoint : Location::interior});
-      }
+      const bool end = f.t <= domain.tmin || f.t >= domain.tmax;
+      add_distinct_minimum(
+          minima, x, 1e-8 * std::max(1.0, norm(x)),
+          {{x.x, x.y, x.z}, {f.t, 0.0}, f.distance, end ? Location::endpoint : Location::interior});
     }
     if (f.distance < best.distance) {
       best = f;
@@ -131,18 +127,8 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
     }
   }
   ProjectionResult r = parametric_result(formulas, domain, p, best.t, "auto");
-  r.summary.iterations = best.iterations;
-  r.summary.step_norm = best.step;
-  r.summary.starts = starts;
-  r.summary.status = (best.distance < kInfinity && parametric_residual_met(r, control)) ? Status::converged
-                                                                                        : Status::degenerate;
-  if (r.distance > options.max_distance) r.summary.status = Status::beyond_max_distance;
-  if (options.all_minima) {
-    std::sort(minima.begin(), minima.end(),
-              [](const Minimum& x, const Minimum& y) { return x.distance < y.distance; });
-    r.minima = std::move(minima);
-  }
-  if (options.trace) r.trace = std::move(best_trace);
+  finish_auto_result(r, best.distance < kInfinity && parametric_residual_met(r, control), best.iterations,
+                     best.step, starts, options, std::move(minima), std::move(best_trace));
   return r;
 }
 

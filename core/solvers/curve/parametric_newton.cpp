@@ -2,47 +2,26 @@
 
 #include <cmath>
 
-#include "solvers/curve/parametric_curve_summary.hpp"
+#include "solvers/curve/parametric_iteration.hpp"
 
 namespace footpoint::curve {
 
 ProjectionResult parametric_newton(const CurveFormulas& formulas, const ParamInterval& domain,
                                    const CurveSampleIndex& index, Vec3 p, const Options& options) {
-  std::vector<std::array<double, 3>> trace;
-  const IterationControl control = make_control(options, 100, &trace);
-  double t = parametric_start(domain, index, p, options);
-  Status status = Status::max_iterations;
-  double step = 0.0, previous = kInfinity;
-  int n = 0;
-  while (n < control.max_iterations) {
-    const CurveJet j = formulas.jet(t);
+  auto newton = [&](const CurveJet& j) {
     const Vec3 d = j.c - p;
     const double g = dot(d, j.d1);
     const double dg = dot(j.d1, j.d1) + dot(d, j.d2);
-    if (!std::isfinite(g) || !std::isfinite(dg)) {
-      status = Status::non_finite;
-      break;
-    }
-    if (dg == 0.0) {
-      status = Status::degenerate;
-      break;
-    }
-    const double dt = -g / dg;
-    t += dt;
-    ++n;
-    step = std::fabs(dt);
-    control.record(dt);
-    if (!std::isfinite(t)) {
-      status = Status::non_finite;
-      break;
-    }
-    if (control.stop(step, std::fabs(t), previous)) {
-      status = Status::converged;
-      break;
-    }
-  }
-  return finish_parametric_result(formulas, domain, p, t, "newton", status, n, step, control,
-                                  std::move(trace));
+    ParamStep s;
+    if (!std::isfinite(g) || !std::isfinite(dg))
+      s.failure = Status::non_finite;
+    else if (dg == 0.0)
+      s.failure = Status::degenerate;
+    else
+      s.dt = -g / dg;
+    return s;
+  };
+  return iterate_parametric("newton", formulas, domain, index, p, options, 100, AtFloor::converged, newton);
 }
 
 double bracketed_newton(const CurveFormulas& formulas, Vec3 p, double a, double b, double t0,

@@ -1,4 +1,4 @@
-// The spatial-curve paper's Algorithm 5, the simplified algorithm: Algorithm 1 from the start,
+// [Curve] Algorithm 5, the simplified algorithm: Algorithm 1 from the start,
 // then eq. (20),
 //   Y_n     = X_n - f1(X_n) / |grad f1(X_n)|^2 grad f1(X_n),
 //   Z_n     = Y_n - f2(Y_n) / |grad f2(Y_n)|^2 grad f2(Y_n),

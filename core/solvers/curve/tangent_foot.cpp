@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "solvers/curve/steepest_descent.hpp"
+#include "solvers/curve/foot_point_march.hpp"
 
 namespace footpoint::curve {
 
@@ -13,39 +13,18 @@ ProjectionResult tangent_foot(const ImplicitEquations& equations, const Box3& bo
   IterationControl landing = control;
   landing.trace = nullptr;
   // Eq. (2) is eq. (9) for the embedding f1 = f, f2 = z: its second half-step does nothing.
-  Landing l = land_on_curve(equations, paper_start(p, options, true), landing);
-  Vec3 y = l.x;
-  Status status = l.status;
-  double step = l.step;
-  int rounds = 0;
-  double previous = kInfinity;
-  while (status == Status::converged) {
-    if (rounds >= control.max_iterations) {
-      status = Status::max_iterations;
-      break;
-    }
+  const Landing start = land_on_curve(equations, paper_start(p, options, true), landing);
+  // Eq. (4): the foot point of p on the tangent line at the curve point y.
+  auto tangent_foot_point = [&](Vec3 y, Vec3& q) {
     const ImplicitJet j = equations.jet(y);
     const double g2 = norm2(j.grad[0]);
-    if (!(g2 > 0.0)) {
-      status = Status::degenerate;
-      break;
-    }
-    const Vec3 q = p - (dot(p - y, j.grad[0]) / g2) * j.grad[0];  // eq. (4)
-    l = land_on_curve(equations, q, landing);
-    if (l.status != Status::converged) {
-      status = l.status;
-      break;
-    }
-    const Vec3 dy = l.x - y;
-    step = norm(dy);
-    y = l.x;
-    ++rounds;
-    control.record(dy.x, dy.y);
-    if (paper_iteration_done(equations, p, y, step, previous, control, true)) break;
-  }
-  ProjectionResult r = paper_result(equations, box, p, y, "tangent_foot", status, rounds, step, control);
-  r.trace = std::move(trace);
-  return r;
+    if (!(g2 > 0.0)) return false;
+    q = p - (dot(p - y, j.grad[0]) / g2) * j.grad[0];
+    return true;
+  };
+  const Landing end = march_on_curve(equations, p, start, control, landing, tangent_foot_point);
+  return paper_result(equations, box, p, "tangent_foot", end, control, PaperGoal::foot_of(p),
+                      std::move(trace));
 }
 
 }  // namespace footpoint::curve

@@ -1,4 +1,4 @@
-// The planar iteration of the spatial-curve paper's introduction (Hartmann's tangent foot point
+// The planar iteration of [Curve]'s introduction (Hartmann's tangent foot point
 // method) for f(x, y) = 0: Newton's steepest descent, eq. (2),
 //   X_{n+1} = X_n - f(X_n) / <grad f(X_n), grad f(X_n)> grad f(X_n),
 // until the point Y lies on the curve; then the foot point of p on the tangent line at Y, eq. (4),
