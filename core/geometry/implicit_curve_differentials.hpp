@@ -1,5 +1,5 @@
 // Differential geometry of the implicit curve C: {f1 = 0} ∩ {f2 = 0} at a point, from the exact
-// jets (the spatial-curve paper, Section 2): the tangent T = grad f1 x grad f2, the curvature
+// jets ([Curve] Section 2): the tangent T = grad f1 x grad f2, the curvature
 // vector c of eqs. (15)-(16), and the orthogonality function F(X) = <T(X), P - X> of eq. (7) with
 // its gradient.
 #pragma once

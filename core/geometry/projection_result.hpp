@@ -18,7 +18,7 @@ enum class Status {
   degenerate,           // singular Jacobian / tangent plane (e.g. s_u x s_v = 0) stopped the method
   outside_domain,       // a paper method converged, but to parameters outside the domain
   not_orthogonal,       // the method settled on the geometry at a point that is not orthogonal: not a
-                        // foot point (the curve paper's Algorithm 1 only lands on the curve)
+                        // foot point ([Curve] Algorithm 1 only lands on the curve)
   beyond_max_distance,  // every point of the geometry is farther than options.max_distance
   deadline_exceeded,    // the request's deadline passed before this point was solved
 };

@@ -1,6 +1,6 @@
 // Singular points of an implicit curve: points of f1 = f2 = 0 where grad f1 x grad f2 = 0 (the
 // surfaces touch; e.g. the double point of Viviani's curve). There T = 0 and every formula of the
-// spatial-curve paper divides by zero (its Remark 4). They are found as the critical points of f1
+// [Curve] divides by zero (its Remark 4). They are found as the critical points of f1
 // on the surface f2 = 0, Newton on
 //   grad f1 - mu grad f2 = 0,  f2 = 0          (unknowns x, y, z, mu; 4 x 4 Jacobian
 //   [[F2 - mu G2, -grad f2], [grad f2^T, 0]]) followed by the check f1 = 0. For planar curves

@@ -1,8 +1,9 @@
-// The curvature circle method (Hu and Wallner; the GSA paper's Section 3, eqs. (21)-(22)) for a
+// The curvature circle method (S.-M. Hu, J. Wallner, A second order algorithm for orthogonal projection onto
+// curves and surfaces, Computer Aided Geometric Design 22(3), 2005; [GSA] Section 3, eqs. (21)-(22)) for a
 // parametric curve. At c(t0): curvature k = |c' x c''| / |c'|^3, radius R = 1 / k, principal
 // normal N, centre m = c + R N. The test point p (moved into the osculating plane of a space curve)
 // gives the footpoint q on the circle between p and m,
-//   q = p + (m - p) w,   w = 1 - R / |m - p|           (the GSA paper's eqs. (14)-(17)),
+//   q = p + (m - p) w,   w = 1 - R / |m - p|           ([GSA] eqs. (14)-(17)),
 // and the parameter step from the circle sharing the curve's second-order Taylor polynomial,
 // q - c = dt c' + dt^2 / 2 c'' (eq. (21)): crossing with c'' removes dt^2,
 //   dt = det(q - c, c'') / det(c', c'')                (eq. (22), planar),

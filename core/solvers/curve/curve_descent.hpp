@@ -2,7 +2,7 @@
 // Lagrange system does not settle on a minimum near its start (e.g. far from a well-conditioned
 // minimum). With s the arc length, phi(s) = |X(s) - p|^2 / 2 has
 //   phi'  = <X - p, T>,    phi'' = 1 + <X - p, c>
-// (T the unit tangent, c the curvature vector of eq. (16) of the spatial-curve paper). A Newton
+// (T the unit tangent, c the curvature vector of [Curve] eq. (16)). A Newton
 // step ds = -phi' / phi'' (or a descent step of length max_step where phi'' <= 0) is predicted to
 // X + ds T + ds^2 / 2 c, corrected back onto the curve in the normal plane, and halved until the
 // distance decreases.

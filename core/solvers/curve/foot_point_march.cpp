@@ -19,8 +19,8 @@ bool foot_point(const ImplicitEquations& equations, Vec3 p, Vec3 p_i, Vec3& q) {
 ProjectionResult foot_point_march(const ImplicitEquations& equations, const Box3& box, Vec3 p,
                                   const Options& options) {
   std::vector<std::array<double, 3>> trace;
-  // Rounds of Algorithms 2 + 1. The march slows down as it nears the foot point (Remark 3 of the
-  // paper: "slower and slower"); from Example 1's test points it is still far from converged after
+  // Rounds of Algorithms 2 + 1. The march slows down as it nears the foot point ([Curve] Remark 3:
+  // "slower and slower"); from Example 1's test points it is still far from converged after
   // 10,000 rounds, so the default budget stops it early and says so (max_iterations).
   const IterationControl control = make_control(options, 500, &trace);
   IterationControl landing = control;

@@ -15,7 +15,7 @@ PaperStep first_order_step(const Vec3& p, const SurfaceJet& jet) {
     step.failure = std::isnan(det) ? Status::non_finite : Status::degenerate;
     return step;
   }
-  // eq. (5) of the hybrid paper
+  // [Hybrid] eq. (5)
   step.du = (G * Su - F * Sv) / det;
   step.dv = -(F * Su - E * Sv) / det;
   return step;

@@ -1,8 +1,8 @@
 // The first-order (tangent-plane, "H-H-H") iteration of Hartmann, Hoschek-Lasser and Hu et al.:
 // project p onto the tangent plane at s(u_n, v_n) and solve the first fundamental form system
 //   [E F; F G] (Δu, Δv)^T = (<p - s, s_u>, <p - s, s_v>)^T
-// (GSA paper eq. (2); hybrid paper eqs. (4)-(5)). Linearly convergent where it converges; the
-// hybrid paper's counterexamples C1-C5 are surfaces where it does not.
+// ([GSA] eq. (2); [Hybrid] eqs. (4)-(5)). Linearly convergent where it converges;
+// [Hybrid]'s counterexamples C1-C5 are surfaces where it does not.
 #pragma once
 #include "geometry/parametric_surface.hpp"
 #include "geometry/projection_result.hpp"

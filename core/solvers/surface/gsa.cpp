@@ -5,7 +5,7 @@
 namespace footpoint::surface {
 
 namespace {
-// §2.2: "k_n could be incremented by a small positive constant ε". The paper gives no value; with
+// [GSA] §2.2: "k_n could be incremented by a small positive constant ε". The paper gives no value; with
 // the cancellation-free form of eqs. (11)-(17) below, any small value gives the tangent-plane
 // limit, so this only keeps k_n = 0 from dividing by zero.
 constexpr double kNormalCurvaturePerturbation = 1e-12;

@@ -1,4 +1,4 @@
-// The Geometric Strategy Algorithm (GSA paper, Algorithm 1, eqs. (3)-(20)): decompose p - s in
+// The Geometric Strategy Algorithm ([GSA] Algorithm 1, eqs. (3)-(20)): decompose p - s in
 // the frame (s_u, s_v, n) (eqs. (3)-(7)), take the normal curvature k_n along the tangent part
 // T = α1 s_u + α2 s_v (eqs. (8)-(10)), intersect the segment from p to the centre m of the normal
 // curvature sphere with that sphere (eqs. (11)-(17)) and solve the tangent-plane system for that

@@ -1,4 +1,4 @@
-// The hybrid second-order algorithm (hybrid paper, Algorithm 1): first-order steps (eq. (5))
+// The hybrid second-order algorithm ([Hybrid] Algorithm 1): first-order steps (eq. (5))
 // until the Newton map G(t) = t - F'(t)^{-1} F(t) (eq. (24)) is a contraction at the current
 // iterate by the paper's test, all four |∂G_i/∂u|, |∂G_i/∂v| < 1/2, then Newton steps (eq. (22))
 // to the end. ∂G needs third derivatives of s, taken exactly from the formula tape (jet3).

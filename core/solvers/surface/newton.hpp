@@ -1,6 +1,6 @@
 // Plain Newton's method on the orthogonality conditions
 //   F(u, v) = (<p - s, s_u>, <p - s, s_v>) = 0,   t_{n+1} = t_n - F'(t_n)^{-1} F(t_n)
-// (hybrid paper eqs. (22)-(24); GSA paper Table 9). Quadratic near a regular zero, but it finds
+// ([Hybrid] eqs. (22)-(24); [GSA] Table 9). Quadratic near a regular zero, but it finds
 // any stationary point of the distance, minimum or not.
 #pragma once
 #include "geometry/parametric_surface.hpp"

@@ -1,6 +1,6 @@
 // The loop shared by the papers' methods (gsa, first_order, hybrid, newton): from a start t0
 // (options.initial, else the domain's centre) repeat t <- t + Δt(t), exactly as published, with
-// no clamping to the domain (GSA paper Algorithm 1 Steps 2-3; hybrid paper Algorithm 1), until the
+// no clamping to the domain ([GSA] Algorithm 1 Steps 2-3; [Hybrid] Algorithm 1), until the
 // increment and the orthogonality residuals meet the tolerance (surface_convergence.hpp).
 // A converged result outside the domain gets status outside_domain. With options.trace every
 // applied increment (Δu, Δv, 0) is recorded, which is what the papers' tables print.

@@ -3,8 +3,8 @@
 // Both conditions are required (numerical honesty):
 //  - the parameters have settled: the last increment |Δt|∞ <= tol x max(domain scale, |u|, |v|)
 //    (so the default 1e-15 means a few ulps of the parameters), and
-//  - the orthogonality conditions F_i = <p - s, s_i> = 0 (eq. (23) of the hybrid paper, eq. (31)
-//    of the GSA paper) hold: |F_i| / (|p - s| |s_i|) <= max(tol, floor), where
+//  - the orthogonality conditions F_i = <p - s, s_i> = 0 ([Hybrid] eq. (23), [GSA]
+//    eq. (31)) hold: |F_i| / (|p - s| |s_i|) <= max(tol, floor), where
 //    floor = 16 eps (|p| + |s|) / |p - s| is the rounding of computing p - s itself. A residual at
 //    the floor ends the iteration whatever the step (it cannot get better).
 // Formulas evaluated with large cancellation (sin of a large argument, high-degree polynomials)
