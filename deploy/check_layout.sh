@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The container's runtime layout, tested without a Docker engine: installs an existing build into a
 # staging prefix with the Dockerfile's install step (cmake --install <build> --prefix <stage>
-# --strip), checks that the runtime stage's packages provide every library the installed server
-# links, then starts the installed server the way the image does (from the prefix, configured by
+# --component server --strip), checks that the runtime stage's packages provide every library the
+# installed server links, then starts the installed server the way the image does (from the prefix, configured by
 # environment only, as uid 10001 and with the source and build trees hidden when this runs as root
 # with mount namespaces available) on a free loopback port and checks /healthz, /readyz, /metrics,
 # /openapi.yaml, projections with known answers, examples/project_csv.sh, the operations section's
@@ -74,7 +74,13 @@ pass "the build stage's context ($context_files) configures with ${cmake_flags[*
 # ---- 1. the install step of deploy/Dockerfile -----------------------------------------------------
 prefix_in_image=$(sed -n 's/.*cmake --install [^ ]* --prefix \([^ ]*\).*/\1/p' "$deploy/Dockerfile" | head -n 1)
 [ -n "$prefix_in_image" ] || fail "deploy/Dockerfile has no 'cmake --install <build> --prefix <dir>' step"
-cmake --install "$build" --prefix "$stage" --strip > "$tmp/install.log" || { cat "$tmp/install.log"; fail "cmake --install"; }
+# The image holds the install component the Dockerfile names (the server, not the core library's
+# headers and static libraries).
+component=$(sed -n 's/.*cmake --install .* --component \([^ ]*\).*/\1/p' "$deploy/Dockerfile" | head -n 1)
+[ "$component" = server ] || fail "deploy/Dockerfile does not install the component server (cmake --install ... --component server)"
+cmake --install "$build" --prefix "$stage" --component "$component" --strip > "$tmp/install.log" ||
+  { cat "$tmp/install.log"; fail "cmake --install"; }
+[ ! -e "$stage/include" ] || fail "the server component installs the core library's headers"
 server=$stage/bin/footpoint-server
 entrypoint=$(sed -n 's/^ENTRYPOINT \["\([^"]*\)".*/\1/p' "$deploy/Dockerfile")
 [ "$entrypoint" = "$prefix_in_image/bin/footpoint-server" ] ||

@@ -21,5 +21,6 @@ if(FOOTPOINT_SHELLCHECK)
   file(GLOB FOOTPOINT_SCRIPTS ${CMAKE_SOURCE_DIR}/scripts/*.sh)
   add_test(NAME deploy_shellcheck
            COMMAND ${FOOTPOINT_SHELLCHECK} ${CMAKE_SOURCE_DIR}/deploy/check_layout.sh
-                   ${CMAKE_SOURCE_DIR}/examples/project_csv.sh ${FOOTPOINT_SCRIPTS} ${CMAKE_SOURCE_DIR}/.ci/run)
+                   ${CMAKE_SOURCE_DIR}/examples/project_csv.sh ${FOOTPOINT_SCRIPTS} ${CMAKE_SOURCE_DIR}/.ci/run
+                   ${CMAKE_SOURCE_DIR}/tests/check_installed_package.sh)
 endif()
