@@ -4,12 +4,15 @@
 # builds examples/cpp against it with find_package(footpoint), outside this tree's build, runs the
 # example and checks its answers (exact foot points of a torus and a circle, the unknown-method
 # error value).
-#   tests/check_installed_package.sh BUILD_DIR SOURCE_DIR
+#   tests/check_installed_package.sh BUILD_DIR SOURCE_DIR [FLAGS]
+# FLAGS are compile and link flags the example needs to link the installed libraries (a sanitizer
+# build's instrumentation).
 set -euo pipefail
-if [ $# -ne 2 ]; then
-  echo "usage: $0 BUILD_DIR SOURCE_DIR" >&2
+if [ $# -lt 2 ] || [ $# -gt 3 ]; then
+  echo "usage: $0 BUILD_DIR SOURCE_DIR [FLAGS]" >&2
   exit 2
 fi
+flags=${3:-}
 build=$(cd "$1" && pwd)
 source_dir=$(cd "$2" && pwd)
 tmp=$(mktemp -d /tmp/footpoint-package.XXXXXX)
@@ -27,7 +30,8 @@ cmake --install "$build" --prefix "$tmp/prefix" --component development > "$tmp/
 echo "ok: installed $(find "$tmp/prefix" -type f | wc -l) files into a temporary prefix"
 
 cmake -S "$source_dir/examples/cpp" -B "$tmp/build" -DCMAKE_PREFIX_PATH="$tmp/prefix" \
-  -DCMAKE_BUILD_TYPE=Release > "$tmp/configure.log" 2>&1 || { cat "$tmp/configure.log"; fail "configure examples/cpp"; }
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" \
+  > "$tmp/configure.log" 2>&1 || { cat "$tmp/configure.log"; fail "configure examples/cpp"; }
 cmake --build "$tmp/build" > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; fail "build examples/cpp"; }
 echo "ok: examples/cpp configured and built against the installed package"
 
