@@ -181,6 +181,10 @@ def main(argv):
         print(__doc__)
         return 2
     root, libraries = os.path.abspath(args[0]), args[1:]
+    missing = [lib for lib in libraries if not os.path.isfile(lib)]
+    if missing:
+        print("FAIL: libraries not built: " + " ".join(missing))
+        return 1
     ok = report("includes follow the layer order", check_includes(root))
     if libraries:
         ok &= report("symbols follow the layer order", check_symbols(libraries))
