@@ -20,9 +20,9 @@
 #include <string>
 
 #include "cache/geometry_cache.hpp"
+#include "geometry/projection_result.hpp"
 #include "prometheus_text.hpp"
 #include "registry_metrics.hpp"
-#include "geometry/projection_result.hpp"
 #include "route.hpp"
 
 namespace footpoint::server {
