@@ -150,12 +150,14 @@ void read_options(JsonReader& r, ProjectRequest& request) {
         o.all_minima = r.boolean();
       } else if (key == "trace") {
         o.trace = r.boolean();
+      } else if (key == "certify") {
+        o.certify = r.boolean();
       } else if (key == "initial") {
         read_initial(r, request);
       } else {
         throw ApiError(400, "unknown_field",
                        "unknown option " + field +
-                           " (tolerance, max_iterations, initial, all_minima, trace, max_distance)",
+                           " (tolerance, max_iterations, initial, all_minima, trace, max_distance, certify)",
                        field);
       }
     } catch (const JsonReadError& e) {

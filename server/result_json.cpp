@@ -64,6 +64,24 @@ Status write_result(JsonAppender& o, const ProjectionResult& r, bool with_minima
   o.integer(s.starts);
   o.literal(",\"location\":");
   name(o, to_string(s.location));
+  o.literal(",\"certificate\":");
+  const Certificate& c = s.certificate;
+  if (c.computed) {
+    o.literal(c.certified ? "{\"certified\":true,\"lower_bound\":" : "{\"certified\":false,\"lower_bound\":");
+    o.number(c.lower_bound);
+    o.literal(",\"gap\":");
+    if (answer)
+      o.number(std::fmax(r.distance - c.lower_bound, 0.0));
+    else
+      o.literal("null");
+    o.literal(",\"reason\":");
+    name(o, to_string(c.reason));
+    o.literal(",\"boxes\":");
+    o.integer(c.boxes);
+    o.literal("}");
+  } else {
+    o.literal("null");
+  }
   o.literal("}");
 
   if (with_minima) {

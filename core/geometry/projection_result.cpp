@@ -48,6 +48,22 @@ const char* to_string(Location l) {
   return "unknown";
 }
 
+const char* to_string(CertificateReason r) {
+  switch (r) {
+    case CertificateReason::gap_met:
+      return "gap_met";
+    case CertificateReason::budget_exhausted:
+      return "budget_exhausted";
+    case CertificateReason::non_finite:
+      return "non_finite";
+    case CertificateReason::singular:
+      return "singular";
+    case CertificateReason::not_requested:
+      return "not_requested";
+  }
+  return "unknown";
+}
+
 double Summary::residual() const {
   return std::max({orthogonality[0], orthogonality[1], equation_residual[0], equation_residual[1]});
 }

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/certificate.hpp"
+
 namespace footpoint {
 
 enum class Status {
@@ -40,6 +42,7 @@ struct Summary {
   int starts = 1;  // local solves started (auto: seeds tried)
   Location location = Location::unknown;
   bool on_boundary = false;  // foot point on the domain's edge/corner/endpoint/box face
+  Certificate certificate;   // the proof of global optimality (geometry/certificate.hpp)
   double residual() const;   // the largest of orthogonality and equation residuals
   bool converged() const { return status == Status::converged; }
 };
@@ -72,6 +75,10 @@ struct Options {
   bool all_minima = false;
   bool trace = false;
   double max_distance = std::numeric_limits<double>::infinity();
+  // Compute a certificate (geometry/certificate.hpp). Unset: the method's default - `auto`
+  // certifies, the papers' local methods do not (asked, they get their answer certified or
+  // refuted by the same bounds, without a search for a better one).
+  std::optional<bool> certify;
 };
 
 }  // namespace footpoint
