@@ -22,6 +22,9 @@
 // derivative rule or a missed kink is off by far more. Formulas with a piecewise operator (abs,
 // min, max, sign, comparisons, ?:) are skipped there: at an exact tie on the box's edge the point
 // jets take the other branch's derivative (their documented convention) than the one the box is on.
+// Ball jets (formula/ball.hpp) at each point: both they and the interval jets of the point box
+// hold the exact value and gradient there, so where a ball jet is defined its balls must meet
+// those intervals (a wrong radius bound or a wrong fast-path derivative misses them).
 // Jets are otherwise evaluated for crashes and UB only: their value part may differ from values()
 // in the last bits, and cancellation can magnify that without bound.
 #include <cmath>
@@ -38,6 +41,8 @@
 
 namespace {
 
+using footpoint::formula::Ball;
+using footpoint::formula::BallJet1;
 using footpoint::formula::CompileLimits;
 using footpoint::formula::FormulaError;
 using footpoint::formula::Interval;
@@ -123,12 +128,30 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   Jet3<2> jets3[3];
   Interval ranges[3];
   IntervalJet2<2> interval_jets[3];
+  BallJet1<2> balls[3];
+  // both hold the exact value at the point: a ball jet meets the interval jet of the point box
+  auto meets = [](const Ball& b, const Interval& i) {
+    return b.mid - b.rad <= i.hi && i.lo <= b.mid + b.rad;
+  };
   for (const auto& p : points) {
     program.values(p, values);
     program.jets2<2>(p, jets2);
     program.jets3<2>(p, jets3);
     const Interval at[2] = {{p[0], p[0]}, {p[1], p[1]}};
     program.interval_jets2<2>(at, interval_jets);
+    program.ball_jets1<2>(p, balls);
+    for (std::size_t k = 0; k < n; ++k) {
+      const IntervalJet2<2>& r = interval_jets[k];
+      if (!balls[k].defined || swallows_nan(formulas[k].expression) || std::isnan(r.v.lo) ||
+          std::isnan(r.v.hi) || r.v.partial)
+        continue;
+      if (!meets(balls[k].v, r.v))
+        fail("ball value apart from the interval jet", formulas, k, p[0], p[1], balls[k].v.mid, r.v.lo);
+      for (int d = 0; d < 2 && r.lipschitz && std::isfinite(balls[k].g[d].rad); ++d)
+        if (!meets(balls[k].g[d], r.g[d]))
+          fail("ball gradient apart from the interval jet", formulas, k, p[0], p[1], balls[k].g[d].mid,
+               r.g[d].lo);
+    }
   }
   for (std::size_t b = 0; b < std::size(boxes); ++b) {
     const Interval box[2] = {boxes[b].u, boxes[b].v};

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "formula/ball.hpp"
 #include "formula/interval.hpp"
 #include "formula/interval_jet.hpp"
 #include "formula/jet.hpp"
@@ -73,6 +74,10 @@ class Program {
   // formula/interval_jet.hpp). Requires N == num_inputs().
   template <int N>
   void interval_jets2(const Interval* x, IntervalJet2<N>* out) const;
+  // Rigorous enclosures of every formula's value and gradient at the point x, as balls
+  // (formula/ball.hpp): a few times the cost of jets2, for the certificates of answers.
+  template <int N>
+  void ball_jets1(const double* x, BallJet1<N>* out) const;
 
   struct Tape;  // opaque
 
