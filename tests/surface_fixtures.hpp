@@ -89,6 +89,16 @@ inline const char* location_prefix(Location l) {
 // public_cases.json and tests/data/surface_*.json): distance within 1e-12 relative (1e-12 absolute
 // on the surface), foot within 1e-9 of the oracle's (of any tied foot when ambiguous), the same
 // kind of location, converged.
+// The certificate of an answer whose true distance is `reference` (to the last bit, or an upper
+// bound of it): its lower bound never exceeds it, and a certified answer meets the gap.
+inline void check_certificate(const ProjectionResult& r, double reference) {
+  const Certificate& c = r.summary.certificate;
+  CHECK(c.computed);
+  CHECK(c.lower_bound <= reference * (1.0 + 0x1p-51));
+  if (c.certified) CHECK(r.distance - c.lower_bound <= std::max(1e-9 * r.distance, c.absolute_gap));
+  CHECK(c.certified == (c.reason == CertificateReason::gap_met));
+}
+
 inline void check_auto_against_oracle(const ParametricSurface& g, const nlohmann::json& point) {
   const std::array<double, 3> p = point.at("p").get<std::array<double, 3>>();
   const nlohmann::json& o = point.at("oracle");
@@ -100,7 +110,9 @@ inline void check_auto_against_oracle(const ParametricSurface& g, const nlohmann
                << ", starts " << r.summary.starts);
   CHECK(r.summary.status == Status::converged);
   CHECK(r.summary.method == "auto");
-  CHECK(std::abs(r.distance - d_ref) <= 1e-12 * std::max(d_ref, 1.0));
+  // 1e-12 relative, and the rounding of p - s in the coordinates (a few ulps of |p|: 4e-12 at 2e4)
+  const double coordinates = std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])});
+  CHECK(std::abs(r.distance - d_ref) <= 1e-12 * std::max(d_ref, 1.0) + 4.0 * 0x1p-52 * coordinates);
   CHECK(std::abs(dist3(r.foot, p) - r.distance) <= 1e-14 * std::max(r.distance, 1.0));
   CHECK(g.domain().contains(r.params[0], r.params[1]));
   const std::array<double, 3> foot_ref = o.at("foot").get<std::array<double, 3>>();
@@ -118,6 +130,7 @@ inline void check_auto_against_oracle(const ParametricSurface& g, const nlohmann
     CHECK(type.rfind(location_prefix(r.summary.location), 0) == 0);
   }
   CHECK(r.summary.on_boundary == (r.summary.location != Location::interior));
+  check_certificate(r, d_ref);
 }
 
 }  // namespace footpoint::test

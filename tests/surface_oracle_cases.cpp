@@ -13,7 +13,11 @@
 //  - wavy: bumps a few cells wide; two minima a cell apart;
 //  - ripple: a corner answer next to an edge minimum within the corner cell's model error;
 //  - cone: the apex and the seam u = 0 = 2pi, with feet next to the seam;
-//  - S3_edge: edge answers next to an interior minimum within the models' error, from far and near.
+//  - S3_edge: edge answers next to an interior minimum within the models' error, from far and near;
+//  - bump: a plane with a bump 0.01 wide that the cells' samples miss (its cells look flat): the
+//    certificate's interval bounds find it, and the answer on it;
+//  - large_coordinates: a torus around 2e4, points on it (the distance is rounding, ~1e-12) and
+//    near it: the solve must not stop at the coordinates' relative tolerance.
 #include <doctest/doctest.h>
 
 #include "surface_fixtures.hpp"
@@ -23,7 +27,7 @@ using namespace footpoint::test;
 
 TEST_CASE("auto against oracle references") {
   for (const char* name : {"sphere", "torus", "monkey_saddle", "plane", "S1", "S2", "S3", "A1", "fold",
-                           "fold_near", "wavy", "ripple", "cone", "S3_edge"}) {
+                           "fold_near", "wavy", "ripple", "cone", "S3_edge", "bump", "large_coordinates"}) {
     SUBCASE(name) {
       const nlohmann::json c =
           read_json(std::string(FOOTPOINT_TESTS_DIR) + "/data/surface_" + name + ".json");

@@ -1,5 +1,6 @@
 #include "compiled/parametric_surface_geometry.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "solvers/surface/first_order.hpp"
@@ -7,15 +8,22 @@
 #include "solvers/surface/hybrid.hpp"
 #include "solvers/surface/newton.hpp"
 #include "solvers/surface/surface_auto.hpp"
+#include "solvers/surface/surface_certificate.hpp"
 
 namespace footpoint {
 
 namespace {
 
-// The papers' methods take the formulas and the domain, and start from options.initial.
+// The papers' methods take the formulas and the domain, and start from options.initial. With
+// options.certify, an answer inside the domain gets its certificate (certified or refuted as it
+// is: they search nothing beyond their own iteration).
 template <ProjectionResult (*solve)(const SurfaceFormulas&, const ParamBox&, const Vec3&, const Options&)>
 ProjectionResult from_start(const ParametricSurface& s, Vec3 p, const Options& o) {
-  return solve(s.formulas(), s.domain(), p, o);
+  ProjectionResult r = solve(s.formulas(), s.domain(), p, o);
+  if (o.certify.value_or(false) && std::isfinite(r.distance) && s.domain().contains(r.params[0], r.params[1]))
+    r.summary.certificate =
+        surface::certify_answer(s.cells(), s.formulas(), s.domain(), p, r.params[0], r.params[1]);
+  return r;
 }
 
 // The method table of parametric surfaces.

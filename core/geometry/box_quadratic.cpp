@@ -1,8 +1,8 @@
-#include "solvers/surface/box_quadratic.hpp"
+#include "geometry/box_quadratic.hpp"
 
 #include <algorithm>
 
-namespace footpoint::surface {
+namespace footpoint {
 
 namespace {
 // Minimum over x in [lo, hi] of a x + ½ c x^2.
@@ -61,4 +61,4 @@ BoxMinimum minimize_on_box(const BoxQuadratic& q, const std::array<double, 2>& l
   return best;
 }
 
-}  // namespace footpoint::surface
+}  // namespace footpoint

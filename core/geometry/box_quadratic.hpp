@@ -7,7 +7,7 @@
 #pragma once
 #include <array>
 
-namespace footpoint::surface {
+namespace footpoint {
 
 struct BoxQuadratic {
   std::array<double, 2> g{};
@@ -27,4 +27,4 @@ struct BoxMinimum {
 BoxMinimum minimize_on_box(const BoxQuadratic& q, const std::array<double, 2>& lo,
                            const std::array<double, 2>& hi);
 
-}  // namespace footpoint::surface
+}  // namespace footpoint

@@ -24,6 +24,8 @@ enum class CertificateReason {
   non_finite,        // a part of the domain where the formulas are not finite (or not defined)
                      // could not be bounded
   singular,          // a singular point's enclosure is too large to bound the distance near d
+  nearer_point,      // certifying a given answer (a local method's): a point of the geometry nearer
+                     // than it by more than the gap was found - it is no global minimum
   not_requested,     // certification was not asked for (a local method without options.certify)
 };
 const char* to_string(CertificateReason r);

@@ -58,6 +58,8 @@ const char* to_string(CertificateReason r) {
       return "non_finite";
     case CertificateReason::singular:
       return "singular";
+    case CertificateReason::nearer_point:
+      return "nearer_point";
     case CertificateReason::not_requested:
       return "not_requested";
   }

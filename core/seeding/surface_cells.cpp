@@ -89,6 +89,41 @@ Evaluated evaluate(const SurfaceFormulas& f, const Rect& r) {
   return e;
 }
 
+// The rigorous bounds of a cell whose centre jet is `centre` (see SurfaceCellBounds).
+SurfaceCellBounds cell_bounds(const SurfaceFormulas& f, const Rect& r, const SurfaceJet& centre) {
+  SurfaceCellBounds b;
+  b.enclosure = enclose_box<2>(f.program(), {r.u0, r.v0}, {r.u1, r.v1});
+  const double uc = 0.5 * (r.u0 + r.u1), vc = 0.5 * (r.v0 + r.v1);
+  const PointEnclosure<2> exact = enclose_point<2>(f.program(), {uc, vc});
+  b.centre_valid = exact.valid && is_finite(centre);
+  b.rho = std::numeric_limits<double>::infinity();
+  if (!b.centre_valid) return b;
+  // |exact - stored| <= |ball mid - stored| + ball radius, rounded up
+  auto apart = [](const Vec3& stored, const Vec3& mid, const Vec3& rad) {
+    Vec3 d;
+    for (int k = 0; k < 3; ++k) d[k] = (std::abs(stored[k] - mid[k]) + rad[k]) * (1.0 + 0x1p-50);
+    return d;
+  };
+  b.s_rad = apart(centre.s, exact.s, exact.s_rad);
+  b.su_rad = apart(centre.su, exact.ds[0], exact.ds_rad[0]);
+  b.sv_rad = apart(centre.sv, exact.ds[1], exact.ds_rad[1]);
+  if (!b.enclosure.smooth) return b;
+  // per coordinate: the centre's rounding, the first partials' rounding times the half-widths, and
+  // the remainder ½ (hu^2 |s_uu| + 2 hu hv |s_uv| + hv^2 |s_vv|)
+  const double hu = 0.5 * (r.u1 - r.u0), hv = 0.5 * (r.v1 - r.v0);
+  const BoxEnclosure<2>& e = b.enclosure;
+  double rho2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    auto mag = [&](int pair) { return std::abs(e.d2_mid[pair][k]) + e.d2_rad[pair][k]; };
+    const double remainder = 0.5 * (hu * hu * mag(0) + 2.0 * hu * hv * mag(1) + hv * hv * mag(2));
+    const double ek = b.s_rad[k] + b.su_rad[k] * hu + b.sv_rad[k] * hv + remainder;
+    rho2 += ek * ek;
+  }
+  b.rho = std::sqrt(rho2) * (1.0 + 0x1p-46);
+  if (std::isnan(b.rho)) b.rho = std::numeric_limits<double>::infinity();
+  return b;
+}
+
 }  // namespace
 
 SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
@@ -169,6 +204,7 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
   }
   // the leaves: cells with their rigorous boxes
   cells_.reserve(static_cast<std::size_t>(leaves));
+  bounds_.reserve(static_cast<std::size_t>(leaves));
   std::vector<SpaceLeaf> leaves_in_space;
   leaves_in_space.reserve(static_cast<std::size_t>(leaves));
   for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -215,7 +251,12 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     leaf.cell = static_cast<std::int32_t>(cells_.size());
     leaves_in_space.push_back(leaf);
     cells_.push_back(cell);
+    CompileBudget::check();
+    bounds_.push_back(cell_bounds(formulas, r, e.jet));
   }
+  // sub-boxes on demand: up to a pair per cell, at least 1024 pairs (~1 MB)
+  refinement_ = std::make_unique<SurfaceRefinement>(formulas.program(), cells_.size(),
+                                                    std::max<std::size_t>(cells_.size(), 1024));
   // The search hierarchy is built over the cells' boxes in space, not over the parameter
   // subdivision: a surface folded or turned in space puts cells far apart in parameters side by
   // side, and boxes grouped by where they are overlap less. The whole surface's box is the union.
@@ -311,7 +352,7 @@ double SurfaceCells::root_distance2(const Vec3& p) const {
 
 std::size_t SurfaceCells::memory_bytes() const {
   return sizeof(*this) + nodes_.capacity() * sizeof(SurfaceCellNode) +
-         cells_.capacity() * sizeof(SurfaceCell);
+         cells_.capacity() * sizeof(SurfaceCell) + bounds_bytes();
 }
 
 }  // namespace footpoint

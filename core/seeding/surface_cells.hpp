@@ -37,9 +37,12 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "geometry/box_enclosure.hpp"
 #include "geometry/parametric_surface.hpp"
+#include "seeding/surface_refinement.hpp"
 
 namespace footpoint {
 
@@ -85,6 +88,20 @@ struct alignas(64) SurfaceCell {
   double vc() const { return 0.5 * (v0 + v1); }
 };
 
+// What the certificate of an answer needs of a cell (solvers/surface/surface_certificate.hpp):
+// rigorous, independent of the point projected, next to the cell's estimates above.
+struct SurfaceCellBounds {
+  BoxEnclosure<2> enclosure;  // s, its second partials and the metric over the cell
+  // The stored centre jet (SurfaceCell::centre) against the exact values at the cell's centre:
+  // |s(c)_k - centre.s_k| <= s_rad_k, and the same for s_u, s_v (from a ball jet at c).
+  Vec3 s_rad, su_rad, sv_rad;
+  // The tangent-plane model's error, proved: |s(t) - (s_c + s_u δu + s_v δv)| <= rho over the
+  // cell for the stored centre jet (its rounding above, plus the second-order remainder
+  // ½ δᵀ|∂²s|δ with the magnitudes of the enclosure); +inf where the cell is not smooth.
+  double rho = 0.0;
+  bool centre_valid = false;  // the ball jet at the centre is finite
+};
+
 // A corner of the parameter domain and its point of the surface.
 struct SurfaceCorner {
   double u = 0.0, v = 0.0;
@@ -113,6 +130,10 @@ class SurfaceCells {
   // nodes()[0] is the root, unless the tree is a single cell (then nodes() is empty).
   const std::vector<SurfaceCellNode>& nodes() const { return nodes_; }
   const std::vector<SurfaceCell>& cells() const { return cells_; }
+  // Parallel to cells(): their rigorous bounds.
+  const std::vector<SurfaceCellBounds>& bounds() const { return bounds_; }
+  // The cells' sub-boxes, bisected on demand by the certificates and kept (thread-safe).
+  const SurfaceRefinement& refinement() const { return *refinement_; }
   // The box containing the whole surface (the root's).
   const Vec3& lo() const { return lo_; }
   const Vec3& hi() const { return hi_; }
@@ -124,6 +145,12 @@ class SurfaceCells {
   // Memory per cell, an upper bound: the cell and a node (a tree with n >= 2 leaves whose nodes
   // have at least two children each has fewer than n nodes).
   static constexpr std::size_t bytes_per_cell() { return sizeof(SurfaceCell) + sizeof(SurfaceCellNode); }
+  // The certificates' part of memory_bytes(), outside the cap (max_bytes caps the search's cells
+  // and tree): the cells' rigorous bounds (sizeof(SurfaceCellBounds) a cell) and the sub-boxes
+  // the refinement may keep.
+  std::size_t bounds_bytes() const {
+    return bounds_.capacity() * sizeof(SurfaceCellBounds) + refinement_->reserved_bytes();
+  }
 
   // Lower bounds on |p - x|^2 over each child's box of `node` (0 inside it, +inf for an unused slot).
   static void box_distances2(const SurfaceCellNode& node, const Vec3& p,
@@ -158,6 +185,8 @@ class SurfaceCells {
   std::int32_t build_space_tree(std::vector<SpaceLeaf>& leaves, std::size_t begin, std::size_t end);
   std::vector<SurfaceCellNode> nodes_;
   std::vector<SurfaceCell> cells_;
+  std::vector<SurfaceCellBounds> bounds_;
+  std::unique_ptr<SurfaceRefinement> refinement_;
   std::array<SurfaceCorner, 4> corners_;
   Vec3 lo_, hi_;
 };

@@ -8,8 +8,9 @@
 #include <optional>
 #include <vector>
 
-#include "solvers/surface/box_quadratic.hpp"
+#include "geometry/box_quadratic.hpp"
 #include "solvers/surface/projected_newton.hpp"
+#include "solvers/surface/surface_certificate.hpp"
 #include "solvers/surface/surface_convergence.hpp"
 #include "solvers/surface/surface_result.hpp"
 
@@ -166,10 +167,41 @@ class Search {
     }
     r.summary.starts = solves_;
     if (options_.all_minima) r.minima = minima();
+    if (has_best_ && options_.certify.value_or(true)) certify(r);
     return r;
   }
 
  private:
+  // The certificate of the answer (solvers/surface/surface_certificate.hpp), from every minimiser
+  // the search found; where it finds a nearer minimum (the search's estimates lost its basin), that
+  // one is the answer.
+  void certify(ProjectionResult& r) {
+    // the minimisers at the answer's distance (its copies on a periodic or folded
+    // parametrisation: each needs its own bound) and near it
+    std::vector<std::array<double, 2>> known;
+    const double near_best = best_.sol.distance * (1.0 + 1e-6) + 1e-12;
+    for (int i = 0; i < minimisers_count_; ++i)
+      if (minimisers_[i][2] <= near_best) known.push_back({minimisers_[i][0], minimisers_[i][1]});
+    for (const Found& f : all_)
+      if (f.sol.distance <= near_best) known.push_back({f.sol.u, f.sol.v});
+    const SurfaceLocalSolve solve = [&](double u, double v) {
+      return projected_newton(formulas_, box_, p_, u, v, criteria_);
+    };
+    const SurfaceCertification c =
+        certify_surface(cells_, formulas_, box_, p_, best_.sol, known, solve, true);
+    if (c.improved) {
+      const LocalSolution& s = c.better;
+      const int starts = r.summary.starts;
+      r = surface_result("auto", p_, s.u, s.v, s.jet.s, s.jet.su, s.jet.sv, box_);
+      r.summary.status = s.status;
+      r.summary.iterations = s.iterations;
+      r.summary.step_norm = s.step_norm;
+      r.summary.starts = starts;
+      if (!(s.distance <= options_.max_distance)) r.summary.status = Status::beyond_max_distance;
+    }
+    r.summary.certificate = c.certificate;
+  }
+
   void visit(std::int32_t index, double box_lb) {
     const SurfaceCell& c = cells_.cells()[static_cast<std::size_t>(index)];
     if (!c.finite) return;
@@ -415,6 +447,7 @@ class Search {
   }
 
   void remember(double u, double v, double distance) {
+    if (minimisers_count_ < kMinimisers) minimisers_[minimisers_count_++] = {u, v, distance};
     const int i = feet_count_ < kRemembered ? feet_count_++ : solves_ % kRemembered;
     feet_[i] = {u, v};
     feet_distance_[i] = distance;
@@ -516,6 +549,11 @@ class Search {
   double feet_distance_[kRemembered];        // and their distances (abandoned: lower bounds)
   int feet_count_ = 0;
   std::vector<Found> all_;
+  // every minimiser found (u, v, distance; abandoned solves: the predicted minimiser and a lower
+  // bound), for the certificate
+  static constexpr int kMinimisers = 64;
+  std::array<double, 3> minimisers_[kMinimisers];
+  int minimisers_count_ = 0;
 };
 
 }  // namespace
