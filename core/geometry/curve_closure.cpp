@@ -55,10 +55,10 @@ CurveClosure detect_curve_closure(const CurveFormulas& formulas, const ParamInte
   const CurveJet first = formulas.jet(domain.tmin), last = formulas.jet(domain.tmax);
   const bool defined = is_finite(first.c) && is_finite(last.c);
   closure.gap = defined ? norm(last.c - first.c) : std::numeric_limits<double>::infinity();
-  closure.closed = defined && closure.gap <= closure.tolerance;
+  closure.closed = defined && closure.gap <= closure.tolerance && std::isfinite(closure.tolerance);
   if (declared_periodic) {
     const double limit = closure_sampling::declared_limit(closure.tolerance, extent.size());
-    if (!closure.closed && !(closure.gap <= limit))
+    if (!closure.closed && !(closure.gap <= limit && std::isfinite(limit)))
       throw GeometryError(
           "not_periodic", "periodic", -1,
           "t is declared periodic, but " +

@@ -79,7 +79,10 @@ struct Match {
   int worst = 0;         // the sample of max_gap
   int defined = 0;       // samples where both are defined
   int one_sided = -1;    // a sample where only one is (-1: none)
-  bool within(double limit) const { return one_sided < 0 && 2 * defined >= kSamples && max_gap <= limit; }
+  // (A limit that overflowed to infinity - parameters near the largest doubles - accepts nothing.)
+  bool within(double limit) const {
+    return one_sided < 0 && 2 * defined >= kSamples && max_gap <= limit && std::isfinite(limit);
+  }
 };
 
 Match match(const std::vector<SurfaceJet>& side_a, const std::vector<SurfaceJet>& side_b) {
@@ -318,7 +321,7 @@ SurfaceClosure detect_surface_closure(const SurfaceFormulas& formulas, const Par
     const Vec3 mean = sum / static_cast<double>(edge.size());
     double spread = 0.0;
     for (const SurfaceJet& j : edge) spread = std::max(spread, norm(j.s - mean));
-    if (!(spread <= closure.tolerance)) continue;
+    if (!(spread <= closure.tolerance) || !std::isfinite(closure.tolerance)) continue;
     SurfacePole& pole = closure.poles[e];
     const Direction d = direction(box, static_cast<int>(e / 2));
     pole.collapsed = true;

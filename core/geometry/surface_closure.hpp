@@ -49,6 +49,9 @@
 //    between the samples; that the edges coincide to rounding level is shown at the samples only.
 //    Both bounds are about the formulas' exact values at the double parameters of the edges.
 //  - Creases are sampled only.
+// Not recognized: edges that are one curve under another correspondence than the identity or the
+// reversal (glued with a shift, s(umax, v) = s(umin, v + c), as a torus parametrised along a
+// twisted grid): they are reported open, as boundary edges - conservative, not wrong.
 // The cost (bench/closure_bench): 30-70 us for a surface without seams (~200 second-order jets),
 // 0.2-0.4 ms more per seam found (~130 interval jets for its gap_bound).
 #pragma once
