@@ -52,7 +52,7 @@
 // Not recognized: edges that are one curve under another correspondence than the identity or the
 // reversal (glued with a shift, s(umax, v) = s(umin, v + c), as a torus parametrised along a
 // twisted grid): they are reported open, as boundary edges - conservative, not wrong.
-// The cost (bench/closure_bench): 30-70 us for a surface without seams (~200 second-order jets),
+// The cost (bench/closure_bench): 15-70 us for a surface without seams (~200 second-order jets),
 // 0.2-0.4 ms more per seam found (~130 interval jets for its gap_bound).
 #pragma once
 #include <array>
