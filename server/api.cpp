@@ -277,6 +277,7 @@ ApiResponse Api::create_geometry(std::string_view body) {
   w.integer(static_cast<long long>(g.memory_bytes()));
   w.key("compile_ms");
   w.number(lookup.compile_time.count() * 1e3);
+  write_closure(w, g);
   // Whether every replica can now answer the id: "stored" in the shared registry, "not_stored"
   // (the registry is unavailable: this replica only, stored when the registry is back), or
   // "off" (no registry configured).
@@ -308,6 +309,7 @@ ApiResponse Api::get_geometry(std::string_view id) {
   w.integer(g->num_params());
   w.key("methods");
   write_method_names(w, *g);
+  write_closure(w, *g);
   w.key("cache");
   w.begin_object();
   w.key("hits");

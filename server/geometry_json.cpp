@@ -1,10 +1,13 @@
 #include "geometry_json.hpp"
 
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <vector>
 
 #include "api_error.hpp"
+#include "compiled/parametric_curve_geometry.hpp"
+#include "compiled/parametric_surface_geometry.hpp"
 
 namespace footpoint::server {
 
@@ -24,6 +27,7 @@ struct RawDefinition {
   std::optional<std::vector<std::string>> equations;
   std::optional<std::vector<std::pair<std::string, Interval>>> domain;
   std::map<std::string, double> constants;
+  std::optional<std::vector<std::string>> periodic;
 };
 
 Interval read_interval(JsonReader& r, const std::string& field) {
@@ -78,6 +82,26 @@ RawDefinition read_members(JsonReader& r, const std::string& prefix) {
       throw request_error(e, field);
     }
   };
+  // An array of at most `most` strings.
+  auto read_strings = [&](const std::string& field, std::size_t most, const char* too_many) {
+    std::vector<std::string> items;
+    try {
+      r.begin_array();
+    } catch (const JsonReadError& e) {
+      throw request_error(e, field);
+    }
+    for (;;) {
+      const std::string item = field + "[" + std::to_string(items.size()) + "]";
+      try {
+        if (!r.next_element()) break;
+      } catch (const JsonReadError& e) {
+        throw request_error(e, item);
+      }
+      if (items.size() == most) throw ApiError(400, "wrong_shape", field + too_many, field);
+      items.push_back(read_string(item));
+    }
+    return items;
+  };
   const std::string object_field = prefix.empty() ? "body" : prefix.substr(0, prefix.size() - 1);
   read_object(r, object_field, prefix, prefix, [&](const std::string& key, const std::string& field) {
     if (key == "type") {
@@ -89,24 +113,9 @@ RawDefinition read_members(JsonReader& r, const std::string& prefix) {
     } else if (key == "z") {
       raw.z = read_string(field);
     } else if (key == "equations") {
-      std::vector<std::string> eqs;
-      try {
-        r.begin_array();
-      } catch (const JsonReadError& e) {
-        throw request_error(e, field);
-      }
-      for (;;) {
-        const std::string item = field + "[" + std::to_string(eqs.size()) + "]";
-        try {
-          if (!r.next_element()) break;
-        } catch (const JsonReadError& e) {
-          throw request_error(e, item);
-        }
-        if (eqs.size() == 2)
-          throw ApiError(400, "wrong_shape", field + " holds one equation (planar) or two (spatial)", field);
-        eqs.push_back(read_string(item));
-      }
-      raw.equations = std::move(eqs);
+      raw.equations = read_strings(field, 2, " holds one equation (planar) or two (spatial)");
+    } else if (key == "periodic") {
+      raw.periodic = read_strings(field, 2, " names each parameter at most once");
     } else if (key == "domain") {
       std::vector<std::pair<std::string, Interval>> domain;
       read_object(r, field, field, field + ".", [&](const std::string& name, const std::string& item) {
@@ -200,6 +209,29 @@ GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
     def.domain.push_back(*found);
   }
   def.constants = std::move(raw.constants);
+  if (raw.periodic) {
+    // Parameters only (an implicit curve has none), each once; kept in the parameters' order.
+    const std::vector<std::string> parameters =
+        def.type == GeometryType::parametric_surface ? std::vector<std::string>{"u", "v"}
+        : def.type == GeometryType::parametric_curve ? std::vector<std::string>{"t"}
+                                                     : std::vector<std::string>{};
+    forbid(parameters.empty(), "periodic");
+    for (std::size_t i = 0; i < raw.periodic->size(); ++i) {
+      const std::string& name = (*raw.periodic)[i];
+      const std::string field = prefix + "periodic[" + std::to_string(i) + "]";
+      if (std::find(parameters.begin(), parameters.end(), name) == parameters.end())
+        throw ApiError(
+            400, "unknown_parameter",
+            field + ": '" + name + "' is not a parameter of a " + type + " (" + join(parameters) + ")",
+            field);
+      for (std::size_t j = 0; j < i; ++j)
+        if ((*raw.periodic)[j] == name)
+          throw ApiError(400, "duplicate_parameter", field + ": '" + name + "' is named twice", field);
+    }
+    for (const std::string& p : parameters)
+      if (std::find(raw.periodic->begin(), raw.periodic->end(), p) != raw.periodic->end())
+        def.periodic.push_back(p);
+  }
   return def;
 }
 
@@ -237,6 +269,96 @@ void write_geometry(JsonWriter& w, const GeometryDefinition& def) {
     }
     w.end_object();
   }
+  if (!def.periodic.empty()) {
+    w.key("periodic");
+    w.begin_array();
+    for (const std::string& name : def.periodic_parameters()) w.string(name);
+    w.end_array();
+  }
+  w.end_object();
+}
+
+namespace {
+
+void write_point(JsonWriter& w, Vec3 p, int dim) {
+  w.begin_array();
+  for (int c = 0; c < dim; ++c) w.number(p[c]);
+  w.end_array();
+}
+
+void write_names(JsonWriter& w, const std::vector<std::string>& names) {
+  w.begin_array();
+  for (const std::string& name : names) w.string(name);
+  w.end_array();
+}
+
+// A closed direction: {"direction", "reversed", "smooth", "max_gap", "gap_bound"} (null: no bound).
+void write_seam(JsonWriter& w, const char* direction, bool reversed, bool smooth, double max_gap,
+                double gap_bound) {
+  w.begin_object();
+  w.key("direction");
+  w.string(direction);
+  w.key("reversed");
+  w.boolean(reversed);
+  w.key("smooth");
+  w.boolean(smooth);
+  w.key("max_gap");
+  w.number(max_gap);
+  w.key("gap_bound");
+  w.number(gap_bound);
+  w.end_object();
+}
+
+}  // namespace
+
+void write_closure(JsonWriter& w, const CompiledGeometry& geometry) {
+  const auto* surface = dynamic_cast<const ParametricSurface*>(&geometry);
+  const auto* curve = dynamic_cast<const ParametricCurve*>(&geometry);
+  if (!surface && !curve) return;
+  static const char* const kDirections[2] = {"u", "v"};
+  w.key("closure");
+  w.begin_object();
+  w.key("periodic");
+  std::vector<std::string> periodic;
+  if (surface) {
+    for (int i = 0; i < 2; ++i)
+      if (surface->closure().periodic(i)) periodic.push_back(kDirections[i]);
+  } else if (curve->closure().closed) {
+    periodic.push_back("t");
+  }
+  write_names(w, periodic);
+  w.key("declared");
+  write_names(w, geometry.definition().periodic_parameters());
+  w.key("seams");
+  w.begin_array();
+  if (surface) {
+    for (int i = 0; i < 2; ++i) {
+      const SurfaceSeam& seam = surface->closure().seams[static_cast<std::size_t>(i)];
+      if (seam.closed)
+        write_seam(w, kDirections[i], seam.reversed, seam.smooth, seam.max_gap, seam.gap_bound);
+    }
+  } else if (const CurveClosure& c = curve->closure(); c.closed) {
+    write_seam(w, "t", false, c.smooth, c.gap, c.gap_bound);
+  }
+  w.end_array();
+  w.key("poles");
+  w.begin_array();
+  if (surface)
+    for (const BoxEdge edge : {BoxEdge::umin, BoxEdge::umax, BoxEdge::vmin, BoxEdge::vmax}) {
+      const SurfacePole& pole = surface->closure().poles[static_cast<std::size_t>(edge)];
+      if (!pole.collapsed) continue;
+      w.begin_object();
+      w.key("edge");
+      w.string(to_string(edge));
+      w.key("point");
+      write_point(w, pole.point, 3);
+      w.key("radius_bound");
+      w.number(pole.radius_bound);
+      w.end_object();
+    }
+  w.end_array();
+  w.key("tolerance");
+  w.number(surface ? surface->closure().tolerance : curve->closure().tolerance);
   w.end_object();
 }
 

@@ -2,8 +2,10 @@
 //   {"type":"parametric_surface", "x":"…", "y":"…", "z":"…", "domain":{"u":[a,b],"v":[c,d]}}
 //   {"type":"parametric_curve", "x":"…", "y":"…"[, "z":"…"], "domain":{"t":[a,b]}}
 //   {"type":"implicit_curve", "equations":["f1"[, "f2"]], "domain":{"x":[..],"y":[..][,"z":[..]]}}
-// each with optional "constants":{"name": number}. Shape problems are 400 ApiErrors naming the
-// field; whether the formulas compile and the domain is sound is decided by compile_geometry.
+// each with optional "constants":{"name": number}, parametric ones with optional "periodic": ["u",
+// "v"] / ["t"] (the parameters declared periodic). Shape problems are 400 ApiErrors naming the
+// field (an unknown or repeated periodic name too); whether the formulas compile, the domain is
+// sound and a declared direction really is periodic is decided by compile_geometry.
 #pragma once
 #include <string>
 
@@ -19,5 +21,9 @@ GeometryDefinition read_geometry(JsonReader& reader, const std::string& prefix);
 
 // Writes the definition in the same JSON form.
 void write_geometry(JsonWriter& writer, const GeometryDefinition& def);
+
+// Writes the member "closure" of a parametric geometry (seams, poles, what was declared; see
+// openapi.yaml, Closure), nothing for an implicit curve.
+void write_closure(JsonWriter& writer, const CompiledGeometry& geometry);
 
 }  // namespace footpoint::server

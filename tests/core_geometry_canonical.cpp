@@ -4,6 +4,7 @@
 // refused.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -87,11 +88,23 @@ std::vector<GeometryDefinition> reference_geometries() {
   torus.domain = {{"u", {-0.0, 6.283185307179586}}, {"v", {-3.141592653589793, 1e-300}}};
   torus.constants = {{"R", 2.0}, {"r", 0.5}, {"big", -1.5e300}};
   all.push_back(torus);
+  // Declared periodic directions, in any order and repeated.
+  GeometryDefinition periodic_torus = torus;
+  periodic_torus.domain[1].second = {0.0, 6.283185307179586};
+  periodic_torus.constants.erase("big");
+  periodic_torus.periodic = {"v", "u", "v"};
+  all.push_back(periodic_torus);
   GeometryDefinition helix;
   helix.type = GeometryType::parametric_curve;
   helix.formulas = {{"x", "cos(t)"}, {"y", "sin(t)"}, {"z", "t/4 + (t <= 1)"}};  // "=" inside a formula
   helix.domain = {{"t", {0.0, 12.566370614359172}}};
   all.push_back(helix);
+  GeometryDefinition circle;
+  circle.type = GeometryType::parametric_curve;
+  circle.formulas = {{"x", "cos(t)"}, {"y", "sin(t)"}};
+  circle.domain = {{"t", {0.0, 6.283185307179586}}};
+  circle.periodic = {"t"};
+  all.push_back(circle);
   return all;
 }
 
@@ -116,6 +129,10 @@ TEST_CASE("parse_canonical inverts canonical() on every reference geometry") {
       CHECK(std::memcmp(parsed.domain[i].second.data(), d.domain[i].second.data(), sizeof(double) * 2) == 0);
     }
     CHECK(parsed.constants == d.constants);
+    std::vector<std::string> periodic = d.periodic;
+    std::sort(periodic.begin(), periodic.end());
+    periodic.erase(std::unique(periodic.begin(), periodic.end()), periodic.end());
+    CHECK(parsed.periodic == periodic);
   }
 }
 
@@ -171,6 +188,17 @@ TEST_CASE("parse_canonical refuses every text that is not a canonical definition
                        "domain.z=[0,1]"),
            good + "x",
            good.substr(0, good.size() - 1),
+           // periodic: parameters of the type only, sorted, once each, after the constants
+           good + ";periodic=w",
+           good + ";periodic=v,u",
+           good + ";periodic=u,u",
+           good + ";periodic=",
+           good + ";periodic=u;periodic=v",
+           std::string("footpoint/1;type=parametric_surface;x=u;y=v;z=u*v;domain.u=[-1,1];domain.v=[0,2.5];"
+                       "periodic=u;constants.a=3"),
+           std::string("footpoint/1;type=parametric_curve;x=t;y=t;domain.t=[0,1];periodic=u"),
+           std::string("footpoint/1;type=implicit_curve;equations[0]=x^2+y^2-1;domain.x=[0,1];domain.y=[0,1];"
+                       "periodic=x"),
        }) {
     INFO(bad);
     try {

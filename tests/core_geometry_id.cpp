@@ -41,3 +41,31 @@ TEST_CASE("the id ignores formatting and sees every meaningful difference") {
   CHECK(curve.id() != id);
   CHECK(surface("u+v", 3.0).canonical().find("domain.u=[-3,3]") != std::string::npos);
 }
+
+TEST_CASE("definitions without periodic keep the ids they always had; periodic is part of the id") {
+  // Canonical text and id as computed before periodic existed (sha256sum of the text): pinned, so
+  // that ids in clients' hands and in shared registries stay valid.
+  const GeometryDefinition s1 = surface("u+v", 3.0);
+  CHECK(s1.canonical() ==
+        "footpoint/"
+        "1;type=parametric_surface;x=u+v;y=sin(u)+2*cos(v);z=sin(u+v);domain.u=[-3,3];domain.v=[-3,3]");
+  CHECK(s1.id() == "6eb4132bf22f865049048bc1e2fc6ee9");
+  GeometryDefinition helix;
+  helix.type = GeometryType::parametric_curve;
+  helix.formulas = {{"x", "cos(t)"}, {"y", "sin(t)"}, {"z", "0.2*t"}};
+  helix.domain = {{"t", {0.0, 12.566370614359172}}};
+  CHECK(helix.id() == "3435dcdf6f7909f97ebfbb8af8d65bfb");
+  // An empty list is no declaration.
+  GeometryDefinition none = s1;
+  none.periodic = {};
+  CHECK(none.id() == s1.id());
+  // Declared directions change the id; their order and repeats do not.
+  GeometryDefinition u = s1, uv = s1, vu = s1;
+  u.periodic = {"u"};
+  uv.periodic = {"u", "v"};
+  vu.periodic = {"v", "u", "u"};
+  CHECK(u.id() != s1.id());
+  CHECK(uv.id() != u.id());
+  CHECK(vu.id() == uv.id());
+  CHECK(uv.canonical() == s1.canonical() + ";periodic=u,v");
+}

@@ -1,13 +1,14 @@
 // Meshes of curves (mesh/curve_mesh): parametric curves as equidistributed polylines of points
-// c(t_i) (against the closed forms evaluated here), implicit curves as the traced pieces with
-// every vertex on both equations, loops closed, box-face ends on the face, branches joined at
-// singular points, and the resolution bounding the segments.
+// c(t_i) (against the closed forms evaluated here), closed ones as closed polylines, implicit curves as the
+// traced pieces with every vertex on both equations, loops closed, box-face ends on the face, branches joined
+// at singular points, and the resolution bounding the segments.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "compiled/implicit_curve_geometry.hpp"
+#include "compiled/parametric_curve_geometry.hpp"
 #include "mesh/mesh.hpp"
 
 using namespace footpoint;
@@ -100,6 +101,46 @@ TEST_CASE("helix: c(t_i) at its parameters, exact tangents, uniform lines (const
   CHECK(m.parameters.back() == 4 * kPi);
   const double exact = 4 * kPi * std::sqrt(1.0625);
   CHECK(std::abs(length(m) - exact) <= 1e-3 * exact);
+}
+
+TEST_CASE("closed parametric curves give closed polylines without a second vertex at the seam") {
+  struct Case {
+    std::vector<formula::NamedFormula> xyz;
+    double exact_length;
+  };
+  const Case cases[] = {
+      {{{"x", "cos(t)"}, {"y", "sin(t)"}}, 2 * kPi},
+      {{{"x", "sin(t)+2*sin(2*t)"}, {"y", "cos(t)-2*cos(2*t)"}, {"z", "-sin(3*t)"}}, 0.0},  // trefoil
+      // Finite only for cos(t) >= -0.9 besides: two runs joined across t = 0 = 2 pi.
+      {{{"x", "cos(t)+0*sqrt(cos(t)+0.9)"}, {"y", "sin(t)"}}, 0.0},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.xyz[0].expression);
+    const auto g = parametric(c.xyz, {0, 2 * kPi});
+    REQUIRE(dynamic_cast<const ParametricCurve&>(*g).closure().closed);
+    const int n = 120;
+    const Mesh m = mesh_geometry(*g, MeshOptions{n});
+    check_well_formed(m);
+    REQUIRE(m.polylines.size() == 1);
+    // No two vertices at one point: c(2 pi) is not repeated.
+    for (std::size_t a = 0; a < m.vertices.size(); ++a)
+      for (std::size_t b = a + 1; b < m.vertices.size(); ++b)
+        CHECK(norm(m.vertices[a] - m.vertices[b]) > 1e-9);
+    if (c.exact_length > 0.0) {
+      CHECK(m.polylines[0].closed);
+      CHECK(m.vertices.size() == static_cast<std::size_t>(n));
+      CHECK(segments(m) == static_cast<std::size_t>(n));
+      CHECK(std::abs(length(m) - c.exact_length) <= 1e-3 * c.exact_length);
+    } else if (c.xyz.size() == 3) {
+      CHECK(m.polylines[0].closed);
+    } else {
+      // One open run from past the gap around through t = 0 to the gap's other side.
+      CHECK_FALSE(m.polylines[0].closed);
+      const auto& l = m.polylines[0].vertices;
+      CHECK(m.parameters[static_cast<std::size_t>(l.front())] > kPi);
+      CHECK(m.parameters[static_cast<std::size_t>(l.back())] < kPi);
+    }
+  }
 }
 
 TEST_CASE("planar parametric curve: z = 0, the part where the formula is not finite left out") {

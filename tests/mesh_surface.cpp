@@ -1,8 +1,9 @@
 // Meshes of parametric surfaces (mesh/surface_mesh): every vertex is the surface's point at its
 // parameters (against the closed forms evaluated here), normals are unit and agree with the
 // analytic ones, no triangle is degenerate, the winding follows the normals, a sphere's mesh has
-// the sphere's area, seams and poles named by a SurfaceClosure give a closed mesh, and the lines
-// crowd where the surface bends.
+// the sphere's area, seams and poles (found at compile time, or named by a SurfaceClosure) give a
+// closed mesh with the surface's Euler characteristic and no vertex twice, and the lines crowd where
+// the surface bends.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -127,13 +128,10 @@ TEST_CASE("the resolution bounds the cells along each direction") {
   CHECK_THROWS_AS(mesh_geometry(*g, MeshOptions{1}), std::invalid_argument);
 }
 
-TEST_CASE("a closure stitches seams and poles: the sphere and the torus give closed meshes") {
+TEST_CASE("the detected closure stitches seams and poles: the sphere and the torus give closed meshes") {
   SUBCASE("sphere: one vertex per pole, every edge in two triangles, V - E + F = 2") {
     const auto g = surface("sin(u)*cos(v)", "sin(u)*sin(v)", "cos(u)", {0, kPi}, {0, 2 * kPi});
-    SurfaceClosure closure;
-    closure.v_closed = true;
-    closure.pole = {true, true, false, false};
-    const Mesh m = mesh_parametric_surface(as_surface(g), 40, closure);
+    const Mesh m = mesh_parametric_surface(as_surface(g), 40);
     check_well_formed(m);
     int poles = 0;
     for (const Vec3& x : m.vertices) poles += std::hypot(x.x, x.y) < 1e-9;
@@ -149,9 +147,7 @@ TEST_CASE("a closure stitches seams and poles: the sphere and the torus give clo
   }
   SUBCASE("torus: both directions closed, V - E + F = 0") {
     const auto g = surface("(2+cos(v))*cos(u)", "(2+cos(v))*sin(u)", "sin(v)", {0, 2 * kPi}, {0, 2 * kPi});
-    SurfaceClosure closure;
-    closure.u_closed = closure.v_closed = true;
-    const Mesh m = mesh_parametric_surface(as_surface(g), 48, closure);
+    const Mesh m = mesh_parametric_surface(as_surface(g), 48);
     check_well_formed(m);
     const auto edges = edge_counts(m);
     for (const auto& [edge, count] : edges) CHECK(count == 2);
@@ -163,12 +159,98 @@ TEST_CASE("a closure stitches seams and poles: the sphere and the torus give clo
   }
   SUBCASE("without a closure the torus mesh is a grid with open seams of the same area") {
     const auto g = surface("(2+cos(v))*cos(u)", "(2+cos(v))*sin(u)", "sin(v)", {0, 2 * kPi}, {0, 2 * kPi});
-    const Mesh m = mesh_parametric_surface(as_surface(g), 48);
+    const Mesh m = mesh_parametric_surface(as_surface(g), 48, SurfaceClosure{});
     check_well_formed(m);
     int boundary = 0;
     for (const auto& [edge, count] : edge_counts(m)) boundary += count == 1;
     CHECK(boundary > 0);
     CHECK(std::abs(area(m) - 8 * kPi * kPi) <= 0.01 * 8 * kPi * kPi);
+  }
+}
+
+namespace {
+
+long euler_characteristic(const Mesh& m) {
+  return static_cast<long>(m.vertices.size()) - static_cast<long>(edge_counts(m).size()) +
+         static_cast<long>(m.triangles.size());
+}
+
+// Edges in one triangle only (the mesh's boundary).
+int boundary_edges(const Mesh& m) {
+  int n = 0;
+  for (const auto& [edge, count] : edge_counts(m)) n += count == 1;
+  return n;
+}
+
+// No two vertices at one point (a seam's or a pole's vertices are not repeated).
+void check_no_duplicates(const Mesh& m, double size) {
+  std::vector<std::size_t> order(m.vertices.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return m.vertices[a].x < m.vertices[b].x; });
+  int duplicates = 0;
+  for (std::size_t i = 0; i < order.size(); ++i)
+    for (std::size_t j = i + 1;
+         j < order.size() && m.vertices[order[j]].x - m.vertices[order[i]].x <= 1e-9 * size; ++j)
+      duplicates += norm(m.vertices[order[i]] - m.vertices[order[j]]) <= 1e-9 * size;
+  CHECK(duplicates == 0);
+}
+
+}  // namespace
+
+TEST_CASE("closed meshes from the API's path (mesh_geometry): Euler characteristics, no duplicate vertices") {
+  SUBCASE("torus: V - E + F = 0, every edge in two triangles") {
+    const auto g =
+        surface("(2+0.5*cos(v))*cos(u)", "(2+0.5*cos(v))*sin(u)", "0.5*sin(v)", {0, 2 * kPi}, {0, 2 * kPi});
+    const Mesh m = mesh_geometry(*g, MeshOptions{40});
+    check_well_formed(m);
+    CHECK(euler_characteristic(m) == 0);
+    CHECK(boundary_edges(m) == 0);
+    check_no_duplicates(m, 5.0);
+  }
+  SUBCASE("sphere over longitude x latitude (tests/data/surface_sphere.json): V - E + F = 2") {
+    const auto g = surface("cos(u)*cos(v)", "sin(u)*cos(v)", "sin(v)", {0, 2 * kPi}, {-kPi / 2, kPi / 2});
+    const Mesh m = mesh_geometry(*g, MeshOptions{40});
+    check_well_formed(m);
+    CHECK(euler_characteristic(m) == 2);
+    CHECK(boundary_edges(m) == 0);
+    check_no_duplicates(m, 2.0);
+  }
+  SUBCASE("cylinder: one seam, two boundary circles, V - E + F = 0") {
+    const auto g = surface("cos(u)", "sin(u)", "v", {0, 2 * kPi}, {-1, 1});
+    const Mesh m = mesh_geometry(*g, MeshOptions{40});
+    check_well_formed(m);
+    CHECK(euler_characteristic(m) == 0);
+    // The two circles: as many boundary edges as cells around, each circle closed.
+    const auto& closure = as_surface(g).closure();
+    CHECK(closure.periodic(0));
+    int around = 0;
+    for (std::size_t k = 0; k < m.vertices.size(); ++k) around += m.parameters[2 * k + 1] == -1.0;
+    CHECK(boundary_edges(m) == 2 * around);
+    check_no_duplicates(m, 3.0);
+  }
+  SUBCASE("cone: the apex one vertex, a disc, V - E + F = 1") {
+    const auto g = surface("v*cos(u)", "v*sin(u)", "v", {0, 2 * kPi}, {0, 1});
+    const Mesh m = mesh_geometry(*g, MeshOptions{40});
+    check_well_formed(m);
+    CHECK(euler_characteristic(m) == 1);
+    int apex = 0;
+    for (const Vec3& x : m.vertices) apex += norm(x) == 0.0;
+    CHECK(apex == 1);
+    check_no_duplicates(m, 2.0);
+  }
+  SUBCASE("Möbius band: its reversed seam is left open, the grid well formed") {
+    const auto g =
+        surface("(1+v*cos(u/2))*cos(u)", "(1+v*cos(u/2))*sin(u)", "v*sin(u/2)", {0, 2 * kPi}, {-0.5, 0.5});
+    CHECK(as_surface(g).closure().seams[0].reversed);
+    const Mesh m = mesh_geometry(*g, MeshOptions{40});
+    check_well_formed(m);
+    CHECK(euler_characteristic(m) == 1);  // a disc: the grid, unstitched
+  }
+  SUBCASE("a plane stays a grid") {
+    const auto g = surface("u", "v", "u*v", {-1, 1}, {-1, 1});
+    const Mesh m = mesh_geometry(*g, MeshOptions{20});
+    CHECK(euler_characteristic(m) == 1);
   }
 }
 

@@ -139,6 +139,22 @@ TEST_CASE("every response matches openapi.yaml") {
   const std::string geometry = "/v1/geometries/{id}", project = "/v1/geometries/{id}/project";
   record("GET", geometry, c->Get("/v1/geometries/" + id));
   record("GET", geometry, c->Get("/v1/geometries/" + curve_id));
+  {
+    // Seams declared and found, poles, a closed curve: the closure member of both responses.
+    const std::string torus =
+        R"J({"type":"parametric_surface","x":"(2+0.5*cos(v))*cos(u)","y":"(2+0.5*cos(v))*sin(u)","z":"0.5*sin(v)",)J"
+        R"J("domain":{"u":[0,6.283185307179586],"v":[0,6.283185307179586]},"periodic":["u"]})J";
+    const std::string sphere =
+        R"J({"type":"parametric_surface","x":"cos(u)*cos(v)","y":"sin(u)*cos(v)","z":"sin(v)",)J"
+        R"J("domain":{"u":[0,6.283185307179586],"v":[-1.5707963267948966,1.5707963267948966]}})J";
+    const std::string circle =
+        R"J({"type":"parametric_curve","x":"cos(t)","y":"sin(t)","domain":{"t":[0,6.283185307179586]},"periodic":["t"]})J";
+    for (const auto& def : {torus, sphere, circle}) {
+      post("/v1/geometries", "/v1/geometries", def);
+      record("GET", geometry,
+             c->Get("/v1/geometries/" + json::parse(samples.back().body)["geometry_id"].get<std::string>()));
+    }
+  }
 
   const std::string mesh = "/v1/geometries/{id}/mesh";
   const std::string planar_id = json::parse(samples[7].body)["geometry_id"];
@@ -175,10 +191,16 @@ TEST_CASE("every response matches openapi.yaml") {
        R"J({"geometry":)J" + param + R"J(,"point":[1,1,1],"options":{"all_minima":true}})J");
 
   // Errors of every class.
-  post(project, on, R"J({"point":[1,2,)J");                                                            // 400
-  post(project, on, R"J({"points":[[1,2,3],[1,"x",3]]})J");                                            // 400
-  post(project, on, R"J({"point":[1,2,2],"method":"nope"})J");                                         // 400
-  post("/v1/geometries", "/v1/geometries", R"J({"type":"torus"})J");                                   // 400
+  post(project, on, R"J({"point":[1,2,)J");                           // 400
+  post(project, on, R"J({"points":[[1,2,3],[1,"x",3]]})J");           // 400
+  post(project, on, R"J({"point":[1,2,2],"method":"nope"})J");        // 400
+  post("/v1/geometries", "/v1/geometries", R"J({"type":"torus"})J");  // 400
+  post(
+      "/v1/geometries", "/v1/geometries",
+      R"J({"type":"parametric_surface","x":"u","y":"v","z":"0","domain":{"u":[0,1],"v":[0,1]},"periodic":["w"]})J");  // 400
+  post(
+      "/v1/geometries", "/v1/geometries",
+      R"J({"type":"parametric_surface","x":"u","y":"v","z":"0","domain":{"u":[0,1],"v":[0,1]},"periodic":["u"]})J");  // 422
   post("/v1/project", "/v1/project", R"J({"point":[1,2,3]})J");                                        // 400
   post(project, "/v1/geometries/00000000000000000000000000000000/project", R"J({"point":[1,2,2]})J");  // 404
   record("GET", geometry, c->Get("/v1/geometries/00000000000000000000000000000000"));                  // 404

@@ -65,6 +65,23 @@ void validate_domain(const GeometryDefinition& def, const std::vector<std::strin
     throw GeometryError("bad_domain", "domain", -1, "domain has unexpected entries");
 }
 
+std::vector<bool> declared_periodic(const GeometryDefinition& def,
+                                    const std::vector<std::string>& parameters) {
+  std::vector<bool> declared(parameters.size(), false);
+  for (const std::string& name : def.periodic) {
+    const auto it = std::find(parameters.begin(), parameters.end(), name);
+    if (it == parameters.end()) {
+      std::string names;
+      for (const std::string& p : parameters) (names += names.empty() ? "" : ", ") += p;
+      throw GeometryError("unknown_parameter", "periodic", -1,
+                          "periodic: '" + name + "' is not a parameter of a " + to_string(def.type) +
+                              (names.empty() ? " (it has none)" : " (" + names + ")"));
+    }
+    declared[static_cast<std::size_t>(it - parameters.begin())] = true;
+  }
+  return declared;
+}
+
 std::shared_ptr<const CompiledGeometry> compile_geometry(const GeometryDefinition& def,
                                                          const formula::CompileLimits& limits) {
   const CompileBudget budget(limits.deadline);

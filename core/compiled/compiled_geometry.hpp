@@ -100,5 +100,9 @@ const std::vector<MethodInfo>& implicit_curve_methods();
 formula::Program compile_formulas(const GeometryDefinition& def, const std::vector<std::string>& variables,
                                   const formula::CompileLimits& limits);
 void validate_domain(const GeometryDefinition& def, const std::vector<std::string>& names);
+// Which of `parameters` the definition declares periodic, in their order; a name that is none of
+// them throws GeometryError unknown_parameter (field "periodic").
+std::vector<bool> declared_periodic(const GeometryDefinition& def,
+                                    const std::vector<std::string>& parameters);
 
 }  // namespace footpoint

@@ -1,5 +1,6 @@
 #include "compiled/geometry_definition.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <string_view>
@@ -45,7 +46,16 @@ std::string GeometryDefinition::canonical() const {
   for (const auto& [name, range] : domain)
     s += ";domain." + name + "=[" + shortest(range[0]) + ',' + shortest(range[1]) + ']';
   for (const auto& [name, value] : constants) s += ";constants." + name + '=' + shortest(value);
+  const std::vector<std::string> names = periodic_parameters();
+  for (std::size_t i = 0; i < names.size(); ++i) s += (i == 0 ? ";periodic=" : ",") + names[i];
   return s;
+}
+
+std::vector<std::string> GeometryDefinition::periodic_parameters() const {
+  std::vector<std::string> names = periodic;
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  return names;
 }
 
 std::string GeometryDefinition::id() const { return sha256_hex(canonical()).substr(0, 32); }
@@ -68,15 +78,15 @@ double read_number(std::string_view text) {
 // (server/geometry_json.cpp) builds them from a posted definition.
 struct TypeLayout {
   GeometryType type;
-  std::vector<std::string> required, optional, domain;
+  std::vector<std::string> required, optional, domain, parameters;
 };
 
 const TypeLayout* layout_of(std::string_view type, std::size_t formulas) {
   static const TypeLayout layouts[] = {
-      {GeometryType::parametric_surface, {"x", "y", "z"}, {}, {"u", "v"}},
-      {GeometryType::parametric_curve, {"x", "y"}, {"z"}, {"t"}},
-      {GeometryType::implicit_curve, {"equations[0]"}, {}, {"x", "y"}},
-      {GeometryType::implicit_curve, {"equations[0]", "equations[1]"}, {}, {"x", "y", "z"}},
+      {GeometryType::parametric_surface, {"x", "y", "z"}, {}, {"u", "v"}, {"u", "v"}},
+      {GeometryType::parametric_curve, {"x", "y"}, {"z"}, {"t"}, {"t"}},
+      {GeometryType::implicit_curve, {"equations[0]"}, {}, {"x", "y"}, {}},
+      {GeometryType::implicit_curve, {"equations[0]", "equations[1]"}, {}, {"x", "y", "z"}, {}},
   };
   for (const auto& l : layouts)
     if (type == to_string(l.type) && formulas >= l.required.size() &&
@@ -95,13 +105,16 @@ GeometryDefinition parse_canonical(std::string_view text) {
     if (end == std::string_view::npos) break;
     start = end + 1;
   }
-  constexpr std::string_view kType = "type=", kDomain = "domain.", kConstants = "constants.";
+  constexpr std::string_view kType = "type=", kDomain = "domain.", kConstants = "constants.",
+                             kPeriodic = "periodic";
   if (parts.size() < 2 || parts[0] != "footpoint/1" || parts[1].substr(0, kType.size()) != kType)
     bad_canonical("it does not start with footpoint/1;type=");
   const std::string_view type = parts[1].substr(kType.size());
 
-  // name=value members: the formulas first, then the domain, then the constants.
+  // name=value members: the formulas first, then the domain, then the constants, then the
+  // periodic parameters (a comma-separated list).
   std::vector<std::pair<std::string_view, std::string_view>> formulas, domain, constants;
+  std::vector<std::string> periodic;
   for (std::size_t i = 2; i < parts.size(); ++i) {
     const auto eq = parts[i].find('=');
     if (eq == std::string_view::npos || eq == 0)
@@ -111,6 +124,13 @@ GeometryDefinition parse_canonical(std::string_view text) {
       domain.emplace_back(name.substr(kDomain.size()), value);
     else if (name.substr(0, kConstants.size()) == kConstants)
       constants.emplace_back(name.substr(kConstants.size()), value);
+    else if (name == kPeriodic)
+      for (std::size_t start = 0;;) {
+        const auto comma = value.find(',', start);
+        periodic.emplace_back(value.substr(start, comma == std::string_view::npos ? comma : comma - start));
+        if (comma == std::string_view::npos) break;
+        start = comma + 1;
+      }
     else
       formulas.emplace_back(name, value);
   }
@@ -142,6 +162,10 @@ GeometryDefinition parse_canonical(std::string_view text) {
   for (const auto& [name, value] : constants)
     if (!def.constants.emplace(std::string(name), read_number(value)).second)
       bad_canonical("constant '" + std::string(name) + "' appears twice");
+  for (const std::string& name : periodic)
+    if (std::find(layout->parameters.begin(), layout->parameters.end(), name) == layout->parameters.end())
+      bad_canonical("'" + name + "' is no parameter of a " + std::string(type));
+  def.periodic = std::move(periodic);
   // Whatever the members parsed to must print back to these very bytes (order, number forms,
   // no whitespace), so that the text and the definition have one id.
   if (def.canonical() != text) bad_canonical("it is not in canonical form");

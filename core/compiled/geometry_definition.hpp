@@ -1,5 +1,6 @@
-// Geometry definitions: what a client posts (the formulas, the domain or box, user constants), in
-// a canonical text form whose SHA-256 hash is the geometry's id.
+// Geometry definitions: what a client posts (the formulas, the domain or box, user constants, the
+// parameter directions it declares periodic), in a canonical text form whose SHA-256 hash is the
+// geometry's id.
 #pragma once
 #include <array>
 #include <map>
@@ -25,10 +26,17 @@ struct GeometryDefinition {
   // Parameter domain (surfaces: u, v; curves: t) or box (implicit: x, y[, z]), in that order.
   std::vector<std::pair<std::string, std::array<double, 2>>> domain;
   std::map<std::string, double> constants;
+  // Parameters declared periodic (geometry/surface_closure.hpp, curve_closure.hpp): "u", "v" of a
+  // surface, "t" of a curve; none for implicit curves. Any order; repeats count once.
+  std::vector<std::string> periodic;
+  // `periodic` sorted, each name once: as the canonical form and the JSON form list them.
+  std::vector<std::string> periodic_parameters() const;
 
   // Deterministic text form: same definition -> same text (formula whitespace removed, numbers
-  // in shortest round-trip form). id() is a SHA-256 content hash of it (32 hex digits), so every
-  // replica computes the same id for the same definition.
+  // in shortest round-trip form, periodic names sorted, once each and only when there are any, so
+  // that the texts and ids of definitions without them are what they always were). id() is a
+  // SHA-256 content hash of it (32 hex digits), so every replica computes the same id for the
+  // same definition.
   std::string canonical() const;
   std::string id() const;
 };

@@ -101,6 +101,7 @@ std::shared_ptr<const CompiledGeometry> compile_implicit_curve(const GeometryDef
     if (def.formulas[i].name != "equations[" + std::to_string(i) + "]")
       throw GeometryError("wrong_shape", def.formulas[i].name, -1,
                           "implicit curve formulas are named equations[0], equations[1]");
+  declared_periodic(def, {});  // an implicit curve has no parameters to declare
   const bool planar = n == 1;
   const std::vector<std::string> names =
       planar ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"};

@@ -44,6 +44,7 @@ ParametricCurve::ParametricCurve(GeometryDefinition def, CurveFormulas formulas,
     : CompiledGeometry(std::move(def)),
       formulas_(std::move(formulas)),
       domain_(domain),
+      closure_(detect_curve_closure(formulas_, domain_, declared_periodic(definition(), {"t"})[0])),
       samples_(sample_parametric_curve(formulas_, domain_)),
       index_(samples_) {}
 

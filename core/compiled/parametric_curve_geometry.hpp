@@ -1,10 +1,12 @@
 // The compiled parametric curve: its formulas and parameter interval (geometry/parametric_curve.hpp),
-// the dense samples `auto` precomputes with their k-d tree, and projection by method name.
+// whether it closes, the dense samples `auto` precomputes with their k-d tree, and projection by
+// method name.
 #pragma once
 #include <cstddef>
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
+#include "geometry/curve_closure.hpp"
 #include "geometry/parametric_curve.hpp"
 #include "seeding/curve_sample_index.hpp"
 #include "seeding/curve_samples.hpp"
@@ -22,6 +24,8 @@ class ParametricCurve final : public CompiledGeometry {
 
   const CurveFormulas& formulas() const { return formulas_; }
   const ParamInterval& domain() const { return domain_; }
+  // Whether c(tmin) = c(tmax), found at compile time (or declared: def.periodic = {"t"}).
+  const CurveClosure& closure() const { return closure_; }
   // Dense samples along the curve (params holds t) with their k-d tree, for `auto` and for the
   // default start of the local methods.
   const CurveSamples& samples() const { return samples_; }
@@ -32,6 +36,7 @@ class ParametricCurve final : public CompiledGeometry {
 
   CurveFormulas formulas_;
   ParamInterval domain_;
+  CurveClosure closure_;
   CurveSamples samples_;
   CurveSampleIndex index_;
 };

@@ -54,6 +54,12 @@ const MethodTable<ParametricSurface>& table() {
   return t;
 }
 
+// The directions (u, v) the definition declares periodic.
+std::array<bool, 2> declared_uv(const GeometryDefinition& def) {
+  const std::vector<bool> declared = declared_periodic(def, {"u", "v"});
+  return {declared[0], declared[1]};
+}
+
 std::array<double, 2> domain_of(const GeometryDefinition& def, const std::string& name) {
   for (const auto& [n, range] : def.domain)
     if (n == name) return range;
@@ -67,6 +73,7 @@ ParametricSurface::ParametricSurface(GeometryDefinition def, formula::Program pr
     : CompiledGeometry(std::move(def)),
       formulas_(std::move(program)),
       box_(box),
+      closure_(detect_surface_closure(formulas_, box_, declared_uv(definition()))),
       cells_(formulas_, box_, seeding) {}
 
 const std::vector<MethodInfo>& ParametricSurface::methods() const { return table().infos(); }

@@ -1,18 +1,22 @@
-// The compiled parametric surface: s(u, v) = (x, y, z) over [umin, umax] x [vmin, vmax], the
-// seeding data of `auto`, and projection by method name (auto, gsa, first_order, hybrid, newton).
+// The compiled parametric surface: s(u, v) = (x, y, z) over [umin, umax] x [vmin, vmax], its seams
+// and poles, the seeding data of `auto`, and projection by method name (auto, gsa, first_order,
+// hybrid, newton).
 #pragma once
 #include <cstddef>
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
 #include "geometry/parametric_surface.hpp"
+#include "geometry/surface_closure.hpp"
 #include "seeding/surface_cells.hpp"
 
 namespace footpoint {
 
 class ParametricSurface final : public CompiledGeometry {
  public:
-  // `program` computes x, y, z (in that order) from (u, v); builds the seeding cells.
+  // `program` computes x, y, z (in that order) from (u, v); finds the seams and poles (with the
+  // directions def.periodic declares: GeometryError when they are not) and builds the seeding
+  // cells.
   ParametricSurface(GeometryDefinition def, formula::Program program, const ParamBox& box,
                     const SurfaceSeedingOptions& seeding = {});
 
@@ -23,6 +27,8 @@ class ParametricSurface final : public CompiledGeometry {
 
   const SurfaceFormulas& formulas() const { return formulas_; }
   const ParamBox& domain() const { return box_; }
+  // Where the domain meets itself: seams (closed directions) and poles, found at compile time.
+  const SurfaceClosure& closure() const { return closure_; }
   const SurfaceCells& cells() const { return cells_; }
 
  private:
@@ -30,6 +36,7 @@ class ParametricSurface final : public CompiledGeometry {
 
   SurfaceFormulas formulas_;
   ParamBox box_;
+  SurfaceClosure closure_;
   SurfaceCells cells_;
 };
 

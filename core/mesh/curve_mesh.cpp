@@ -150,6 +150,23 @@ Mesh mesh_parametric_curve(const ParametricCurve& curve, int resolution) {
     derivative.push_back(j.d1);
   }
   finish_line();
+  // A closed curve's vertex at tmax is its vertex at tmin: dropped, and the polyline that ends there
+  // continues into the one that starts at tmin (itself, when the curve is finite all along).
+  if (curve.closure().closed && !mesh.polylines.empty() && mesh.parameters.front() == domain.tmin &&
+      mesh.parameters.back() == domain.tmax && mesh.polylines.back().vertices.size() > 2) {
+    Polyline& last = mesh.polylines.back();
+    last.vertices.pop_back();
+    mesh.vertices.pop_back();
+    mesh.parameters.pop_back();
+    derivative.pop_back();
+    if (mesh.polylines.size() == 1) {
+      last.closed = true;
+    } else {
+      Polyline& first = mesh.polylines.front();
+      first.vertices.insert(first.vertices.begin(), last.vertices.begin(), last.vertices.end());
+      mesh.polylines.pop_back();
+    }
+  }
   mesh.tangents.assign(mesh.vertices.size(), Vec3{});
   for (const Polyline& l : mesh.polylines)
     for (std::size_t k = 0; k < l.vertices.size(); ++k) {

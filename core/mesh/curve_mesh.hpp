@@ -9,7 +9,8 @@ namespace footpoint {
 // `resolution` segments over [tmin, tmax], their ends equidistributed (equidistribution.hpp) by
 // chord length and the tangent's turn; vertices c(t_i), tangents c'(t_i) / |c'(t_i)| from the
 // formula tape's exact jets (the chord's direction where c' = 0, a cusp). A vertex that is not
-// finite breaks the polyline; pieces of a single vertex are left out.
+// finite breaks the polyline; pieces of a single vertex are left out. A closed curve (its closure,
+// geometry/curve_closure.hpp) gives a closed polyline, without a second vertex at c(tmax) = c(tmin).
 Mesh mesh_parametric_curve(const ParametricCurve& curve, int resolution);
 
 // The pieces the `auto` seeding traced (seeding/curve_discovery.hpp), followed along their links:

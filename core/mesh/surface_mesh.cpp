@@ -73,6 +73,10 @@ std::pair<int, int> cell_counts(const Measure& u, const Measure& v, int resoluti
 
 }  // namespace
 
+Mesh mesh_parametric_surface(const ParametricSurface& surface, int resolution) {
+  return mesh_parametric_surface(surface, resolution, surface.closure());
+}
+
 Mesh mesh_parametric_surface(const ParametricSurface& surface, int resolution,
                              const SurfaceClosure& closure) {
   const SurfaceFormulas& formulas = surface.formulas();
@@ -89,12 +93,12 @@ Mesh mesh_parametric_surface(const ParametricSurface& surface, int resolution,
   // line is its first, a pole edge is its first point.
   auto canonical = [&](int i, int j) {
     for (int pass = 0; pass < 2; ++pass) {
-      if (closure.u_closed && i == nu) i = 0;
-      if (closure.v_closed && j == nv) j = 0;
-      if (closure.pole[0] && i == 0) j = 0;
-      if (closure.pole[1] && i == nu) j = 0;
-      if (closure.pole[2] && j == 0) i = 0;
-      if (closure.pole[3] && j == nv) i = 0;
+      if (closure.periodic(0) && i == nu) i = 0;
+      if (closure.periodic(1) && j == nv) j = 0;
+      if (closure.pole(BoxEdge::umin) && i == 0) j = 0;
+      if (closure.pole(BoxEdge::umax) && i == nu) j = 0;
+      if (closure.pole(BoxEdge::vmin) && j == 0) i = 0;
+      if (closure.pole(BoxEdge::vmax) && j == nv) i = 0;
     }
     return std::pair{i, j};
   };

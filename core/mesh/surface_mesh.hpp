@@ -6,29 +6,19 @@
 // Triangles of (nearly) zero area - a quad at a pole collapses to one triangle - and triangles
 // with a vertex that is not finite are left out, and so are vertices no triangle uses.
 #pragma once
-#include <array>
-
 #include "compiled/parametric_surface_geometry.hpp"
 #include "mesh/mesh.hpp"
 
 namespace footpoint {
 
-// Where a surface's parameter domain meets itself. A closed direction: the edges u = umin and
-// u = umax are the same curve, traversed the same way (s(umin, v) = s(umax, v) for every v; a
-// torus, a sphere's longitude); a pole: a whole edge maps to one point (a sphere's poles). The
-// mesh stitches them: the grid lines of the two edges share their vertices, a pole is one vertex
-// with a fan of triangles around it, so a closed surface gives a closed mesh.
-struct SurfaceClosure {
-  bool u_closed = false;
-  bool v_closed = false;
-  // The edges u = umin, u = umax, v = vmin, v = vmax, in that order: true when it is one point.
-  std::array<bool, 4> pole{};
-};
-
 // Cells along the direction with the larger share of the measure: `resolution`; along the other
-// its share of it, at least 2. Compiled surfaces do not know their seams and poles, so the API's
-// meshes are plain grids (closure = {}); a closure names them.
-Mesh mesh_parametric_surface(const ParametricSurface& surface, int resolution,
-                             const SurfaceClosure& closure = {});
+// its share of it, at least 2. Seams and poles are stitched as the surface's closure (found at
+// compile time, geometry/surface_closure.hpp) names them: the grid lines of a periodic
+// direction's two edges share their vertices, a pole is one vertex with a fan of triangles around
+// it, so a closed surface gives a closed mesh (a torus V - E + F = 0, a sphere 2). A reversed seam
+// (a Möbius band) is left open: no consistent normals could cross it.
+Mesh mesh_parametric_surface(const ParametricSurface& surface, int resolution);
+// The same with the seams and poles `closure` names instead (SurfaceClosure{}: a plain grid).
+Mesh mesh_parametric_surface(const ParametricSurface& surface, int resolution, const SurfaceClosure& closure);
 
 }  // namespace footpoint
