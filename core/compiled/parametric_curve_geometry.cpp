@@ -1,21 +1,26 @@
 #include "compiled/parametric_curve_geometry.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "seeding/curve_parametric_samples.hpp"
 #include "solvers/curve/curvature_circle.hpp"
+#include "solvers/curve/curve_certificate.hpp"
 #include "solvers/curve/parametric_curve_auto.hpp"
 #include "solvers/curve/parametric_newton.hpp"
 
 namespace footpoint {
 namespace {
 
-// Every method takes the formulas, the domain and the samples' k-d tree (`auto`'s seeds, the
-// local methods' default start).
+// The local methods take the formulas, the domain and the samples' k-d tree (their default start);
+// with options.certify an answer inside the domain gets its certificate, as it is.
 template <ProjectionResult (*solve)(const CurveFormulas&, const ParamInterval&, const CurveSampleIndex&, Vec3,
                                     const Options&)>
 ProjectionResult on_samples(const ParametricCurve& c, Vec3 p, const Options& o) {
-  return solve(c.formulas(), c.domain(), c.sample_index(), p, o);
+  ProjectionResult r = solve(c.formulas(), c.domain(), c.sample_index(), p, o);
+  if (o.certify.value_or(false) && std::isfinite(r.distance) && c.domain().contains(r.params[0]))
+    r.summary.certificate = curve::certify_curve_answer(c.cells(), c.formulas(), c.domain(), p, r.params[0]);
+  return r;
 }
 
 // The method table of parametric curves, planar and spatial alike.
@@ -24,7 +29,9 @@ constexpr Method<ParametricCurve> kMethods[] = {
       "global nearest point over [tmin, tmax], ends included: dense adaptive samples seed bracketed "
       "Newton at every candidate minimum",
       ""},
-     on_samples<curve::parametric_curve_auto>},
+     [](const ParametricCurve& c, Vec3 p, const Options& o) {
+       return curve::parametric_curve_auto(c.formulas(), c.domain(), c.sample_index(), c.cells(), p, o);
+     }},
     {{"newton", "Newton's method on <c(t) - p, c'(t)> = 0 from options.initial or the nearest sample", ""},
      on_samples<curve::parametric_newton>},
     {{"curvature_circle",
@@ -46,7 +53,8 @@ ParametricCurve::ParametricCurve(GeometryDefinition def, CurveFormulas formulas,
       domain_(domain),
       closure_(detect_curve_closure(formulas_, domain_, declared_periodic(definition(), {"t"})[0])),
       samples_(sample_parametric_curve(formulas_, domain_)),
-      index_(samples_) {}
+      index_(samples_),
+      cells_(formulas_, domain_, samples_.params) {}
 
 const std::vector<MethodInfo>& ParametricCurve::methods() const { return table().infos(); }
 
@@ -58,7 +66,8 @@ ProjectionResult ParametricCurve::project_with(std::size_t index, const double* 
 const std::vector<MethodInfo>& parametric_curve_methods() { return table().infos(); }
 
 std::size_t ParametricCurve::memory_bytes() const {
-  return sizeof(*this) + formulas_.program().memory_bytes() + samples_.memory_bytes() + index_.memory_bytes();
+  return sizeof(*this) + formulas_.program().memory_bytes() + samples_.memory_bytes() +
+         index_.memory_bytes() + cells_.memory_bytes();
 }
 
 std::shared_ptr<const CompiledGeometry> compile_parametric_curve(const GeometryDefinition& def,

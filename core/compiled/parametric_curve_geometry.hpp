@@ -8,6 +8,7 @@
 #include "compiled/compiled_geometry.hpp"
 #include "geometry/curve_closure.hpp"
 #include "geometry/parametric_curve.hpp"
+#include "seeding/curve_cells.hpp"
 #include "seeding/curve_sample_index.hpp"
 #include "seeding/curve_samples.hpp"
 
@@ -30,6 +31,8 @@ class ParametricCurve final : public CompiledGeometry {
   // default start of the local methods.
   const CurveSamples& samples() const { return samples_; }
   const CurveSampleIndex& sample_index() const { return index_; }
+  // What the certificates bound: cells of a few sample gaps with their enclosures.
+  const CurveCells& cells() const { return cells_; }
 
  private:
   ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
@@ -39,6 +42,7 @@ class ParametricCurve final : public CompiledGeometry {
   CurveClosure closure_;
   CurveSamples samples_;
   CurveSampleIndex index_;
+  CurveCells cells_;
 };
 
 }  // namespace footpoint

@@ -14,7 +14,11 @@
 // of the domain where the formulas are not finite, is still answered, with certified = false,
 // the best L reached and the reason.
 #pragma once
+#include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "geometry/vec.hpp"
 
 namespace footpoint {
 
@@ -39,6 +43,12 @@ struct Certificate {
   CertificateReason reason = CertificateReason::not_requested;
   int boxes = 0;  // parameter (or space) boxes bounded for this point beyond the compiled cells
 
+  // The absolute gap for an answer at `foot`: 512 u (the largest |coordinate| of p and the foot).
+  static double absolute_gap_at(const Vec3& p, const Vec3& foot) {
+    const double m = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), std::abs(foot.x),
+                               std::abs(foot.y), std::abs(foot.z), std::numeric_limits<double>::min()});
+    return 512.0 * 0x1p-53 * m;
+  }
   // The verdict for an answer at distance d.
   static bool meets_gap(double d, double lower_bound, double absolute_gap) {
     return d - lower_bound <= std::fmax(kRelativeGap * d, absolute_gap);

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/box_enclosure.hpp"
 #include "solvers/curve/auto_result.hpp"
+#include "solvers/curve/curve_certificate.hpp"
 #include "solvers/curve/iteration_control.hpp"
 #include "solvers/curve/parametric_curve_summary.hpp"
 #include "solvers/curve/parametric_newton.hpp"
@@ -79,10 +81,28 @@ Found solve_from(const CurveFormulas& f, const CurveSamples& s, Vec3 p, std::int
   return out;
 }
 
+// The orthogonality residual of an answer at the rounding of its own evaluation: within four
+// times the radius of the ball that encloses <p - c(t), c'(t)> (formula/ball.hpp), relative as
+// the residual is. Steep formulas (a spike exp(-((t - a)/w)^2) with w small) hold the residual
+// above the default tolerance at the last bit of t.
+bool at_rounding_level(const CurveFormulas& formulas, Vec3 p, const ProjectionResult& r) {
+  if (!(r.distance > 0.0) || r.summary.location != Location::interior) return false;
+  const PointEnclosure<1> e = enclose_point<1>(formulas.program(), {r.params[0]});
+  if (!e.valid) return false;
+  double radius = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = p[k] - e.s[k], dr = e.s_rad[k] + 0x1p-53 * std::abs(d);
+    radius += std::abs(d) * e.ds_rad[0][k] + dr * std::abs(e.ds[0][k]) + dr * e.ds_rad[0][k];
+  }
+  const double denominator = r.distance * norm(e.ds[0]);
+  return denominator > 0.0 && r.summary.orthogonality[0] <= 4.0 * radius / denominator;
+}
+
 }  // namespace
 
 ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const ParamInterval& domain,
-                                       const CurveSampleIndex& index, Vec3 p, const Options& options) {
+                                       const CurveSampleIndex& index, const CurveCells& cells, Vec3 p,
+                                       const Options& options) {
   const CurveSamples& s = index.samples();
   const double h = s.spacing;
   // The nearest sample and the candidates in one pass; with all_minima every discrete local
@@ -104,6 +124,7 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
   const double slack = 1e-12 * std::max(1.0, d0);
 
   Found best;
+  std::vector<double> solved;  // every minimiser found, for the certificate
   std::vector<std::array<double, 3>> best_trace;
   std::vector<Minimum> minima;
   int starts = 0;
@@ -114,6 +135,7 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
     trace.clear();
     const Found f = solve_from(formulas, s, p, c.index, control);
     if (!(f.distance < kInfinity)) continue;
+    solved.push_back(f.t);
     if (options.all_minima) {
       const Vec3 x = formulas.point(f.t);
       const bool end = f.t <= domain.tmin || f.t >= domain.tmax;
@@ -126,9 +148,25 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
       if (options.trace) best_trace.swap(trace);
     }
   }
+  Certificate certificate;
+  if (best.distance < kInfinity && options.certify.value_or(true)) {
+    const CurveLocalSolve descend = [&](double t0) { return descend_on_interval(formulas, domain, p, t0); };
+    const CurveCertification c =
+        certify_parametric_curve(cells, formulas, p, {best.t, best.distance}, solved, descend, true);
+    certificate = c.certificate;
+    if (c.improved) {
+      best.t = c.better.t;
+      best.distance = c.better.distance;
+      best.iterations = 0;
+      best.step = 0.0;
+    }
+  }
   ProjectionResult r = parametric_result(formulas, domain, p, best.t, "auto");
-  finish_auto_result(r, best.distance < kInfinity && parametric_residual_met(r, control), best.iterations,
-                     best.step, starts, options, std::move(minima), std::move(best_trace));
+  finish_auto_result(
+      r,
+      best.distance < kInfinity && (parametric_residual_met(r, control) || at_rounding_level(formulas, p, r)),
+      best.iterations, best.step, starts, options, std::move(minima), std::move(best_trace));
+  r.summary.certificate = certificate;
   return r;
 }
 

@@ -57,7 +57,7 @@ class Certifier {
         may_improve_(may_improve),
         options_(options),
         best_(answer),
-        absolute_gap_(absolute_gap(p, answer.jet.s)) {
+        absolute_gap_(Certificate::absolute_gap_at(p, answer.jet.s)) {
     known_.emplace_back(Params2{answer.u, answer.v});
     for (const Params2& t : known)
       if (t[0] != answer.u || t[1] != answer.v) known_.emplace_back(t);
@@ -263,7 +263,7 @@ class Certifier {
     }
     best_ = s;
     improved_ = true;
-    absolute_gap_ = std::max(absolute_gap_, absolute_gap(p_, s.jet.s));
+    absolute_gap_ = std::max(absolute_gap_, Certificate::absolute_gap_at(p_, s.jet.s));
     set_target();
   }
 
@@ -352,12 +352,6 @@ class Certifier {
 };
 
 }  // namespace
-
-double absolute_gap(const Vec3& p, const Vec3& foot) {
-  const double m = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), std::abs(foot.x), std::abs(foot.y),
-                             std::abs(foot.z), std::numeric_limits<double>::min()});
-  return 512.0 * kU * m;
-}
 
 SurfaceCertification certify_surface(const SurfaceCells& cells, const SurfaceFormulas& formulas,
                                      const ParamBox& box, const Vec3& p, const LocalSolution& answer,

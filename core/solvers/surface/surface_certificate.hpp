@@ -69,7 +69,4 @@ SurfaceCertification certify_surface(const SurfaceCells& cells, const SurfaceFor
 Certificate certify_answer(const SurfaceCells& cells, const SurfaceFormulas& formulas, const ParamBox& box,
                            const Vec3& p, double u, double v, const SurfaceCertifyOptions& options = {});
 
-// The absolute gap of geometry/certificate.hpp for an answer at `foot`: 512 u (|p|∞ + |foot|∞).
-double absolute_gap(const Vec3& p, const Vec3& foot);
-
 }  // namespace footpoint::surface
