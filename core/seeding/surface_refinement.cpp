@@ -40,10 +40,8 @@ SurfaceRefinement::~SurfaceRefinement() {
 const SubBoxPair& SurfaceRefinement::halves(std::atomic<const SubBoxPair*>& slot,
                                             const BoxEnclosure<2>& ancestor, const std::array<double, 2>& lo,
                                             const std::array<double, 2>& hi, bool split_u,
-                                            std::unique_ptr<SubBoxPair>& scratch, bool* computed) const {
-  *computed = false;
+                                            std::unique_ptr<SubBoxPair>& scratch) const {
   if (const SubBoxPair* published = slot.load(std::memory_order_acquire)) return *published;
-  *computed = true;
   if (pairs_.load(std::memory_order_relaxed) >= max_pairs_) {
     scratch = std::make_unique<SubBoxPair>(program_, ancestor, lo, hi, split_u);
     return *scratch;

@@ -56,10 +56,10 @@ class SurfaceRefinement {
   // Where the halves of compiled cell `cell` are published.
   std::atomic<const SubBoxPair*>& cell_slot(std::size_t cell) const { return cell_halves_[cell]; }
   // The halves of [lo, hi] split along u (split_u) or v: published under `slot`, computed first if
-  // need be; past the cap computed into `scratch`. `computed` is set when this call computed them.
+  // need be; past the cap computed into `scratch`.
   const SubBoxPair& halves(std::atomic<const SubBoxPair*>& slot, const BoxEnclosure<2>& ancestor,
                            const std::array<double, 2>& lo, const std::array<double, 2>& hi, bool split_u,
-                           std::unique_ptr<SubBoxPair>& scratch, bool* computed) const;
+                           std::unique_ptr<SubBoxPair>& scratch) const;
   // What the refinement may take: the cap's worth of pairs (reserved, reported up front).
   std::size_t reserved_bytes() const { return max_pairs_ * sizeof(SubBoxPair); }
   std::size_t pairs() const { return pairs_.load(std::memory_order_relaxed); }

@@ -7,6 +7,7 @@
 #include <queue>
 
 #include "geometry/distance_bound.hpp"
+#include "solvers/certificate_ledger.hpp"
 
 namespace footpoint::curve {
 
@@ -48,16 +49,15 @@ class Certifier {
         may_improve_(may_improve),
         options_(options),
         best_(answer),
-        absolute_gap_(Certificate::absolute_gap_at(p, formulas.point(answer.t))) {
+        ledger_(answer.distance, Certificate::absolute_gap_at(p, formulas.point(answer.t))) {
     known_.emplace_back(answer.t);
     for (double t : known)
       if (t != answer.t) known_.emplace_back(t);
-    set_target();
   }
 
   CurveCertification run() {
     walk();
-    while (!open_.empty() && !refuted_) {
+    while (!open_.empty() && !ledger_.refuted()) {
       const OpenInterval b = open_.top();
       open_.pop();
       examine(b);
@@ -69,33 +69,13 @@ class Certifier {
     CurveCertification out;
     out.improved = improved_;
     out.better = best_;
-    Certificate& c = out.certificate;
-    c.computed = true;
-    c.absolute_gap = absolute_gap_;
-    c.boxes = runtime_boxes_;
-    c.lower_bound = std::max(std::min({lower_, skipped_ ? target_ : kInf, best_.distance}), 0.0);
-    c.certified =
-        !refuted_ && !unclosed_ && Certificate::meets_gap(best_.distance, c.lower_bound, absolute_gap_);
-    c.reason = c.certified  ? CertificateReason::gap_met
-               : refuted_   ? CertificateReason::nearer_point
-               : unbounded_ ? CertificateReason::non_finite
-                            : CertificateReason::budget_exhausted;
+    out.certificate = ledger_.finish(runtime_boxes_);
     return out;
   }
 
  private:
-  void set_target() {
-    const double d = best_.distance;
-    target_ = d - 0.5 * std::fmax(Certificate::kRelativeGap * d, absolute_gap_);
-    target_f_ = target_ > 0.0 ? 0.5 * target_ * target_ * (1.0 + 16.0 * kU) : 0.0;
-  }
-  double gap() const { return std::fmax(Certificate::kRelativeGap * best_.distance, absolute_gap_); }
-  void close(double lb) { lower_ = std::min(lower_, lb); }
-  void note_unclosed(const OpenInterval& b) {
-    lower_ = std::min(lower_, b.lb);
-    unclosed_ = true;
-    unbounded_ = unbounded_ || !b.bounded;
-  }
+  void close(double lb) { ledger_.close(lb); }
+  void note_unclosed(const OpenInterval& b) { ledger_.leave_open(b.lb, b.bounded); }
 
   // 1. nearest box first; a subtree whose box is beyond the target is closed whole
   void walk() {
@@ -104,13 +84,13 @@ class Certifier {
       visit_cell(0);
       return;
     }
-    const double target2 = target_ > 0.0 ? target_ * target_ : 0.0;
+    const double target = ledger_.target(), target2 = target > 0.0 ? target * target : 0.0;
     std::vector<std::int32_t> stack{0};
     while (!stack.empty()) {
       const CurveCellNode& n = nodes[static_cast<std::size_t>(stack.back())];
       stack.pop_back();
-      if (target_ > 0.0 && box_distance2(n.lo, n.hi) * (1.0 - 16.0 * kU) >= target2) {
-        skipped_ = true;
+      if (target > 0.0 && box_distance2(n.lo, n.hi) * (1.0 - 16.0 * kU) >= target2) {
+        ledger_.skip();
         continue;
       }
       for (std::int32_t child : n.child) {
@@ -141,14 +121,14 @@ class Certifier {
     const BoxEnclosure<1>& e = c.enclosure;
     o.bounded = e.bounded && e.smooth && c.centre_valid;
     o.lb = e.bounded ? std::sqrt(box_distance2_lower(e.s_mid, e.s_rad, p_)) : 0.0;
-    if (o.lb >= target_) return close(o.lb);
+    if (o.lb >= ledger_.target()) return close(o.lb);
     if (c.centre_valid && std::isfinite(c.rho)) {  // 2. the tangent line's segment
       const Vec3 r = p_ - c.centre.c;
       const double speed2 = norm2(c.centre.d1), h = 0.5 * (c.t1 - c.t0);
       const double delta = speed2 > 0.0 ? std::clamp(dot(r, c.centre.d1) / speed2, -h, h) : 0.0;
       const double segment = norm(c.centre.c + c.centre.d1 * delta - p_);
       o.lb = std::max(o.lb, segment - c.rho - kBoundRounding * (norm(r) + norm(c.centre.d1) * h + c.rho));
-      if (o.lb >= target_) return close(o.lb);
+      if (o.lb >= ledger_.target()) return close(o.lb);
     }
     if (o.bounded) {  // 3. second order from the centre
       o.hessian = hessian_bounds(e, p_);
@@ -159,9 +139,9 @@ class Certifier {
       centre.ds_rad = {c.d1_rad};
       centre.valid = true;
       const double f = second_order_lower_bound(enclose_gradient(centre, p_), {c.tc()}, {c.t0}, {c.t1},
-                                                o.hessian, target_f_);
+                                                o.hessian, ledger_.target_f());
       o.lb = std::max(o.lb, distance_from_f_lower(f));
-      if (o.lb >= target_) return close(o.lb);
+      if (o.lb >= ledger_.target()) return close(o.lb);
     }
     open_.push(o);
   }
@@ -191,9 +171,9 @@ class Certifier {
         if (!e.valid) continue;
         at = enclose_gradient(e, p_);
       }
-      b.lb = std::max(b.lb, distance_from_f_lower(
-                                second_order_lower_bound(at, {q}, {b.t0}, {b.t1}, b.hessian, target_f_)));
-      if (b.lb >= target_) return true;
+      b.lb = std::max(b.lb, distance_from_f_lower(second_order_lower_bound(at, {q}, {b.t0}, {b.t1}, b.hessian,
+                                                                           ledger_.target_f())));
+      if (b.lb >= ledger_.target()) return true;
     }
     return false;
   }
@@ -209,13 +189,12 @@ class Certifier {
     known_.emplace_back(s.t);
     if (!(s.distance < best_.distance)) return;
     if (!may_improve_) {
-      if (s.distance < best_.distance - gap()) refuted_ = true;
+      if (s.distance < best_.distance - ledger_.gap()) ledger_.refute();
       return;
     }
     best_ = s;
     improved_ = true;
-    absolute_gap_ = std::max(absolute_gap_, Certificate::absolute_gap_at(p_, formulas_.point(s.t)));
-    set_target();
+    ledger_.retarget(s.distance, Certificate::absolute_gap_at(p_, formulas_.point(s.t)));
   }
 
   // The minimiser over the cell of the Newton model of f at its centre.
@@ -227,22 +206,22 @@ class Certifier {
   }
 
   void examine(OpenInterval b) {
-    if (b.lb >= target_) return close(b.lb);
+    if (b.lb >= ledger_.target()) return close(b.lb);
     if (close_from_known(b)) return close(b.lb);
     const bool known_near =
         std::any_of(known_.begin(), known_.end(), [&](const Known& k) { return near(k, b); });
     if (!b.solved && (b.nearer || !known_near)) {
       solve_from(b);
-      if (refuted_) return note_unclosed(b);
-      if (b.lb >= target_ || close_from_known(b)) return close(b.lb);
+      if (ledger_.refuted()) return note_unclosed(b);
+      if (b.lb >= ledger_.target() || close_from_known(b)) return close(b.lb);
     }
     if (runtime_boxes_ + 2 > options_.max_boxes) return note_unclosed(b);
     const double mid = 0.5 * (b.t0 + b.t1);
     if (!(mid > b.t0 && mid < b.t1)) return note_unclosed(b);
     for (const auto& [a, z] : {std::pair{b.t0, mid}, std::pair{mid, b.t1}}) {
       OpenInterval child = bound_sub_interval(a, z);
-      if (refuted_) return note_unclosed(child);
-      if (child.lb >= target_)
+      if (ledger_.refuted()) return note_unclosed(child);
+      if (child.lb >= ledger_.target())
         close(child.lb);
       else
         open_.push(child);
@@ -260,18 +239,13 @@ class Certifier {
     const PointEnclosure<1> at = enclose_point<1>(formulas_.program(), {tc});
     b.bounded = e.bounded && e.smooth && at.valid;
     b.lb = e.bounded ? std::sqrt(box_distance2_lower(e.s_mid, e.s_rad, p_)) : 0.0;
-    if (!b.bounded || b.lb >= target_) return b;
+    if (!b.bounded || b.lb >= ledger_.target()) return b;
     b.hessian = hessian_bounds(e, p_);
-    b.lb = std::max(b.lb, distance_from_f_lower(second_order_lower_bound(enclose_gradient(at, p_), {tc}, {t0},
-                                                                         {t1}, b.hessian, target_f_)));
-    double far2 = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const double d = std::abs(at.s[k] - p_[k]) + at.s_rad[k];
-      far2 += d * d;
-    }
-    if (std::sqrt(far2) * (1.0 + 4.0 * kU) < best_.distance - gap()) {
+    b.lb = std::max(b.lb, distance_from_f_lower(second_order_lower_bound(
+                              enclose_gradient(at, p_), {tc}, {t0}, {t1}, b.hessian, ledger_.target_f())));
+    if (ledger_.nearer_than_answer(at.s, at.s_rad, p_)) {
       b.nearer = true;
-      if (!may_improve_) refuted_ = true;
+      if (!may_improve_) ledger_.refute();
     }
     return b;
   }
@@ -283,10 +257,8 @@ class Certifier {
   const bool may_improve_;
   const CurveCertifyOptions& options_;
   CurveMinimum best_;
-  double absolute_gap_;
-  double target_ = 0.0, target_f_ = 0.0;
-  double lower_ = kInf;
-  bool skipped_ = false, unclosed_ = false, unbounded_ = false, refuted_ = false, improved_ = false;
+  CertificateLedger ledger_;
+  bool improved_ = false;
   int runtime_boxes_ = 0, solves_ = 0;
   std::vector<Known> known_;
   std::priority_queue<OpenInterval, std::vector<OpenInterval>, ByBound> open_;

@@ -9,6 +9,7 @@
 
 #include "geometry/box_quadratic.hpp"
 #include "geometry/distance_bound.hpp"
+#include "solvers/certificate_ledger.hpp"
 #include "solvers/surface/surface_convergence.hpp"
 
 namespace footpoint::surface {
@@ -57,16 +58,15 @@ class Certifier {
         may_improve_(may_improve),
         options_(options),
         best_(answer),
-        absolute_gap_(Certificate::absolute_gap_at(p, answer.jet.s)) {
+        ledger_(answer.distance, Certificate::absolute_gap_at(p, answer.jet.s)) {
     known_.emplace_back(Params2{answer.u, answer.v});
     for (const Params2& t : known)
       if (t[0] != answer.u || t[1] != answer.v) known_.emplace_back(t);
-    set_target();
   }
 
   SurfaceCertification run() {
     walk();
-    while (!open_.empty() && !refuted_) {
+    while (!open_.empty() && !ledger_.refuted()) {
       OpenBox b = open_.top();
       open_.pop();
       examine(b);
@@ -80,48 +80,25 @@ class Certifier {
     SurfaceCertification out;
     out.improved = improved_;
     out.better = best_;
-    Certificate& c = out.certificate;
-    c.computed = true;
-    c.absolute_gap = absolute_gap_;
-    c.boxes = runtime_boxes_;
-    double L = std::min({lower_, skipped_ ? target_ : kInf, best_.distance});
-    c.lower_bound = std::max(L, 0.0);
-    c.certified =
-        !refuted_ && !unclosed_ && Certificate::meets_gap(best_.distance, c.lower_bound, absolute_gap_);
-    c.reason = c.certified  ? CertificateReason::gap_met
-               : refuted_   ? CertificateReason::nearer_point
-               : unbounded_ ? CertificateReason::non_finite
-                            : CertificateReason::budget_exhausted;
+    out.certificate = ledger_.finish(runtime_boxes_);
     return out;
   }
 
  private:
-  // The target of the boxes: d - gap/2 for the answer's distance d.
-  void set_target() {
-    const double d = best_.distance;
-    target_ = d - 0.5 * std::fmax(Certificate::kRelativeGap * d, absolute_gap_);
-    // a bound of f = ½ d^2 at least this gives a distance bound at least the target
-    target_f_ = target_ > 0.0 ? 0.5 * target_ * target_ * (1.0 + 16.0 * kU) : 0.0;
-  }
-
-  void close(double lb) { lower_ = std::min(lower_, lb); }
-  void note_unclosed(const OpenBox& b) {
-    lower_ = std::min(lower_, b.lb);
-    unclosed_ = true;
-    unbounded_ = unbounded_ || !b.bounded;
-  }
+  void close(double lb) { ledger_.close(lb); }
+  void note_unclosed(const OpenBox& b) { ledger_.leave_open(b.lb, b.bounded); }
 
   // 1. The hierarchy of the cells' boxes, nearest first; a subtree beyond the target is closed.
   void walk() {
     const auto& nodes = cells_.nodes();
-    const double target2 = target_ > 0.0 ? target_ * target_ : 0.0;
-    auto beyond = [&](double d2) { return d2 * (1.0 - 16.0 * kU) >= target2 && target_ > 0.0; };
+    const double target = ledger_.target(), target2 = target > 0.0 ? target * target : 0.0;
+    auto beyond = [&](double d2) { return d2 * (1.0 - 16.0 * kU) >= target2 && target > 0.0; };
     if (nodes.empty()) {
       visit_cell(0, 0.0);
       return;
     }
     if (beyond(cells_.root_distance2(p_))) {
-      skipped_ = true;
+      ledger_.skip();
       return;
     }
     std::vector<std::int32_t> stack{0};
@@ -132,7 +109,7 @@ class Certifier {
       SurfaceCells::box_distances2(node, p_, d2);
       for (int k = 0; k < node.children; ++k) {
         if (beyond(d2[k])) {
-          skipped_ = true;
+          ledger_.skip();
           continue;
         }
         if (node.child[k] >= 0)
@@ -158,7 +135,7 @@ class Certifier {
     o.bounded = b.enclosure.bounded && b.enclosure.smooth && b.centre_valid;
     o.lb = std::max(box_lb, std::sqrt(box_distance2_lower(b.enclosure.s_mid, b.enclosure.s_rad, p_)));
     if (!o.bounded) o.lb = b.enclosure.bounded ? o.lb : 0.0;
-    if (o.lb >= target_) return close(o.lb);
+    if (o.lb >= ledger_.target()) return close(o.lb);
     const Vec3 r = c.centre.s - p_;
     if (c.framed && std::isfinite(b.rho)) {  // 2. the tangent plane
       const double out1 = std::max(std::abs(dot(r, c.e1)) - c.half1, 0.0);
@@ -166,7 +143,7 @@ class Certifier {
       const double h = dot(r, c.unit_normal);
       const double plane = std::sqrt(h * h + out1 * out1 + out2 * out2);
       o.lb = std::max(o.lb, plane - b.rho - kBoundRounding * (norm(r) + c.half1 + c.half2 + b.rho));
-      if (o.lb >= target_) return close(o.lb);
+      if (o.lb >= ledger_.target()) return close(o.lb);
     }
     if (o.bounded) {  // 3. second order from the centre
       o.hessian = hessian_bounds(b.enclosure, p_);
@@ -177,9 +154,9 @@ class Certifier {
       centre.ds_rad = {b.su_rad, b.sv_rad};
       centre.valid = true;
       const double f = second_order_lower_bound(enclose_gradient(centre, p_), {c.uc(), c.vc()}, o.lo, o.hi,
-                                                o.hessian, target_f_);
+                                                o.hessian, ledger_.target_f());
       o.lb = std::max(o.lb, distance_from_f_lower(f));
-      if (o.lb >= target_) return close(o.lb);
+      if (o.lb >= ledger_.target()) return close(o.lb);
     }
     open_.push(o);
   }
@@ -216,16 +193,16 @@ class Certifier {
         PointEnclosure<2> guess;
         guess.s = j.s;
         guess.ds = {j.su, j.sv};
-        const double predicted =
-            second_order_lower_bound(enclose_gradient(guess, p_), q, b.lo, b.hi, b.hessian, target_f_);
-        if (!(distance_from_f_lower(predicted) >= target_)) continue;
+        const double predicted = second_order_lower_bound(enclose_gradient(guess, p_), q, b.lo, b.hi,
+                                                          b.hessian, ledger_.target_f());
+        if (!(distance_from_f_lower(predicted) >= ledger_.target())) continue;
         const PointEnclosure<2> e = enclose_point<2>(formulas_.program(), q);
         if (!e.valid) continue;
         at = enclose_gradient(e, p_);
       }
-      b.lb = std::max(
-          b.lb, distance_from_f_lower(second_order_lower_bound(at, q, b.lo, b.hi, b.hessian, target_f_)));
-      if (b.lb >= target_) return true;
+      b.lb = std::max(b.lb, distance_from_f_lower(
+                                second_order_lower_bound(at, q, b.lo, b.hi, b.hessian, ledger_.target_f())));
+      if (b.lb >= ledger_.target()) return true;
     }
     return false;
   }
@@ -255,46 +232,41 @@ class Certifier {
     const LocalSolution s = solve_(t[0], t[1]);
     if (!std::isfinite(s.distance)) return;
     known_.emplace_back(Params2{s.u, s.v});
-    const double gap = std::fmax(Certificate::kRelativeGap * best_.distance, absolute_gap_);
     if (!(s.distance < best_.distance)) return;
     if (!may_improve_) {
-      if (s.distance < best_.distance - gap) refuted_ = true;
+      if (s.distance < best_.distance - ledger_.gap()) ledger_.refute();
       return;
     }
     best_ = s;
     improved_ = true;
-    absolute_gap_ = std::max(absolute_gap_, Certificate::absolute_gap_at(p_, s.jet.s));
-    set_target();
+    ledger_.retarget(s.distance, Certificate::absolute_gap_at(p_, s.jet.s));
   }
 
   void examine(OpenBox b) {
-    if (b.lb >= target_) return close(b.lb);  // the target fell with a better answer
+    if (b.lb >= ledger_.target()) return close(b.lb);  // the target fell with a better answer
     const bool closed = close_from_known(b);
     if (closed) return close(b.lb);
     // a box with no known minimiser near may hide one: solve from it once (a box next to a known
     // minimiser is bisected instead: a solve from it would find that minimiser again)
     if (!b.solved && (b.nearer || !near_known(b))) {
       solve_from(b);
-      if (refuted_) return note_unclosed(b);
+      if (ledger_.refuted()) return note_unclosed(b);
       if (close_from_known(b)) return close(b.lb);
-      if (b.lb >= target_) return close(b.lb);
+      if (b.lb >= ledger_.target()) return close(b.lb);
     }
     // 5. bisect, into halves kept for later points (seeding/surface_refinement.hpp)
-    if (runtime_boxes_ + 2 > options_.max_boxes || computed_pairs_ >= options_.max_computed_pairs)
-      return note_unclosed(b);
+    if (runtime_boxes_ + 2 > options_.max_boxes) return note_unclosed(b);
     const int axis = b.split_u ? 0 : 1;
     const double mid = 0.5 * (b.lo[axis] + b.hi[axis]);
     if (!(mid > b.lo[axis] && mid < b.hi[axis])) return note_unclosed(b);  // no room left
     std::unique_ptr<SubBoxPair> scratch;
-    bool computed = false;
     const SubBoxPair& pair =
-        cells_.refinement().halves(*b.halves, *b.ancestor, b.lo, b.hi, b.split_u, scratch, &computed);
-    computed_pairs_ += computed;
+        cells_.refinement().halves(*b.halves, *b.ancestor, b.lo, b.hi, b.split_u, scratch);
     if (scratch) scratch_.push_back(std::move(scratch));
     for (const SubBox& half : pair.half) {
       OpenBox child = bound_sub_box(half, b.ancestor);
-      if (refuted_) return note_unclosed(child);
-      if (child.lb >= target_)
+      if (ledger_.refuted()) return note_unclosed(child);
+      if (child.lb >= ledger_.target())
         close(child.lb);
       else
         open_.push(child);
@@ -313,23 +285,17 @@ class Certifier {
     const BoxEnclosure<2>& e = h.enclosure;
     b.bounded = e.bounded && e.smooth && h.centre.valid;
     b.lb = e.bounded ? std::sqrt(box_distance2_lower(e.s_mid, e.s_rad, p_)) : 0.0;
-    if (!b.bounded || b.lb >= target_) return b;
+    if (!b.bounded || b.lb >= ledger_.target()) return b;
     b.hessian = hessian_bounds(e, p_);
     const Params2 c{0.5 * (b.lo[0] + b.hi[0]), 0.5 * (b.lo[1] + b.hi[1])};
     const GradientEnclosure<2> g = enclose_gradient(h.centre, p_);
-    b.lb = std::max(b.lb,
-                    distance_from_f_lower(second_order_lower_bound(g, c, b.lo, b.hi, b.hessian, target_f_)));
+    b.lb = std::max(b.lb, distance_from_f_lower(
+                              second_order_lower_bound(g, c, b.lo, b.hi, b.hessian, ledger_.target_f())));
     // the centre is a point of the surface: nearer than the answer by more than the gap, it holds
     // a better minimum (or refutes a given answer)
-    double far2 = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const double d = std::abs(h.centre.s[k] - p_[k]) + h.centre.s_rad[k];
-      far2 += d * d;
-    }
-    const double gap = std::fmax(Certificate::kRelativeGap * best_.distance, absolute_gap_);
-    if (std::sqrt(far2) * (1.0 + 4.0 * kU) < best_.distance - gap) {
+    if (ledger_.nearer_than_answer(h.centre.s, h.centre.s_rad, p_)) {
       b.nearer = true;
-      if (!may_improve_) refuted_ = true;
+      if (!may_improve_) ledger_.refute();
     }
     return b;
   }
@@ -341,11 +307,9 @@ class Certifier {
   const bool may_improve_;
   const SurfaceCertifyOptions& options_;
   LocalSolution best_;
-  double absolute_gap_;
-  double target_ = 0.0, target_f_ = 0.0;
-  double lower_ = kInf;
-  bool skipped_ = false, unclosed_ = false, unbounded_ = false, refuted_ = false, improved_ = false;
-  int runtime_boxes_ = 0, computed_pairs_ = 0, solves_ = 0;
+  CertificateLedger ledger_;
+  bool improved_ = false;
+  int runtime_boxes_ = 0, solves_ = 0;
   std::vector<std::unique_ptr<SubBoxPair>> scratch_;  // halves past the refinement's cap
   std::vector<Known> known_;
   std::priority_queue<OpenBox, std::vector<OpenBox>, ByBound> open_;

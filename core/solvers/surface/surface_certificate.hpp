@@ -35,11 +35,11 @@
 namespace footpoint::surface {
 
 struct SurfaceCertifyOptions {
-  // Sub-boxes examined per point beyond the compiled cells (a few hundred ns each once kept by the
-  // refinement), and of them computed anew (one interval jet and one ball jet each, ~1-10 µs with
-  // the formulas' length): what one point may spend.
-  int max_boxes = 128;
-  int max_computed_pairs = 12;
+  // Sub-boxes bounded per point beyond the compiled cells (one interval jet and one ball jet each
+  // where the refinement has not kept them yet, ~1-10 µs with the formulas' length; a few hundred
+  // ns once kept). The count decides, not the cache: an answer's certificate is the same whichever
+  // points came before it.
+  int max_boxes = 48;
   // Local solves started per point from boxes that stay open.
   int max_solves = 32;
 };
