@@ -73,6 +73,9 @@ class Program {
   // formula/interval_jet.hpp). Requires N == num_inputs().
   template <int N>
   void interval_jets2(const Interval* x, IntervalJet2<N>* out) const;
+  // The same enclosures without the Hessians (cheaper): values, gradients and flags.
+  template <int N>
+  void interval_jets1(const Interval* x, IntervalJet1<N>* out) const;
 
   struct Tape;  // opaque
 
