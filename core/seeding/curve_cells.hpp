@@ -39,9 +39,9 @@ struct CurveCells {
 };
 
 struct SubdivisionSettings {
-  // Bisections below an enclosure cell before a cell is kept unproved: 2^-20 of a cell (itself
+  // Bisections below an enclosure cell before a cell is kept unproved: 2^-14 of a cell (itself
   // ~1/48 of the curve) is far below the distances a certificate tells apart.
-  int max_extra_levels = 20;
+  int max_extra_levels = 14;
   // Cells examined before the curve is refused as too intricate for its box (geometry_too_complex).
   std::size_t max_cells = 40000;
   // A proved cell whose enclosures of ∇f1, ∇f2, T and ∂T/∂x_j are wider than this fraction of

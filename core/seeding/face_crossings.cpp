@@ -19,7 +19,7 @@ namespace iv = formula::interval;
 constexpr double kSplit = 0.4921731;
 // Bisections below the face and sub-faces examined per face before the search gives up.
 constexpr int kMaxDepth = 60;
-constexpr int kMaxSubFaces = 4000;
+constexpr int kMaxSubFaces = 256;
 // A Krawczyk image this much narrower than its sub-face in every free coordinate replaces it
 // (it holds every zero of the sub-face) instead of a bisection.
 constexpr double kShrink = 0.7;
