@@ -148,7 +148,7 @@ def self_test(root, libraries):
         ok &= report("self-test: the copied tree is clean", check_includes(tmp))
         plants = [
             # (file, line to add, what the finding must say)
-            ("core/seeding/curve_tracing.hpp", '#include "solvers/curve/implicit_curve_auto.hpp"\n',
+            ("core/seeding/curve_cells.hpp", '#include "solvers/curve/implicit_curve_auto.hpp"\n',
              "seeding includes"),
             ("core/geometry/vec.hpp", '#include "compiled/compiled_geometry.hpp"\n', "geometry includes"),
             ("core/batch/batch.cpp", '#include "api.hpp"\n', "batch/cache/mesh includes"),

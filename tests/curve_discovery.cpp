@@ -4,11 +4,13 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "compiled/implicit_curve_geometry.hpp"
+#include "seeding/curve_enclosure.hpp"
 
 using namespace footpoint;
 using nlohmann::json;
@@ -86,7 +88,8 @@ TEST_CASE("discovery: three circles are three pieces") {
   const json& c = case_of("curve_spatial_cases.json", "three_circles");
   const auto g = compile(c);
   const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
-  CHECK(curve.discovery().stats.traces == 3);
+  CHECK(curve.discovery().stats.pieces == 3);
+  CHECK(curve.discovery().stats.closed_pieces == 3);
   CHECK(curve.discovery().stats.singular_points == 0);
   check_samples(curve);
 }
@@ -182,4 +185,101 @@ TEST_CASE("discovery: a curve too intricate for its box is refused, never answer
   }
   const ProjectionResult r = g->project(p, "auto", {}).value();
   CHECK(r.distance <= bound * (1.0 + 1e-9));
+}
+
+namespace {
+
+std::shared_ptr<const CompiledGeometry> planar_curve(const std::string& f, Box3 box) {
+  GeometryDefinition def;
+  def.type = GeometryType::implicit_curve;
+  def.formulas = {{"equations[0]", f}};
+  def.domain = {{"x", {box.lo.x, box.hi.x}}, {"y", {box.lo.y, box.hi.y}}};
+  return compile_implicit_curve(def, {});
+}
+
+// Every point of the circle c + r (cos t, sin t) lies in a proved cell or an unproved box.
+void check_covered(const ImplicitCurve& curve, Vec3 c, double r) {
+  const CurveCells& cells = curve.discovery().cells;
+  for (int k = 0; k < 2000; ++k) {
+    const double t = 2.0 * M_PI * k / 2000;
+    const Vec3 x = c + Vec3{r * std::cos(t), r * std::sin(t), 0.0};
+    bool in = false;
+    for (const ProvedCell& cell : cells.cells) in = in || cell.box.contains(x, 1e-12);
+    for (const UnprovedBox& u : cells.unproved) in = in || u.box.contains(x, 1e-12);
+    CHECK(in);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("discovery: a tiny oval at a grid corner, on a cell's edge, at a cell's centre is its own piece") {
+  // The enclosure grid of [-2, 2]^2 at its final level has a corner at (1.5246, 1.221575) and cells
+  // of 0.063875 x 0.064525: the oval of radius 0.04 (1 % of the box) sits on that corner, on the
+  // vertical edge above it, or in the middle of the cell.
+  const Vec3 centres[] = {{1.5246, 1.221575, 0}, {1.5246, 1.2538375, 0}, {1.5565375, 1.2538375, 0}};
+  for (const Vec3& c : centres) {
+    CAPTURE(c.x);
+    CAPTURE(c.y);
+    char f[160];
+    std::snprintf(f, sizeof f, "(x^2+y^2-1)*((x-%.17g)^2+(y-%.17g)^2-0.0016)", c.x, c.y);
+    const auto g = planar_curve(f, {{-2, -2, 0}, {2, 2, 0}});
+    const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
+    const CellGrid grid = enclosure_grid(curve.box());
+    CHECK(curve.discovery().stats.levels == 6);
+    CHECK(std::fabs(grid.box.lo.x + 56.0 * std::ldexp(grid.box.hi.x - grid.box.lo.x, -6) - 1.5246) < 1e-12);
+    CHECK(curve.discovery().stats.pieces == 2);
+    CHECK(curve.discovery().stats.closed_pieces == 2);
+    CHECK(curve.discovery().stats.unproved_boxes == 0);
+    check_covered(curve, c, 0.04);
+    check_covered(curve, {0, 0, 0}, 1.0);
+    check_samples(curve);
+    // Samples on the oval, every one of its arcs: none farther than the spacing from the next.
+    int on_oval = 0;
+    for (const Vec3& x : curve.discovery().samples.points) on_oval += norm(x - c) < 0.05 ? 1 : 0;
+    CHECK(on_oval >= 8);
+  }
+}
+
+TEST_CASE("discovery: circles 1e-3 apart are two pieces, subdivided until separated") {
+  const auto g = planar_curve("(x^2+y^2-1)*((x-2.001)^2+y^2-1)", {{-2, -2, 0}, {4, 2, 0}});
+  const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
+  CHECK(curve.discovery().stats.pieces == 2);
+  CHECK(curve.discovery().stats.closed_pieces == 2);
+  CHECK(curve.discovery().stats.unproved_boxes == 0);
+  CHECK(curve.discovery().stats.deepest >= 4);
+  check_covered(curve, {0, 0, 0}, 1.0);
+  check_covered(curve, {2.001, 0, 0}, 1.0);
+  check_samples(curve);
+}
+
+TEST_CASE("discovery: singular points of any order are bounded, never refused") {
+  // A node (isolated by Krawczyk's test), a tacnode y^2 = x^4 and a cusp (bounded in small
+  // unproved boxes): each found as a singular point, in a box of at most 1e-5.
+  struct Case {
+    const char* f;
+    Box3 box;
+    Vec3 singular;
+    bool isolated;
+  };
+  const Case cases[] = {{"y^2-x^2*(x+0.04)", {{-1, -1, 0}, {1, 1, 0}}, {0, 0, 0}, true},
+                        {"y^2-x^4", {{-1, -1.2, 0}, {1.1, 1, 0}}, {0, 0, 0}, false},
+                        {"(y-0.13)^2-(x+0.07)^3", {{-1, -1, 0}, {1, 1, 0}}, {-0.07, 0.13, 0}, false}};
+  for (const Case& c : cases) {
+    CAPTURE(c.f);
+    const auto g = planar_curve(c.f, c.box);
+    const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
+    const DiscoveryStats& s = curve.discovery().stats;
+    CHECK(s.singular_points == 1);
+    CHECK(s.isolated_singular_points == (c.isolated ? 1 : 0));
+    REQUIRE(s.unproved_boxes >= 1);
+    for (const UnprovedBox& u : curve.discovery().cells.unproved) {
+      if (!u.box.contains(c.singular, 1e-6)) continue;
+      CHECK(u.box.max_edge() <= 1e-5);
+    }
+    bool found = false;
+    for (std::size_t i = 0; i < curve.discovery().samples.size(); ++i)
+      if (curve.discovery().samples.kind[i] == SampleKind::singular_point)
+        found = found || norm(curve.discovery().samples.points[i] - c.singular) <= 1e-7;
+    CHECK(found);
+  }
 }

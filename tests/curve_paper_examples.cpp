@@ -84,10 +84,11 @@ TEST_CASE("discovery: each example is one closed loop, inside the oracle's bound
     const auto g = compile(c);
     const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
     const CurveDiscovery& d = curve.discovery();
-    CHECK(d.stats.traces == 1);
+    CHECK(d.stats.pieces == 1);
+    CHECK(d.stats.closed_pieces == 1);
     CHECK(d.stats.face_crossings == 0);
     CHECK(d.stats.singular_points == 0);
-    CHECK(d.stats.unresolved_cells == 0);
+    CHECK(d.stats.unproved_boxes == 0);
     const CurveSamples& s = d.samples;
     REQUIRE(s.size() > 100);
     // A closed loop: every sample has both neighbours; the links are at most h apart; every sample

@@ -2,7 +2,10 @@
 // parametric curves (helix, trefoil, planar ellipse, a parabola arc with endpoint answers), planar
 // implicit curves (ellipse, cusp and lemniscate singular points, two components, a clipped
 // parabola, two circles touching at a tacnode) and spatial curves (Viviani's curve with its double point,
-// three circles, Example 1's curve clipped by the box, a helix leaving through the box's z faces).
+// three circles, Example 1's curve clipped by the box, a helix leaving through the box's z faces), and
+// the classes of certified answers (curve_*_certified_cases.json: tiny ovals at a grid corner, on a
+// cell's edge and at a cell's centre, tiny loops in 2-D and 3-D, a tacnode y^2 = x^4, an offset
+// cusp, circles 1e-3 apart, nearly tangent spheres).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -178,8 +181,16 @@ TEST_CASE("auto: spatial curves against the oracle (Viviani, three circles, box 
   check_file("curve_spatial_cases.json");
 }
 
+TEST_CASE(
+    "auto: the certified classes against the oracle (tiny ovals and loops, tacnode, cusp, close circles)") {
+  check_file("curve_planar_certified_cases.json");
+  check_file("curve_spatial_certified_cases.json");
+}
+
 TEST_CASE("auto with all_minima returns the oracle's local minima, best first") {
   check_all_minima("curve_parametric_cases.json");
   check_all_minima("curve_planar_implicit_cases.json");
   check_all_minima("curve_spatial_cases.json");
+  check_all_minima("curve_planar_certified_cases.json");
+  check_all_minima("curve_spatial_certified_cases.json");
 }

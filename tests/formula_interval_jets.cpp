@@ -238,6 +238,35 @@ TEST_CASE("the flags: kinks, switches, jumps and domain ends") {
   CHECK(r.g[1].hi == 0.0);
 }
 
+TEST_CASE("interval_jets1: the values, gradients and flags of interval_jets2, without the Hessian") {
+  // The same operations on the same enclosures, bit for bit: only the Hessian steps are left out.
+  std::mt19937_64 rng(18);
+  int checked = 0;
+  for (const char* text : kOps) {
+    INFO(std::string(text));
+    const Program p = Program::compile({{"f", text}}, {"u", "v"}, {});
+    for (int b = 0; b < 100; ++b) {
+      const Box box = random_box(rng);
+      const Interval x[2] = {box.u, box.v};
+      IntervalJet2<2> two;
+      footpoint::formula::IntervalJet1<2> one;
+      p.interval_jets2<2>(x, &two);
+      p.interval_jets1<2>(x, &one);
+      const auto same = [](const Interval& a, const Interval& b) {
+        return (a.lo == b.lo || (std::isnan(a.lo) && std::isnan(b.lo))) &&
+               (a.hi == b.hi || (std::isnan(a.hi) && std::isnan(b.hi))) && a.partial == b.partial;
+      };
+      CHECK(same(one.v, two.v));
+      CHECK(same(one.g[0], two.g[0]));
+      CHECK(same(one.g[1], two.g[1]));
+      CHECK(one.lipschitz == two.lipschitz);
+      CHECK(one.smooth == two.smooth);
+      ++checked;
+    }
+  }
+  CHECK(checked > 4000);
+}
+
 TEST_CASE("interval jets in one and three variables") {
   const Program p1 = Program::compile({{"x", "t^3-sin(t)"}}, {"t"}, {});
   const Interval t[1] = {{0.5, 0.75}};

@@ -37,3 +37,21 @@ TEST_CASE("refine_singular_point: a critical point of f off the curve is no sing
   Vec3 y = circle_point(0.3) + Vec3{0.01, 0.0, 0.0};
   CHECK(!curve::refine_singular_point(circle(), y));
 }
+
+TEST_CASE("isolate_singular_point: Krawczyk isolates a node, not a cusp or a tacnode") {
+  // Viviani's double point and the lemniscate's crossing are regular zeros of the singular system.
+  const ImplicitEquations viviani = spatial_equations("x^2+y^2+z^2-4", "(x-1)^2+y^2-1");
+  Vec3 v{1.98, 0.015, -0.02};
+  REQUIRE(curve::refine_singular_point(viviani, v));
+  const auto box = curve::isolate_singular_point(viviani, v, 1e-3);
+  REQUIRE(box.has_value());
+  CHECK(box->contains(Vec3{2, 0, 0}));
+  CHECK(box->max_edge() <= 2e-3);
+  const ImplicitEquations lemniscate = planar_equations("(x^2+y^2)^2-2*(x^2-y^2)");
+  const auto crossing = curve::isolate_singular_point(lemniscate, {1e-9, -1e-9, 0.0}, 0.05);
+  REQUIRE(crossing.has_value());
+  CHECK(crossing->contains(Vec3{0, 0, 0}));
+  // The cusp y^2 = x^3 and the tacnode y^2 = x^4: the Hessian of f is singular there.
+  CHECK(!curve::isolate_singular_point(planar_equations("y^2-x^3"), {0.0, 0.0, 0.0}, 0.01).has_value());
+  CHECK(!curve::isolate_singular_point(planar_equations("y^2-x^4"), {0.0, 0.0, 0.0}, 0.01).has_value());
+}

@@ -1,11 +1,13 @@
 #include "compiled/implicit_curve_geometry.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "solvers/curve/accelerated_correction.hpp"
 #include "solvers/curve/complete_projection.hpp"
 #include "solvers/curve/foot_point_march.hpp"
 #include "solvers/curve/implicit_curve_auto.hpp"
+#include "solvers/curve/implicit_curve_certificate.hpp"
 #include "solvers/curve/simplified_projection.hpp"
 #include "solvers/curve/steepest_descent.hpp"
 #include "solvers/curve/tangent_foot.hpp"
@@ -14,19 +16,26 @@ namespace footpoint {
 
 namespace {
 
-// The solvers of the spatial-curve paper [Curve] take the curve's equations and box.
+// The solvers of the spatial-curve paper [Curve] take the curve's equations and box; asked for a
+// certificate (options.certify), their answer gets the one `auto`'s would (a local method's answer
+// is certified or refuted, not improved).
 template <ProjectionResult (*solve)(const ImplicitEquations&, const Box3&, Vec3, const Options&)>
 ProjectionResult in_box(const ImplicitCurve& c, Vec3 p, const Options& o) {
-  return solve(c.equations(), c.box(), p, o);
+  ProjectionResult r = solve(c.equations(), c.box(), p, o);
+  if (o.certify.value_or(false) && std::isfinite(r.distance))
+    r.summary.certificate = curve::certify_implicit_curve_answer(
+        c.equations(), c.box(), c.discovery(), p,
+        {r.foot[0], r.foot[1], c.equations().planar() ? 0.0 : r.foot[2]}, r.distance);
+  return r;
 }
 
 // The method table of implicit curves: `auto` for both, the planar iteration of [Curve]'s
 // introduction for planar curves, its Algorithms 1-5 for spatial ones.
 constexpr Method<ImplicitCurve> kMethods[] = {
     {{"auto",
-      "global nearest point in the box: interval subdivision finds every piece of the curve, samples "
+      "global nearest point in the box: interval subdivision proves every piece of the curve, samples "
       "seed Newton on the Lagrange system; singular points and the crossings of the box's edges "
-      "(planar) or faces (spatial) are candidates",
+      "(planar) or faces (spatial) are candidates; a certificate bounds the distance from below",
       ""},
      [](const ImplicitCurve& c, Vec3 p, const Options& o) {
        return curve::implicit_curve_auto(c.equations(), c.box(), c.discovery(), c.sample_index(), p, o);
@@ -87,7 +96,7 @@ ProjectionResult ImplicitCurve::project_with(std::size_t index, const double* p,
 const std::vector<MethodInfo>& implicit_curve_methods() { return table(PointDims::any).infos(); }
 
 std::size_t ImplicitCurve::memory_bytes() const {
-  return sizeof(*this) + equations_.program().memory_bytes() + discovery_.samples.memory_bytes() +
+  return sizeof(*this) + equations_.program().memory_bytes() + discovery_.memory_bytes() +
          index_.memory_bytes();
 }
 

@@ -1,5 +1,6 @@
-// The compiled implicit curve: its equations and box (geometry/implicit_curve.hpp), the samples of
-// every piece of it that `auto` precomputes with their k-d tree, and projection by method name.
+// The compiled implicit curve: its equations and box (geometry/implicit_curve.hpp), what `auto`
+// precomputes (seeding/curve_discovery: the proved cells with their enclosures and tree, the
+// samples of every piece with their k-d tree), and projection by method name.
 #pragma once
 #include <cstddef>
 #include <vector>

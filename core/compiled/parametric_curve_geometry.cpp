@@ -5,8 +5,8 @@
 
 #include "seeding/curve_parametric_samples.hpp"
 #include "solvers/curve/curvature_circle.hpp"
-#include "solvers/curve/curve_certificate.hpp"
 #include "solvers/curve/parametric_curve_auto.hpp"
+#include "solvers/curve/parametric_curve_certificate.hpp"
 #include "solvers/curve/parametric_newton.hpp"
 
 namespace footpoint {

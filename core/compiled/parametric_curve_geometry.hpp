@@ -8,9 +8,9 @@
 #include "compiled/compiled_geometry.hpp"
 #include "geometry/curve_closure.hpp"
 #include "geometry/parametric_curve.hpp"
-#include "seeding/curve_cells.hpp"
 #include "seeding/curve_sample_index.hpp"
 #include "seeding/curve_samples.hpp"
+#include "seeding/parametric_curve_cells.hpp"
 
 namespace footpoint {
 
@@ -32,7 +32,7 @@ class ParametricCurve final : public CompiledGeometry {
   const CurveSamples& samples() const { return samples_; }
   const CurveSampleIndex& sample_index() const { return index_; }
   // What the certificates bound: cells of a few sample gaps with their enclosures.
-  const CurveCells& cells() const { return cells_; }
+  const ParametricCurveCells& cells() const { return cells_; }
 
  private:
   ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
@@ -42,7 +42,7 @@ class ParametricCurve final : public CompiledGeometry {
   CurveClosure closure_;
   CurveSamples samples_;
   CurveSampleIndex index_;
-  CurveCells cells_;
+  ParametricCurveCells cells_;
 };
 
 }  // namespace footpoint

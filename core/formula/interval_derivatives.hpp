@@ -17,7 +17,9 @@ struct Derivatives {
   bool lipschitz = true, smooth = true;
 };
 
-inline Derivatives interval_derivatives(Op op, const Interval& A, const Interval& R, double k) {
+// Without `second`, d2 may be left unset where it costs more than a product (first-order jets).
+inline Derivatives interval_derivatives(Op op, const Interval& A, const Interval& R, double k,
+                                        bool second = true) {
   using namespace interval;
   auto libm = [](Op f, const Interval& a) { return IntervalArith::unary(f, a, 0.0); };
   // an interval holding a constant computed to the nearest double (within half an ulp)
@@ -38,7 +40,7 @@ inline Derivatives interval_derivatives(Op op, const Interval& A, const Interval
       const int n = static_cast<int>(k);
       if (n < 0 && A.lo <= 0.0 && A.hi >= 0.0) return singular();
       d.d1 = mul(point(n), IntervalArith::pow_int(A, n - 1));
-      d.d2 = mul(mul(point(n), point(n - 1.0)), IntervalArith::pow_int(A, n - 2));
+      if (second) d.d2 = mul(mul(point(n), point(n - 1.0)), IntervalArith::pow_int(A, n - 2));
       return d;
     }
     case Op::pow_real:  // x^k for x > 0: k x^k / x, (k - 1) d1 / x

@@ -40,4 +40,15 @@ struct IntervalJet2 {
   bool smooth = true;
 };
 
+// The same without the Hessian (Program::interval_jets1): value and gradient enclosures, and the
+// same flags (`smooth` still says whether f is twice continuously differentiable on the box).
+// About a third of the work of IntervalJet2 for three variables.
+template <int N>
+struct IntervalJet1 {
+  Interval v;
+  std::array<Interval, N> g{};
+  bool lipschitz = true;
+  bool smooth = true;
+};
+
 }  // namespace footpoint::formula

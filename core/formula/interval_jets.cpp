@@ -8,6 +8,7 @@
 //   q = a/b: q_i = (a_i - q b_i)/b, q_ij = (a_ij - q_i b_j - q_j b_i - q b_ij)/b.
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 #include "formula/interval_arith.hpp"
 #include "formula/interval_derivatives.hpp"
@@ -22,9 +23,12 @@ namespace {
 
 using namespace interval;
 
-template <int N>
-struct IntervalJet2Arith {
-  using T = IntervalJet2<N>;
+// J is IntervalJet2<N> (values, gradients, Hessians) or IntervalJet1<N> (no Hessians: every
+// Hessian step below is compiled out).
+template <int N, class J>
+struct IntervalJetArith {
+  using T = J;
+  static constexpr bool kHessian = std::is_same_v<J, IntervalJet2<N>>;
   using Input = Interval;
   using Output = T;
   static const T& output(const T& a) { return a; }
@@ -47,9 +51,10 @@ struct IntervalJet2Arith {
       r.smooth = false;
       for (auto& x : r.g) x = entire();
     }
-    if (!r.smooth)
-      for (auto& row : r.h)
-        for (auto& x : row) x = entire();
+    if constexpr (kHessian)
+      if (!r.smooth)
+        for (auto& row : r.h)
+          for (auto& x : row) x = entire();
     return r;
   }
   // f∘a for φ with derivatives d over a's range.
@@ -60,10 +65,11 @@ struct IntervalJet2Arith {
     r.smooth = r.lipschitz && a.smooth && d.smooth;
     if (r.lipschitz)
       for (int i = 0; i < N; ++i) r.g[i] = mul(d.d1, a.g[i]);
-    if (r.smooth)
-      for (int i = 0; i < N; ++i)
-        for (int j = i; j < N; ++j)
-          r.h[j][i] = r.h[i][j] = add(mul(d.d1, a.h[i][j]), mul(d.d2, mul(a.g[i], a.g[j])));
+    if constexpr (kHessian)
+      if (r.smooth)
+        for (int i = 0; i < N; ++i)
+          for (int j = i; j < N; ++j)
+            r.h[j][i] = r.h[i][j] = add(mul(d.d1, a.h[i][j]), mul(d.d2, mul(a.g[i], a.g[j])));
     return settle(r);
   }
   // every derivative times the constant interval s (a linear operation)
@@ -71,8 +77,9 @@ struct IntervalJet2Arith {
     T r = a;
     r.v = value;
     for (int i = 0; i < N; ++i) r.g[i] = mul(s, a.g[i]);
-    for (int i = 0; i < N; ++i)
-      for (int j = 0; j < N; ++j) r.h[i][j] = mul(s, a.h[i][j]);
+    if constexpr (kHessian)
+      for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j) r.h[i][j] = mul(s, a.h[i][j]);
     return settle(r);
   }
   static T unary(Op op, const T& a, double k) {
@@ -104,7 +111,7 @@ struct IntervalJet2Arith {
         if (a.v.lo > 0.0 || a.v.hi < 0.0) return constant_over_box(value);
         return jump(value);
       default:
-        return chain(a, value, interval_derivatives(op, a.v, value, k));
+        return chain(a, value, interval_derivatives(op, a.v, value, k, kHessian));
     }
   }
   // A function constant over the box (a sign or a truth value that does not change there).
@@ -131,35 +138,39 @@ struct IntervalJet2Arith {
       case Op::sub: {
         const bool plus = op == Op::add;
         for (int i = 0; i < N; ++i) r.g[i] = plus ? add(a.g[i], b.g[i]) : sub(a.g[i], b.g[i]);
-        for (int i = 0; i < N; ++i)
-          for (int j = 0; j < N; ++j)
-            r.h[i][j] = plus ? add(a.h[i][j], b.h[i][j]) : sub(a.h[i][j], b.h[i][j]);
+        if constexpr (kHessian)
+          for (int i = 0; i < N; ++i)
+            for (int j = 0; j < N; ++j)
+              r.h[i][j] = plus ? add(a.h[i][j], b.h[i][j]) : sub(a.h[i][j], b.h[i][j]);
         return settle(r);
       }
       case Op::mul:
         if (&a ==
             &b) {  // x * x, one node for both operands: (x^2)_i = 2 x x_i, (x^2)_ij = 2 (x_i x_j + x x_ij)
           for (int i = 0; i < N; ++i) r.g[i] = mul(point(2.0), mul(a.v, a.g[i]));
-          for (int i = 0; i < N; ++i)
-            for (int j = i; j < N; ++j)
-              r.h[j][i] = r.h[i][j] =
-                  mul(point(2.0), add(i == j ? sqr(a.g[i]) : mul(a.g[i], a.g[j]), mul(a.v, a.h[i][j])));
+          if constexpr (kHessian)
+            for (int i = 0; i < N; ++i)
+              for (int j = i; j < N; ++j)
+                r.h[j][i] = r.h[i][j] =
+                    mul(point(2.0), add(i == j ? sqr(a.g[i]) : mul(a.g[i], a.g[j]), mul(a.v, a.h[i][j])));
           return settle(r);
         }
         for (int i = 0; i < N; ++i) r.g[i] = add(mul(a.g[i], b.v), mul(a.v, b.g[i]));
-        for (int i = 0; i < N; ++i)
-          for (int j = i; j < N; ++j)
-            r.h[j][i] = r.h[i][j] = add(add(mul(a.h[i][j], b.v), mul(a.g[i], b.g[j])),
-                                        add(mul(a.g[j], b.g[i]), mul(a.v, b.h[i][j])));
+        if constexpr (kHessian)
+          for (int i = 0; i < N; ++i)
+            for (int j = i; j < N; ++j)
+              r.h[j][i] = r.h[i][j] = add(add(mul(a.h[i][j], b.v), mul(a.g[i], b.g[j])),
+                                          add(mul(a.g[j], b.g[i]), mul(a.v, b.h[i][j])));
         return settle(r);
       case Op::div: {
         if (b.v.lo <= 0.0 && b.v.hi >= 0.0) return jump(value);
         const Interval q = value;
         for (int i = 0; i < N; ++i) r.g[i] = div(sub(a.g[i], mul(q, b.g[i])), b.v);
-        for (int i = 0; i < N; ++i)
-          for (int j = i; j < N; ++j)
-            r.h[j][i] = r.h[i][j] = div(
-                sub(sub(a.h[i][j], mul(r.g[i], b.g[j])), add(mul(r.g[j], b.g[i]), mul(q, b.h[i][j]))), b.v);
+        if constexpr (kHessian)
+          for (int i = 0; i < N; ++i)
+            for (int j = i; j < N; ++j)
+              r.h[j][i] = r.h[i][j] = div(
+                  sub(sub(a.h[i][j], mul(r.g[i], b.g[j])), add(mul(r.g[j], b.g[i]), mul(q, b.h[i][j]))), b.v);
         return settle(r);
       }
       case Op::min:
@@ -193,11 +204,19 @@ struct IntervalJet2Arith {
 
 template <int N>
 void Program::interval_jets2(const Interval* x, IntervalJet2<N>* out) const {
-  run<IntervalJet2Arith<N>>(*tape_, x, out);
+  run<IntervalJetArith<N, IntervalJet2<N>>>(*tape_, x, out);
+}
+
+template <int N>
+void Program::interval_jets1(const Interval* x, IntervalJet1<N>* out) const {
+  run<IntervalJetArith<N, IntervalJet1<N>>>(*tape_, x, out);
 }
 
 template void Program::interval_jets2<1>(const Interval*, IntervalJet2<1>*) const;
 template void Program::interval_jets2<2>(const Interval*, IntervalJet2<2>*) const;
 template void Program::interval_jets2<3>(const Interval*, IntervalJet2<3>*) const;
+template void Program::interval_jets1<1>(const Interval*, IntervalJet1<1>*) const;
+template void Program::interval_jets1<2>(const Interval*, IntervalJet1<2>*) const;
+template void Program::interval_jets1<3>(const Interval*, IntervalJet1<3>*) const;
 
 }  // namespace footpoint::formula

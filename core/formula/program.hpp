@@ -74,6 +74,9 @@ class Program {
   // formula/interval_jet.hpp). Requires N == num_inputs().
   template <int N>
   void interval_jets2(const Interval* x, IntervalJet2<N>* out) const;
+  // The same enclosures without the Hessians (cheaper): values, gradients and flags.
+  template <int N>
+  void interval_jets1(const Interval* x, IntervalJet1<N>* out) const;
   // Rigorous enclosures of every formula's value and gradient at the point x, as balls
   // (formula/ball.hpp): a few times the cost of jets2, for the certificates of answers.
   template <int N>

@@ -1,5 +1,7 @@
 #include "geometry/implicit_curve.hpp"
 
+#include <tuple>
+
 namespace footpoint {
 
 std::array<double, 2> ImplicitEquations::values(Vec3 x) const {
@@ -40,13 +42,73 @@ ImplicitJet ImplicitEquations::jet(Vec3 x) const {
   return j;
 }
 
+std::array<Interval, 2> ImplicitEquations::value_enclosure(const Box3& box) const {
+  formula::Interval in[3];
+  std::array<Interval, 2> out{};
+  for (int k = 0; k < 3; ++k) in[k] = {box.lo[k], box.hi[k]};
+  program_.intervals(in, out.data());
+  if (planar_) out[1] = {box.lo.z, box.hi.z};
+  return out;
+}
+
 bool ImplicitEquations::may_vanish(const Box3& cell) const {
-  formula::Interval in[3], out[2];
-  for (int k = 0; k < 3; ++k) in[k] = {cell.lo[k], cell.hi[k]};
-  program_.intervals(in, out);
-  if (out[0].excludes_zero()) return false;
-  if (planar_) return !(cell.lo.z > 0.0 || cell.hi.z < 0.0);
-  return !out[1].excludes_zero();
+  const std::array<Interval, 2> f = value_enclosure(cell);
+  return !f[0].excludes_zero() && !f[1].excludes_zero();
+}
+
+namespace {
+
+// Copies formula i's enclosures (n variables) into j; without Hessians (IntervalJet1) they are
+// left holding the whole line.
+template <class Jet>
+void copy_jet(ImplicitIntervalJet& j, int i, const Jet& f, int n) {
+  j.f[i] = f.v;
+  for (int r = 0; r < n; ++r) {
+    j.grad[i][r] = f.g[r];
+    for (int c = 0; c < 3; ++c) {
+      if constexpr (requires { f.h; })
+        j.hess[i][r][c] = c < n ? f.h[r][c] : Interval{0.0, 0.0};
+      else
+        j.hess[i][r][c] = formula::interval::entire();
+    }
+  }
+  j.lipschitz = j.lipschitz && f.lipschitz && !f.v.partial;
+  j.smooth = j.smooth && f.smooth && !f.v.partial;
+}
+
+template <template <int> class Jet, class Evaluate>
+ImplicitIntervalJet enclose(const Box3& box, bool planar, Evaluate&& evaluate) {
+  ImplicitIntervalJet j;
+  if (planar) {
+    const formula::Interval in[2] = {{box.lo.x, box.hi.x}, {box.lo.y, box.hi.y}};
+    Jet<2> f[1];
+    evaluate(in, f);
+    copy_jet(j, 0, f[0], 2);
+    j.f[1] = {box.lo.z, box.hi.z};
+    j.grad[1][2] = {1.0, 1.0};
+  } else {
+    const formula::Interval in[3] = {{box.lo.x, box.hi.x}, {box.lo.y, box.hi.y}, {box.lo.z, box.hi.z}};
+    Jet<3> f[2];
+    evaluate(in, f);
+    copy_jet(j, 0, f[0], 3);
+    copy_jet(j, 1, f[1], 3);
+  }
+  j.smooth = j.smooth && j.lipschitz;
+  return j;
+}
+
+}  // namespace
+
+ImplicitIntervalJet ImplicitEquations::interval_jet(const Box3& box) const {
+  return enclose<formula::IntervalJet2>(box, planar_, [&](const formula::Interval* in, auto* f) {
+    program_.interval_jets2<std::tuple_size_v<decltype(f->g)>>(in, f);
+  });
+}
+
+ImplicitIntervalJet ImplicitEquations::interval_gradient(const Box3& box) const {
+  return enclose<formula::IntervalJet1>(box, planar_, [&](const formula::Interval* in, auto* f) {
+    program_.interval_jets1<std::tuple_size_v<decltype(f->g)>>(in, f);
+  });
 }
 
 }  // namespace footpoint

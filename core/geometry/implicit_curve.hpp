@@ -7,24 +7,14 @@
 #include <utility>
 
 #include "formula/program.hpp"
+#include "geometry/box3.hpp"
+#include "geometry/interval_vec3.hpp"
 #include "geometry/vec.hpp"
 
 namespace footpoint {
 
 using Mat3 = std::array<Vec3, 3>;  // rows; the Hessians are symmetric
 inline Vec3 operator*(const Mat3& m, Vec3 v) { return {dot(m[0], v), dot(m[1], v), dot(m[2], v)}; }
-
-// A closed axis-aligned box (planar curves: lo.z = hi.z = 0).
-struct Box3 {
-  Vec3 lo, hi;
-  bool contains(Vec3 x, double slack = 0.0) const {
-    for (int k = 0; k < 3; ++k)
-      if (x[k] < lo[k] - slack || x[k] > hi[k] + slack) return false;
-    return true;
-  }
-  Vec3 center() const { return 0.5 * (lo + hi); }
-  double diagonal() const { return norm(hi - lo); }
-};
 
 // f1, f2 and their exact first and second derivatives at one point (jets of the formula tape).
 struct ImplicitJet {
@@ -33,6 +23,30 @@ struct ImplicitJet {
   std::array<Mat3, 2> hess{};
   // The tangent T = grad f1 x grad f2 ([Curve] eq. (7)).
   Vec3 tangent() const { return cross(grad[0], grad[1]); }
+};
+
+// Enclosures over a box of f1, f2, their gradients and Hessians (formula/interval_jet.hpp's
+// contract; planar curves' f2 = z exactly): every value, gradient and Hessian at a point of the box
+// lies in them where the flags say so.
+struct ImplicitIntervalJet {
+  std::array<Interval, 2> f{};
+  std::array<IVec3, 2> grad{};
+  std::array<IMat3, 2> hess{};  // symmetric: row k is column k
+  // f1 and f2 are Lipschitz on the box and grad encloses their (Clarke) gradients: the mean value
+  // inclusion f(y) - f(x) ∈ grad · (y - x) holds for x, y in the box.
+  bool lipschitz = true;
+  // Both are twice continuously differentiable on the box and hess encloses their Hessians.
+  bool smooth = true;
+  // T = ∇f1 × ∇f2 over the box ([Curve] eq. (7)); each component is the exact range over the
+  // gradients' enclosures (interval_vec3.hpp), so 0 outside T_k means T_k ≠ 0 at every point.
+  IVec3 tangent() const { return ivec::cross(grad[0], grad[1]); }
+  // dT[k] = ∂T/∂x_k = (H1 e_k) × ∇f2 + ∇f1 × (H2 e_k) over the box (valid when smooth).
+  IMat3 tangent_derivatives() const {
+    IMat3 dt;
+    for (int k = 0; k < 3; ++k)
+      dt[k] = ivec::add(ivec::cross(hess[0][k], grad[1]), ivec::cross(grad[0], hess[1][k]));
+    return dt;
+  }
 };
 
 class ImplicitEquations {
@@ -46,6 +60,14 @@ class ImplicitEquations {
   // False only when the interval enclosure of some equation over the cell excludes 0: then the
   // cell certainly holds no point of the curve (a rigorous exclusion test).
   bool may_vanish(const Box3& cell) const;
+  // Enclosures of f1 and f2 over the box (Program::intervals; planar: f2 = z exactly); at a point
+  // box [x, x], rigorous enclosures of the values at x.
+  std::array<Interval, 2> value_enclosure(const Box3& box) const;
+  // Enclosures of the jets over the box (a point box [x, x] gives rigorous enclosures at x).
+  ImplicitIntervalJet interval_jet(const Box3& box) const;
+  // The same without the Hessians (about a third of the work): hess is left holding the whole
+  // line; f, grad and the flags are those of interval_jet.
+  ImplicitIntervalJet interval_gradient(const Box3& box) const;
   const formula::Program& program() const { return program_; }
 
  private:

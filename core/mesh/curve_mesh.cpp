@@ -15,8 +15,8 @@ namespace {
 // Fine intervals per segment (at least kMinFine) the measure is sampled on.
 constexpr int kFinePerSegment = 8;
 constexpr int kMinFine = 64;
-// A singular point is spliced into a piece passing within this many sample spacings of it, and
-// put at an open end that stopped within kStallSpacings of it.
+// A singular point is put at an open end within kStallSpacings sample spacings of it, and spliced
+// into a piece passing within kPassSpacings of it.
 constexpr double kPassSpacings = 0.5;
 constexpr double kStallSpacings = 4.0;
 constexpr double kInfinityDistance = std::numeric_limits<double>::infinity();
@@ -49,15 +49,25 @@ double distance_to_segment(Vec3 x, Vec3 a, Vec3 b) {
   return norm(x - (a + t * ab));
 }
 
-// Joins the singular point `s` to a piece: spliced between the two samples of each passage of
-// the piece within half a spacing of it (a walk that went through the crossing), else put before
-// or after an open end within four spacings (a walk that stalled short of it; curve_tracing.cpp
-// refines a singular point up to 4 steps from where it stalled).
+// Joins the singular point `s` to a piece: put at an open end within kStallSpacings of it (the
+// pieces of discovery end next to the small unproved box around a singular point,
+// seeding/curve_cells.hpp), else spliced between the two samples of each passage of the piece
+// within half a spacing of it.
 void join_singular_point(const CurveSamples& samples, std::int32_t s, Piece& piece) {
   const auto point = [&](std::int32_t i) { return samples.points[static_cast<std::size_t>(i)]; };
   const Vec3 x = point(s);
   const double h = samples.spacing;
   std::vector<std::int32_t>& list = piece.samples;
+  if (!piece.closed) {
+    const auto ends_near = [&](std::int32_t end) {
+      return samples.kind[static_cast<std::size_t>(end)] == SampleKind::regular &&
+             norm(point(end) - x) <= kStallSpacings * h;
+    };
+    const bool before_front = ends_near(list.front()), after_back = ends_near(list.back());
+    if (before_front) list.insert(list.begin(), s);
+    if (after_back) list.push_back(s);
+    if (before_front || after_back) return;
+  }
   const std::size_t size = list.size();
   const std::size_t count = piece.closed ? size : size - 1;  // segments; k joins list[k], list[k + 1]
   const auto near = [&](std::size_t k) {
@@ -84,20 +94,53 @@ void join_singular_point(const CurveSamples& samples, std::int32_t s, Piece& pie
       best_distance = kInfinityDistance;
     }
   }
-  if (!after.empty()) {
-    std::sort(after.begin(), after.end());
-    for (auto k = after.rbegin(); k != after.rend(); ++k)
-      list.insert(list.begin() + static_cast<std::ptrdiff_t>(*k + 1), s);
-    return;
-  }
-  if (piece.closed) return;
-  const auto stalled_near = [&](std::int32_t end) {
-    return samples.kind[static_cast<std::size_t>(end)] == SampleKind::regular &&
-           norm(point(end) - x) <= kStallSpacings * h;
+  std::sort(after.begin(), after.end());
+  for (auto k = after.rbegin(); k != after.rend(); ++k)
+    list.insert(list.begin() + static_cast<std::ptrdiff_t>(*k + 1), s);
+}
+
+// The open pieces that end at the singular point s are joined through it, two at a time, each
+// end with the one leaving s most nearly opposite to it (a branch goes straight through a
+// crossing); a piece whose two ends are so joined closes. The pieces of discovery end next to the
+// small unproved box around a singular point (seeding/curve_cells.hpp), and join_singular_point put
+// s at those ends.
+void join_through(const CurveSamples& samples, std::int32_t s, std::vector<Piece>& pieces) {
+  struct End {
+    std::size_t piece;
+    bool back;  // the piece's last sample is s (else its first)
+    Vec3 away;  // from s along the piece
   };
-  const bool before_front = stalled_near(list.front()), after_back = stalled_near(list.back());
-  if (before_front) list.insert(list.begin(), s);
-  if (after_back) list.push_back(s);
+  for (;;) {
+    std::vector<End> ends;
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      const Piece& p = pieces[k];
+      if (p.closed || p.samples.size() < 3) continue;
+      const auto point = [&](std::int32_t i) { return samples.points[static_cast<std::size_t>(i)]; };
+      if (p.samples.front() == s) ends.push_back({k, false, unit(point(p.samples[1]) - point(s))});
+      if (p.samples.back() == s)
+        ends.push_back({k, true, unit(point(p.samples[p.samples.size() - 2]) - point(s))});
+    }
+    if (ends.size() < 2) return;
+    double best = 2.0;
+    std::size_t a = 0, b = 0;
+    for (std::size_t i = 0; i < ends.size(); ++i)
+      for (std::size_t j = i + 1; j < ends.size(); ++j)
+        if (dot(ends[i].away, ends[j].away) < best) best = dot(ends[i].away, ends[j].away), a = i, b = j;
+    const End first = ends[a], second = ends[b];
+    if (first.piece == second.piece) {  // both ends of one piece: a loop through s
+      Piece& p = pieces[first.piece];
+      p.samples.pop_back();
+      p.closed = true;
+      continue;
+    }
+    // pieces[first] ending at s, then pieces[second] leaving s.
+    std::vector<std::int32_t> head = pieces[first.piece].samples, tail = pieces[second.piece].samples;
+    if (!first.back) std::reverse(head.begin(), head.end());
+    if (second.back) std::reverse(tail.begin(), tail.end());
+    head.insert(head.end(), tail.begin() + 1, tail.end());
+    pieces[first.piece].samples = std::move(head);
+    pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(second.piece));
+  }
 }
 
 }  // namespace
@@ -201,8 +244,10 @@ Mesh mesh_implicit_curve(const ImplicitCurve& curve, int resolution) {
   for (std::size_t i = 0; i < n; ++i)
     if (!taken[i] && samples.next[i] >= 0) follow(static_cast<std::int32_t>(i));
   for (std::size_t s = 0; s < n; ++s)
-    if (samples.kind[s] == SampleKind::singular_point)
+    if (samples.kind[s] == SampleKind::singular_point) {
       for (Piece& piece : pieces) join_singular_point(samples, static_cast<std::int32_t>(s), piece);
+      join_through(samples, static_cast<std::int32_t>(s), pieces);
+    }
 
   std::size_t traced = 0;
   for (const Piece& p : pieces) traced += p.samples.size();

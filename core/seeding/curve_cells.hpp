@@ -1,53 +1,63 @@
-// What the certificate of a parametric curve's answer precomputes (solvers/curve/
-// curve_certificate.hpp): the parameter interval cut into cells at the curve's samples
-// (seeding/curve_parametric_samples.hpp: a few sample gaps per cell), each with its rigorous
-// enclosures (geometry/box_enclosure.hpp: c, c'' and |c'|^2 over the cell), the jet at its centre
-// with its rounding radii (a ball jet), and the tangent-line model's error proved from them; and a
-// binary hierarchy over the cells in parameter order whose nodes hold the boxes of c over their
-// cells (the union of their children's), walked nearest box first.
+// The certified subdivision of an implicit curve's box: every cell of the enclosure
+// (seeding/curve_enclosure) is proved empty or to hold monotone arcs with located ends
+// (seeding/curve_cell_proof), or bisected until it is; what stays unproved at the finest level
+// allowed is kept as a small box (the neighbourhood of a singular point, where T = ∇f1 × ∇f2
+// vanishes, of a point where a formula is not smooth, or of a curve touching a face).
+// Nothing is dropped without a proof: every point of the curve in the box lies in a proved cell
+// (on one of its arcs) or in an unproved box.
 #pragma once
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
-#include "geometry/box_enclosure.hpp"
-#include "geometry/parametric_curve.hpp"
+#include "seeding/curve_cell_proof.hpp"
+#include "seeding/curve_enclosure.hpp"
 
 namespace footpoint {
 
-struct CurveCell {
-  double t0 = 0.0, t1 = 0.0;
-  CurveJet centre;            // c, c', c'' at (t0 + t1)/2 (point jet)
-  BoxEnclosure<1> enclosure;  // c, c'' and |c'|^2 over [t0, t1]
-  // |exact - centre| per coordinate for c and c' (from a ball jet at the centre)
-  Vec3 c_rad, d1_rad;
-  // |c(t) - (centre.c + centre.d1 (t - tc))| <= rho over the cell (+inf where not smooth)
-  double rho = 0.0;
-  bool centre_valid = false;
-  double tc() const { return 0.5 * (t0 + t1); }
+struct ProvedCell {
+  Box3 box;
+  int axis = 0;                     // the arcs are monotone in x_axis
+  std::int32_t first_crossing = 0;  // its ends: CurveCells::crossings[first, first + count)
+  std::int32_t crossing_count = 0;  // sorted by x_axis; arc i joins ends 2i and 2i + 1
+  CellBounds bounds;
+  EnlargedBounds around;
 };
 
-struct CurveCellNode {
-  Vec3 lo, hi;                       // the box of c over the node's cells
-  std::int32_t child[2] = {-1, -1};  // >= 0: a node; < 0: the cell ~child
+struct UnprovedBox {
+  Box3 box;
+  UnprovedReason reason = UnprovedReason::none;
 };
 
-class CurveCells {
- public:
-  // `breaks`: the samples' parameters (any order); every `per_cell` consecutive gaps make a cell.
-  CurveCells(const CurveFormulas& formulas, const ParamInterval& domain, std::vector<double> breaks,
-             int per_cell = 4);
-  const std::vector<CurveCell>& cells() const { return cells_; }
-  // nodes()[0] is the root; empty for a single cell
-  const std::vector<CurveCellNode>& nodes() const { return nodes_; }
-  std::size_t memory_bytes() const {
-    return cells_.capacity() * sizeof(CurveCell) + nodes_.capacity() * sizeof(CurveCellNode);
-  }
-
- private:
-  std::int32_t build(std::size_t begin, std::size_t end, Vec3* lo, Vec3* hi);
-  std::vector<CurveCell> cells_;
-  std::vector<CurveCellNode> nodes_;
+struct CurveCells {
+  std::vector<ProvedCell> cells;
+  std::vector<FaceCrossing> crossings;
+  std::vector<UnprovedBox> unproved;
+  std::size_t examined = 0;     // cells examined (prove_cell calls)
+  std::size_t evaluations = 0;  // interval evaluations
+  int deepest = 0;              // bisections below the enclosure's cells reached
 };
+
+struct SubdivisionSettings {
+  // Bisections below an enclosure cell before a cell is kept unproved: 2^-14 of a cell (itself
+  // ~1/48 of the curve) is far below the distances a certificate tells apart.
+  int max_extra_levels = 14;
+  // Cells examined before the curve is refused as too intricate for its box (geometry_too_complex).
+  std::size_t max_cells = 40000;
+  // A proved cell whose enclosures of ∇f1, ∇f2, T and ∂T/∂x_j are wider than this fraction of
+  // their midpoints is bisected again (at most max_tightening levels below the enclosure): the
+  // certificates of projected points test Krawczyk's contraction ‖I - Y G'(B)‖ < 1 on the cell
+  // with these enclosures (solvers/curve/implicit_curve_certificate), and loose ones fail it.
+  double tightness = 0.15;
+  int max_tightening = 4;
+};
+
+// Throws GeometryError geometry_too_complex past settings.max_cells, and passes on compile_timeout
+// (geometry/compile_budget.hpp), both saying what was reached.
+CurveCells subdivide_curve(const ImplicitEquations& equations, const CurveEnclosure& enclosure,
+                           const SubdivisionSettings& settings = {});
+// The same, filling `out` as it goes.
+void subdivide(const ImplicitEquations& equations, const CurveEnclosure& enclosure,
+               const SubdivisionSettings& settings, CurveCells& out);
 
 }  // namespace footpoint

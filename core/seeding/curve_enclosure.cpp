@@ -12,10 +12,34 @@ Box3 CellGrid::cell(const CellIndex& c) const {
   for (int k = 0; k < 3; ++k) {
     const double n = std::ldexp(1.0, bits[k]);
     const double w = box.hi[k] - box.lo[k];
-    b.lo[k] = box.lo[k] + w * (c[k] / n);
-    b.hi[k] = (c[k] + 1 == static_cast<std::int32_t>(n)) ? box.hi[k] : box.lo[k] + w * ((c[k] + 1) / n);
+    b.lo[k] = std::max(clip.lo[k], box.lo[k] + w * (c[k] / n));
+    b.hi[k] =
+        std::min(clip.hi[k],
+                 (c[k] + 1 == static_cast<std::int32_t>(n)) ? box.hi[k] : box.lo[k] + w * ((c[k] + 1) / n));
   }
   return b;
+}
+
+bool CellGrid::solid(const CellIndex& c) const {
+  const Box3 b = cell(c);
+  for (int k = 0; k < 3; ++k)
+    if (box.hi[k] > box.lo[k] && !(b.lo[k] < b.hi[k])) return false;
+  return true;
+}
+
+CellGrid enclosure_grid(const Box3& box) {
+  // Fractions of the box's width added below and above it along x, y, z.
+  constexpr double kBelow[3] = {0.0131, 0.0173, 0.0097};
+  constexpr double kAbove[3] = {0.0089, 0.0151, 0.0117};
+  CellGrid g;
+  g.box = box;
+  g.clip = box;
+  for (int k = 0; k < 3; ++k) {
+    const double w = box.hi[k] - box.lo[k];
+    g.box.lo[k] = box.lo[k] - kBelow[k] * w;
+    g.box.hi[k] = box.hi[k] + kAbove[k] * w;
+  }
+  return g;
 }
 
 CellIndex CellGrid::index_of(Vec3 x) const {
@@ -68,7 +92,7 @@ void refine_cell(const ImplicitEquations& equations, const CellGrid& grid, const
       else if (bit)
         valid = false;
     }
-    if (!valid) continue;
+    if (!valid || !fine.solid(c)) continue;
     ++tests;
     CompileBudget::check();
     if (equations.may_vanish(fine.cell(c))) children.push_back(c);
@@ -78,7 +102,7 @@ void refine_cell(const ImplicitEquations& equations, const CellGrid& grid, const
 CurveEnclosure enclose_curve(const ImplicitEquations& equations, const Box3& box,
                              const EnclosureSettings& settings) {
   CurveEnclosure e;
-  e.grid.box = box;
+  e.grid = enclosure_grid(box);
   ++e.tests;
   if (equations.may_vanish(box)) e.cells.push_back({0, 0, 0});
   std::vector<CellIndex> next;

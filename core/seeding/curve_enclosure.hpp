@@ -2,10 +2,15 @@
 // which the interval range of f1 or of f2 excludes 0 is dropped (formula::Program::intervals over
 // the cell). The remaining cells, all of one size, hold every point of the curve in the box; some
 // may hold none (interval ranges overestimate).
+//
+// The grid is laid over a box a few percent larger than the curve's, its planes at offsets no
+// formula's nice numbers share (so that a circle through (1, 0) or a tangent at y = 1 does not sit
+// on a cell's edge or face at every level); its cells are clipped to the curve's box.
 #pragma once
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "geometry/implicit_curve.hpp"
@@ -14,11 +19,15 @@ namespace footpoint {
 
 using CellIndex = std::array<std::int32_t, 3>;
 
-// A uniform grid over the box: 2^bits[k] cells along axis k.
+// A uniform grid over the box: 2^bits[k] cells along axis k, each clipped to `clip`.
 struct CellGrid {
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
   Box3 box;
   std::array<int, 3> bits{};
-  Box3 cell(const CellIndex& c) const;
+  Box3 clip{{-kInfinity, -kInfinity, -kInfinity}, {kInfinity, kInfinity, kInfinity}};
+  Box3 cell(const CellIndex& c) const;  // clipped
+  // The clipped cell has positive extent along every axis the grid has: a cell, not a face of one.
+  bool solid(const CellIndex& c) const;
   CellIndex index_of(Vec3 x) const;  // clamped to the grid
   Vec3 edge() const;
   double max_edge() const;
@@ -49,6 +58,9 @@ struct CurveEnclosure {
   std::size_t tests = 0;   // interval evaluations
   bool truncated = false;  // stopped by the cell budget, not by the size criterion
 };
+
+// The enclosure's grid over `box`: the extended, offset box above, clipped to `box`.
+CellGrid enclosure_grid(const Box3& box);
 
 CurveEnclosure enclose_curve(const ImplicitEquations& equations, const Box3& box,
                              const EnclosureSettings& settings = {});

@@ -5,6 +5,7 @@
 
 #include "solvers/curve/auto_result.hpp"
 #include "solvers/curve/curve_descent.hpp"
+#include "solvers/curve/implicit_curve_certificate.hpp"
 #include "solvers/curve/implicit_curve_summary.hpp"
 #include "solvers/curve/lagrange_newton.hpp"
 
@@ -82,9 +83,10 @@ Found solve_from(const Curve& curve, Vec3 p, std::int32_t i, const IterationCont
 
 }  // namespace
 
-ProjectionResult implicit_curve_auto(const ImplicitEquations& eq, const Box3& box,
-                                     const CurveDiscovery& discovery, const CurveSampleIndex& index, Vec3 p,
-                                     const Options& options) {
+namespace {
+
+ProjectionResult search(const ImplicitEquations& eq, const Box3& box, const CurveDiscovery& discovery,
+                        const CurveSampleIndex& index, Vec3 p, const Options& options) {
   const Curve curve{eq, box, discovery, index};
   const CurveSamples& s = discovery.samples;
   const double h = s.spacing;
@@ -165,6 +167,18 @@ ProjectionResult implicit_curve_auto(const ImplicitEquations& eq, const Box3& bo
   fill_residuals(curve, p, best, r.summary);
   finish_auto_result(r, best.met, best.iterations, best.step, starts, options, std::move(minima),
                      std::move(best_trace));
+  return r;
+}
+
+}  // namespace
+
+ProjectionResult implicit_curve_auto(const ImplicitEquations& eq, const Box3& box,
+                                     const CurveDiscovery& discovery, const CurveSampleIndex& index, Vec3 p,
+                                     const Options& options) {
+  ProjectionResult r = search(eq, box, discovery, index, p, options);
+  if (options.certify.value_or(true) && std::isfinite(r.distance))
+    r.summary.certificate = certify_implicit_curve_answer(
+        eq, box, discovery, p, {r.foot[0], r.foot[1], eq.planar() ? 0.0 : r.foot[2]}, r.distance);
   return r;
 }
 

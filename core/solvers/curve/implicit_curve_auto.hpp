@@ -8,6 +8,9 @@
 //     the Lagrange system (lagrange_newton), checked to be a minimum near its start inside the box,
 //     else a monotone descent along the curve (curve_descent). Box-face crossings and singular
 //     points are candidates as they are (exact points, refined at discovery).
+//  4. The certificate (solvers/curve/implicit_curve_certificate, unless options.certify is false):
+//     a rigorous lower bound of the distance over the whole curve in the box, from the certified
+//     subdivision of discovery, and whether it meets the answer.
 // options.initial is not used: the search is global. With all_minima every discrete local minimum
 // of the samples is refined and the distinct minima are returned, best first.
 #pragma once

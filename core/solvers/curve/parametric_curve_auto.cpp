@@ -5,8 +5,8 @@
 
 #include "geometry/box_enclosure.hpp"
 #include "solvers/curve/auto_result.hpp"
-#include "solvers/curve/curve_certificate.hpp"
 #include "solvers/curve/iteration_control.hpp"
+#include "solvers/curve/parametric_curve_certificate.hpp"
 #include "solvers/curve/parametric_curve_summary.hpp"
 #include "solvers/curve/parametric_newton.hpp"
 
@@ -101,8 +101,8 @@ bool at_rounding_level(const CurveFormulas& formulas, Vec3 p, const ProjectionRe
 }  // namespace
 
 ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const ParamInterval& domain,
-                                       const CurveSampleIndex& index, const CurveCells& cells, Vec3 p,
-                                       const Options& options) {
+                                       const CurveSampleIndex& index, const ParametricCurveCells& cells,
+                                       Vec3 p, const Options& options) {
   const CurveSamples& s = index.samples();
   const double h = s.spacing;
   // The nearest sample and the candidates in one pass; with all_minima every discrete local

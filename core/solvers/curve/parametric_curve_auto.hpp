@@ -8,17 +8,17 @@
 #pragma once
 #include "geometry/parametric_curve.hpp"
 #include "geometry/projection_result.hpp"
-#include "seeding/curve_cells.hpp"
 #include "seeding/curve_sample_index.hpp"
+#include "seeding/parametric_curve_cells.hpp"
 
 namespace footpoint::curve {
 
 // `index` is the k-d tree of the curve's dense samples (seeding/curve_parametric_samples), `cells`
-// what the certificate bounds (seeding/curve_cells.hpp). The answer carries its certificate
-// (solvers/curve/curve_certificate.hpp) unless options.certify is false; a nearer minimum the
+// what the certificate bounds (seeding/parametric_curve_cells.hpp). The answer carries its certificate
+// (solvers/curve/parametric_curve_certificate.hpp) unless options.certify is false; a nearer minimum the
 // certificate finds is the answer.
 ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const ParamInterval& domain,
-                                       const CurveSampleIndex& index, const CurveCells& cells, Vec3 p,
-                                       const Options& options);
+                                       const CurveSampleIndex& index, const ParametricCurveCells& cells,
+                                       Vec3 p, const Options& options);
 
 }  // namespace footpoint::curve

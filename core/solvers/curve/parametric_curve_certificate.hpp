@@ -1,6 +1,6 @@
 // The certificate of an answer on a parametric curve (geometry/certificate.hpp): a rigorous lower
 // bound L on the distance from p to c over the closed interval [tmin, tmax], by branch and bound
-// over the precomputed cells (seeding/curve_cells.hpp), as for surfaces
+// over the precomputed cells (seeding/parametric_curve_cells.hpp), as for surfaces
 // (solvers/surface/surface_certificate.hpp) in one parameter. A cell is closed when a lower bound
 // of the distance over it reaches the target d - gap/2:
 //   1. the boxes of c over the hierarchy's nodes, nearest first (a subtree beyond is closed);
@@ -20,7 +20,7 @@
 
 #include "geometry/certificate.hpp"
 #include "geometry/parametric_curve.hpp"
-#include "seeding/curve_cells.hpp"
+#include "seeding/parametric_curve_cells.hpp"
 
 namespace footpoint::curve {
 
@@ -43,14 +43,14 @@ struct CurveCertification {
   CurveMinimum better;
 };
 
-CurveCertification certify_parametric_curve(const CurveCells& cells, const CurveFormulas& formulas, Vec3 p,
-                                            CurveMinimum answer, const std::vector<double>& known,
+CurveCertification certify_parametric_curve(const ParametricCurveCells& cells, const CurveFormulas& formulas,
+                                            Vec3 p, CurveMinimum answer, const std::vector<double>& known,
                                             const CurveLocalSolve& solve, bool may_improve,
                                             const CurveCertifyOptions& options = {});
 
 // The certificate of an answer at t inside the domain, given as it is (a local method's, with
 // options.certify): certified, refuted (nearer_point) or neither within the budget.
-Certificate certify_curve_answer(const CurveCells& cells, const CurveFormulas& formulas,
+Certificate certify_curve_answer(const ParametricCurveCells& cells, const CurveFormulas& formulas,
                                  const ParamInterval& domain, Vec3 p, double t);
 
 // A safeguarded Newton descent of f(t) = ½|c(t) - p|^2 on [tmin, tmax] from t0 (backtracking on f,

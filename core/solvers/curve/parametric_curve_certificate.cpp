@@ -1,4 +1,4 @@
-#include "solvers/curve/curve_certificate.hpp"
+#include "solvers/curve/parametric_curve_certificate.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -39,7 +39,7 @@ struct Known {
 
 class Certifier {
  public:
-  Certifier(const CurveCells& cells, const CurveFormulas& formulas, Vec3 p, CurveMinimum answer,
+  Certifier(const ParametricCurveCells& cells, const CurveFormulas& formulas, Vec3 p, CurveMinimum answer,
             const std::vector<double>& known, const CurveLocalSolve& solve, bool may_improve,
             const CurveCertifyOptions& options)
       : cells_(cells),
@@ -87,7 +87,7 @@ class Certifier {
     const double target = ledger_.target(), target2 = target > 0.0 ? target * target : 0.0;
     std::vector<std::int32_t> stack{0};
     while (!stack.empty()) {
-      const CurveCellNode& n = nodes[static_cast<std::size_t>(stack.back())];
+      const ParametricCurveCellNode& n = nodes[static_cast<std::size_t>(stack.back())];
       stack.pop_back();
       if (target > 0.0 && box_distance2(n.lo, n.hi) * (1.0 - 16.0 * kU) >= target2) {
         ledger_.skip();
@@ -113,7 +113,7 @@ class Certifier {
 
   // 2.-4. for a compiled cell
   void visit_cell(std::int32_t index) {
-    const CurveCell& c = cells_.cells()[static_cast<std::size_t>(index)];
+    const ParametricCurveCell& c = cells_.cells()[static_cast<std::size_t>(index)];
     OpenInterval o;
     o.t0 = c.t0;
     o.t1 = c.t1;
@@ -198,7 +198,7 @@ class Certifier {
   }
 
   // The minimiser over the cell of the Newton model of f at its centre.
-  double model_minimiser(const CurveCell& c) const {
+  double model_minimiser(const ParametricCurveCell& c) const {
     const Vec3 r = c.centre.c - p_;
     const double g = dot(r, c.centre.d1), h = norm2(c.centre.d1) + dot(r, c.centre.d2);
     const double t = h > 0.0 ? c.tc() - g / h : (g > 0.0 ? c.t0 : c.t1);
@@ -250,7 +250,7 @@ class Certifier {
     return b;
   }
 
-  const CurveCells& cells_;
+  const ParametricCurveCells& cells_;
   const CurveFormulas& formulas_;
   const Vec3 p_;
   const CurveLocalSolve& solve_;
@@ -266,14 +266,14 @@ class Certifier {
 
 }  // namespace
 
-CurveCertification certify_parametric_curve(const CurveCells& cells, const CurveFormulas& formulas, Vec3 p,
-                                            CurveMinimum answer, const std::vector<double>& known,
+CurveCertification certify_parametric_curve(const ParametricCurveCells& cells, const CurveFormulas& formulas,
+                                            Vec3 p, CurveMinimum answer, const std::vector<double>& known,
                                             const CurveLocalSolve& solve, bool may_improve,
                                             const CurveCertifyOptions& options) {
   return Certifier(cells, formulas, p, answer, known, solve, may_improve, options).run();
 }
 
-Certificate certify_curve_answer(const CurveCells& cells, const CurveFormulas& formulas,
+Certificate certify_curve_answer(const ParametricCurveCells& cells, const CurveFormulas& formulas,
                                  const ParamInterval& domain, Vec3 p, double t) {
   const CurveLocalSolve solve = [&](double t0) { return descend_on_interval(formulas, domain, p, t0); };
   return certify_parametric_curve(cells, formulas, p, {t, norm(formulas.point(t) - p)}, {}, solve, false)

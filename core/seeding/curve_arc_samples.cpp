@@ -1,0 +1,208 @@
+#include "seeding/curve_arc_samples.hpp"
+
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "geometry/compile_budget.hpp"
+#include "geometry/curve_correction.hpp"
+#include "geometry/implicit_curve_differentials.hpp"
+
+namespace footpoint {
+namespace {
+
+// Bisections of an arc's x_k-range before it is left as it is (a cell ~2^-40 of the curve).
+constexpr int kMaxDepth = 40;
+
+double angle_between(Vec3 a, Vec3 b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
+
+// The axis of the cell's face that the crossing lies on (its enclosure is flat there), or -1.
+int face_axis(const FaceCrossing& c, const Box3& cell, int dims) {
+  for (int a = 0; a < dims; ++a)
+    if (c.enclosure.lo[a] == c.enclosure.hi[a] &&
+        (c.enclosure.lo[a] == cell.lo[a] || c.enclosure.lo[a] == cell.hi[a]))
+      return a;
+  return -1;
+}
+
+class ArcChains {
+ public:
+  ArcChains(const ImplicitEquations& eq, const Box3& box, const CurveCells& cells,
+            const ArcSampling& settings, CurveSamples& samples)
+      : eq_(eq), box_(box), cells_(cells), settings_(settings), samples_(samples) {}
+
+  ArcPieces run() {
+    join_crossings();
+    collect_arcs();
+    // Paths from their free ends first, then the loops that are left.
+    for (std::size_t v = 0; v < nodes_.size(); ++v)
+      if (nodes_[v].arcs.size() == 1 && !visited_[static_cast<std::size_t>(nodes_[v].arcs[0])])
+        walk(v, false);
+    for (std::size_t v = 0; v < nodes_.size(); ++v)
+      for (int e : nodes_[v].arcs)
+        if (!visited_[static_cast<std::size_t>(e)]) walk(v, true);
+    return pieces_;
+  }
+
+ private:
+  struct Node {
+    Vec3 point;
+    bool box_face = false;
+    std::vector<int> arcs;  // at most two: one end of an arc on each side of a face
+    std::int32_t sample = -1;
+  };
+  struct Arc {
+    int from, to;  // nodes
+    std::int32_t cell;
+  };
+
+  // Crossings on the box's faces are path ends; the others meet their twin across the face.
+  void join_crossings() {
+    const int dims = eq_.planar() ? 2 : 3;
+    const std::size_t n = cells_.crossings.size();
+    node_of_.assign(n, -1);
+    std::map<std::pair<int, double>, std::vector<std::int32_t>> planes;
+    cell_of_.assign(n, -1);
+    for (std::size_t c = 0; c < cells_.cells.size(); ++c) {
+      const ProvedCell& cell = cells_.cells[c];
+      for (std::int32_t i = cell.first_crossing; i < cell.first_crossing + cell.crossing_count; ++i) {
+        cell_of_[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(c);
+        const FaceCrossing& x = cells_.crossings[static_cast<std::size_t>(i)];
+        const int a = face_axis(x, cell.box, dims);
+        const double v = a >= 0 ? x.enclosure.lo[a] : 0.0;
+        if (a >= 0 && (v == box_.lo[a] || v == box_.hi[a])) {
+          node_of_[static_cast<std::size_t>(i)] = new_node(x.point, true);
+          ++pieces_.face_crossings;
+        } else {
+          planes[{a, v}].push_back(i);
+        }
+      }
+    }
+    for (const auto& [plane, list] : planes) {
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        const auto ci = static_cast<std::size_t>(list[i]);
+        if (node_of_[ci] >= 0) continue;
+        node_of_[ci] = new_node(cells_.crossings[ci].point, false);
+        for (std::size_t j = i + 1; j < list.size(); ++j) {
+          const auto cj = static_cast<std::size_t>(list[j]);
+          if (node_of_[cj] < 0 && cell_of_[cj] != cell_of_[ci] &&
+              cells_.crossings[cj].enclosure.intersects(cells_.crossings[ci].enclosure)) {
+            node_of_[cj] = node_of_[ci];
+            break;
+          }
+        }
+      }
+    }
+  }
+
+  int new_node(Vec3 x, bool box_face) {
+    nodes_.push_back({x, box_face, {}, -1});
+    return static_cast<int>(nodes_.size() - 1);
+  }
+
+  void collect_arcs() {
+    for (std::size_t c = 0; c < cells_.cells.size(); ++c) {
+      const ProvedCell& cell = cells_.cells[c];
+      for (std::int32_t i = 0; i + 1 < cell.crossing_count; i += 2) {
+        const int a = node_of_[static_cast<std::size_t>(cell.first_crossing + i)];
+        const int b = node_of_[static_cast<std::size_t>(cell.first_crossing + i + 1)];
+        arcs_.push_back({a, b, static_cast<std::int32_t>(c)});
+        nodes_[static_cast<std::size_t>(a)].arcs.push_back(static_cast<int>(arcs_.size() - 1));
+        nodes_[static_cast<std::size_t>(b)].arcs.push_back(static_cast<int>(arcs_.size() - 1));
+      }
+    }
+    visited_.assign(arcs_.size(), false);
+    for (const Node& v : nodes_)
+      if (v.arcs.size() == 1 && !v.box_face) ++pieces_.open_ends;
+  }
+
+  std::int32_t sample_of(std::size_t v) {
+    Node& node = nodes_[v];
+    if (node.sample < 0)
+      node.sample = samples_.add(node.point, node.box_face ? SampleKind::box_face : SampleKind::regular);
+    return node.sample;
+  }
+
+  // Follows the chain from node `start` along unvisited arcs, linking the samples in walking order.
+  void walk(std::size_t start, bool loop) {
+    ++pieces_.pieces;
+    std::size_t v = start;
+    std::int32_t last = sample_of(v);
+    for (;;) {
+      int next = -1;
+      for (int e : nodes_[v].arcs)
+        if (!visited_[static_cast<std::size_t>(e)]) {
+          next = e;
+          break;
+        }
+      if (next < 0) break;
+      visited_[static_cast<std::size_t>(next)] = true;
+      const Arc& arc = arcs_[static_cast<std::size_t>(next)];
+      const auto w = static_cast<std::size_t>(arc.from == static_cast<int>(v) ? arc.to : arc.from);
+      const ProvedCell& cell = cells_.cells[static_cast<std::size_t>(arc.cell)];
+      interior_.clear();
+      between(nodes_[v].point, nodes_[w].point, cell, 0);
+      for (const Vec3& x : interior_) {
+        const std::int32_t i = samples_.add(x, SampleKind::regular);
+        samples_.link(last, i);
+        last = i;
+      }
+      if (w == start && loop) {
+        samples_.link(last, sample_of(w));
+        ++pieces_.closed;
+        return;
+      }
+      const std::int32_t s = sample_of(w);
+      samples_.link(last, s);
+      last = s;
+      v = w;
+    }
+  }
+
+  // The samples strictly between the arc points a and b of `cell`, in order from a to b.
+  void between(Vec3 a, Vec3 b, const ProvedCell& cell, int depth) {
+    CompileBudget::check();
+    const Vec3 chord = b - a;
+    Vec3 ta = curve::unit_tangent(eq_.jet(a)), tb = curve::unit_tangent(eq_.jet(b));
+    if (dot(ta, chord) < 0.0) ta = -ta;
+    if (dot(tb, chord) < 0.0) tb = -tb;
+    if (norm(chord) <= settings_.max_step && angle_between(ta, tb) <= settings_.max_turn &&
+        angle_between(ta, chord) <= settings_.max_turn && angle_between(tb, chord) <= settings_.max_turn)
+      return;
+    if (depth >= kMaxDepth) return;
+    const int k = cell.axis;
+    Vec3 y = 0.5 * (a + b);
+    Vec3 normal{};
+    normal[k] = 1.0;
+    Vec3 m;
+    int iterations = 0;
+    if (!curve::correct_in_normal_plane(eq_, y, normal, m, iterations) ||
+        !cell.box.contains(m, 1e-12 * std::max(1.0, norm(m))))
+      return;
+    between(a, m, cell, depth + 1);
+    interior_.push_back(m);
+    between(m, b, cell, depth + 1);
+  }
+
+  const ImplicitEquations& eq_;
+  Box3 box_;
+  const CurveCells& cells_;
+  ArcSampling settings_;
+  CurveSamples& samples_;
+  std::vector<int> node_of_;
+  std::vector<std::int32_t> cell_of_;
+  std::vector<Node> nodes_;
+  std::vector<Arc> arcs_;
+  std::vector<bool> visited_;
+  std::vector<Vec3> interior_;
+  ArcPieces pieces_;
+};
+
+}  // namespace
+
+ArcPieces sample_proved_arcs(const ImplicitEquations& equations, const Box3& box, const CurveCells& cells,
+                             const ArcSampling& settings, CurveSamples& samples) {
+  return ArcChains(equations, box, cells, settings, samples).run();
+}
+
+}  // namespace footpoint

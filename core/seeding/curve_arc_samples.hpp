@@ -1,0 +1,39 @@
+// Samples along the proved arcs of a curve's subdivision (seeding/curve_cells), linked along the
+// curve: the certified replacement of a walk along the curve.
+//
+// Each arc of a proved cell runs from one located face crossing to the next along the cell's
+// monotone coordinate x_k (seeding/curve_cell_proof). A crossing on a face between two proved
+// cells is an end of one arc on each side: the two cells located the same point, in enclosures
+// that both hold it, so crossings on the same plane whose enclosures meet are joined. The arcs
+// then chain into the pieces of the curve: closed loops, or paths that end on the box's faces
+// (the crossing is the exact box-face point) or next to an unproved box (a singular point).
+// Along each arc, samples are added between its ends by bisecting the x_k-range: the midpoint
+// slice x_k = t meets the arc in the cell's only point of the curve on that slice (proof (a) of
+// curve_cell_proof.hpp), found by Newton in the slice, until neighbours are at most max_step
+// apart and the tangent turns by at most max_turn between them. So every arc of every proved cell
+// holds samples: no piece of the curve, however small, is left without them.
+#pragma once
+#include "geometry/implicit_curve.hpp"
+#include "seeding/curve_cells.hpp"
+#include "seeding/curve_samples.hpp"
+
+namespace footpoint {
+
+struct ArcSampling {
+  double max_step = 0.0;
+  // 0.15 rad between neighbouring tangents: the arc exceeds the chord by at most 0.1 %.
+  double max_turn = 0.15;
+};
+
+struct ArcPieces {
+  int pieces = 0;          // chains of arcs
+  int closed = 0;          // of which loops
+  int face_crossings = 0;  // ends on the box's faces
+  int open_ends = 0;       // ends next to unproved boxes
+};
+
+// Appends the samples of every proved arc to `samples`, linked along the curve.
+ArcPieces sample_proved_arcs(const ImplicitEquations& equations, const Box3& box, const CurveCells& cells,
+                             const ArcSampling& settings, CurveSamples& samples);
+
+}  // namespace footpoint

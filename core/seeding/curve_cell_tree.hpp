@@ -1,0 +1,55 @@
+// A bounding volume hierarchy over what a curve's certified subdivision left to look at when a
+// point is projected: its proved cells, its unproved boxes and its exact box-face crossings (the
+// items). A certificate (solvers/curve/implicit_curve_certificate) visits only the items whose box
+// is nearer to p than the answer: a binary tree of boxes, split at the median of the items'
+// centres along the longest side, pruned by the rigorous box distance (interval_vec3.hpp).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "geometry/box3.hpp"
+#include "geometry/interval_vec3.hpp"
+
+namespace footpoint {
+
+struct CurveCells;
+
+enum class CellItemKind : std::uint8_t {
+  proved_cell,  // CurveCells::cells[index]
+  unproved,     // CurveCells::unproved[index]
+  box_face,     // CurveCells::crossings[index], a crossing on a face of the curve's box
+};
+
+struct CellItem {
+  Box3 box;
+  CellItemKind kind = CellItemKind::proved_cell;
+  std::int32_t index = 0;
+};
+
+class CurveCellTree {
+ public:
+  CurveCellTree() = default;
+  CurveCellTree(const CurveCells& cells, const Box3& domain);
+
+  struct Node {
+    Box3 box;
+    std::int32_t first = 0, count = 0;  // leaf: items [first, first + count)
+    std::int32_t left = -1, right = -1;
+    // Only proved cells below, their tangents T enclosed in `tangent`: when ⟨tangent, p - box⟩
+    // excludes 0, no cell below holds a critical point of the distance from p.
+    bool only_proved_cells = false;
+    IVec3 tangent{};
+  };
+  const std::vector<Node>& nodes() const { return nodes_; }
+  const std::vector<CellItem>& items() const { return items_; }
+  std::size_t memory_bytes() const {
+    return nodes_.capacity() * sizeof(Node) + items_.capacity() * sizeof(CellItem);
+  }
+
+ private:
+  std::int32_t build(const CurveCells& cells, std::int32_t first, std::int32_t count);
+  std::vector<Node> nodes_;
+  std::vector<CellItem> items_;
+};
+
+}  // namespace footpoint
