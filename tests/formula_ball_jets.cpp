@@ -232,6 +232,6 @@ TEST_CASE("ball jets flag kinks, jumps and points outside the domain") {
     CHECK(b.v.mid == 2.0);
     CHECK(b.v.rad <= 0x1p-51);
   }
-  CHECK(at("(u<v)+u", 1.0, 1.0 + 0x1p-52).defined);            // exact operands one ulp apart: decided
+  CHECK(at("(u<v)+u", 1.0, 1.0 + 0x1p-52).defined);        // exact operands one ulp apart: decided
   CHECK_FALSE(at("(sin(u)<sin(v))+u", 1.0, 1.0).defined);  // rounded values that close: a jump
 }

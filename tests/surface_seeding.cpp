@@ -42,8 +42,10 @@ TEST_CASE("the cell budget adapts: fine on [-3,3]^2, grown past the target on [-
   CHECK(n > static_cast<std::size_t>(defaults.target_cells));
   CHECK(tl.unresolved == 0);
   CHECK(large.cells().memory_bytes() >= n * sizeof(SurfaceCell));
-  CHECK(large.cells().memory_bytes() - large.cells().bounds_bytes() <= n * SurfaceCells::bytes_per_cell() + sizeof(SurfaceCells));
-  CHECK(large.cells().memory_bytes() - large.cells().bounds_bytes() <= defaults.max_bytes + sizeof(SurfaceCells));
+  CHECK(large.cells().memory_bytes() - large.cells().bounds_bytes() <=
+        n * SurfaceCells::bytes_per_cell() + sizeof(SurfaceCells));
+  CHECK(large.cells().memory_bytes() - large.cells().bounds_bytes() <=
+        defaults.max_bytes + sizeof(SurfaceCells));
   CHECK(large.memory_bytes() > large.cells().memory_bytes());
 }
 
