@@ -148,6 +148,11 @@ void read_options(JsonReader& r, ProjectRequest& request) {
         o.max_distance = d;
       } else if (key == "all_minima") {
         o.all_minima = r.boolean();
+      } else if (key == "max_minima") {
+        const double n = r.number();
+        if (!(n >= 1.0 && n <= 10000.0 && n == std::floor(n)))
+          throw ApiError(400, "invalid_option", field + " must be an integer in [1, 10000]", field);
+        o.max_minima = static_cast<int>(n);
       } else if (key == "trace") {
         o.trace = r.boolean();
       } else if (key == "certify") {
@@ -155,10 +160,11 @@ void read_options(JsonReader& r, ProjectRequest& request) {
       } else if (key == "initial") {
         read_initial(r, request);
       } else {
-        throw ApiError(400, "unknown_field",
-                       "unknown option " + field +
-                           " (tolerance, max_iterations, initial, all_minima, trace, max_distance, certify)",
-                       field);
+        throw ApiError(
+            400, "unknown_field",
+            "unknown option " + field +
+                " (tolerance, max_iterations, initial, all_minima, max_minima, trace, max_distance, certify)",
+            field);
       }
     } catch (const JsonReadError& e) {
       throw request_error(e, field);

@@ -82,6 +82,25 @@ Status write_result(JsonAppender& o, const ProjectionResult& r, bool with_minima
   } else {
     o.literal("null");
   }
+  o.literal(",\"multiplicity\":");
+  const AnswerMultiplicity& m = s.multiplicity;
+  if (m.computed && answer) {
+    o.literal("{\"kind\":");
+    name(o, to_string(m.kind));
+    if (m.kind == Multiplicity::tied) {
+      o.literal(",\"count\":");
+      o.integer(m.count);
+      o.literal(",\"feet\":[");
+      for (std::size_t i = 0; i < m.feet.size(); ++i) {
+        if (i) o.literal(",");
+        o.numbers(m.feet[i].data(), r.dim);
+      }
+      o.literal("]");
+    }
+    o.literal("}");
+  } else {
+    o.literal("null");
+  }
   o.literal("}");
 
   if (with_minima) {
@@ -100,7 +119,7 @@ Status write_result(JsonAppender& o, const ProjectionResult& r, bool with_minima
       name(o, to_string(m.location));
       o.literal("}");
     }
-    o.literal("]");
+    o.literal(r.minima_truncated ? "],\"minima_truncated\":true" : "],\"minima_truncated\":false");
   }
   if (with_trace) {
     o.literal(",\"trace\":[");

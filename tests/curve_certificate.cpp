@@ -20,8 +20,10 @@
 
 #include "compiled/implicit_curve_geometry.hpp"
 #include "solvers/curve/implicit_curve_certificate.hpp"
+#include "sweep_length.hpp"
 
 using namespace footpoint;
+using footpoint::test::sweep_length;
 
 namespace {
 
@@ -230,7 +232,7 @@ TEST_CASE("certificate: L <= brute-force minimum <= d on every reference curve; 
       if (s.kind[i] == SampleKind::singular_point) singular.push_back(s.points[i]);
     const double near = 1e-3 * curve.discovery().scale;
     int away = 0, away_certified = 0;
-    for (const Vec3& p : random_points(ref, 360, 61)) {
+    for (const Vec3& p : random_points(ref, sweep_length(360), 61)) {
       CAPTURE(p.x);
       CAPTURE(p.y);
       CAPTURE(p.z);

@@ -6,7 +6,9 @@
 #include <set>
 #include <vector>
 
+#include "geometry/geometry_error.hpp"
 #include "implicit_fixtures.hpp"
+#include "seeding/curve_cells.hpp"
 #include "seeding/curve_enclosure.hpp"
 
 using namespace footpoint;
@@ -94,4 +96,19 @@ TEST_CASE("refine_cell: the children of a kept cell cover its part of the curve"
   CHECK(tests == 8 * e.cells.size());  // a spatial box splits along all three axes
   for (int k = 0; k < 1000; ++k)
     CHECK(children.count(CellGrid::key(fine.index_of(circle_point(2.0 * M_PI * k / 1000)))) == 1);
+}
+
+TEST_CASE("subdivide_curve: past max_cells the curve is refused as too intricate for its box") {
+  // sin(40 x) + sin(40 y) = 0 has pieces every ~0.08 across [-30, 30]^2: far more cells than 500.
+  const ImplicitEquations eq = planar_equations("sin(40*x)+sin(40*y)");
+  const Box3 box{{-30, -30, 0}, {30, 30, 0}};
+  SubdivisionSettings settings;
+  settings.max_cells = 500;
+  try {
+    (void)subdivide_curve(eq, enclose_curve(eq, box), settings);
+    FAIL("expected geometry_too_complex");
+  } catch (const GeometryError& e) {
+    CHECK(e.code == "geometry_too_complex");
+    CHECK(e.field == "domain");
+  }
 }

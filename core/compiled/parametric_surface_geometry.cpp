@@ -33,7 +33,7 @@ constexpr Method<ParametricSurface> kMethods[] = {
       "bound-constrained Newton from the surviving cells",
       ""},
      [](const ParametricSurface& s, Vec3 p, const Options& o) {
-       return surface::project_auto(s.cells(), s.formulas(), s.domain(), p, o);
+       return surface::project_auto(s.cells(), s.formulas(), s.domain(), s.closure(), p, o);
      }},
     {{"gsa", "Geometric Strategy Algorithm: normal-curvature sphere step, unclamped from a start",
       "gsa-parametric-surface (Algorithm 1, eqs. (3)-(20))"},

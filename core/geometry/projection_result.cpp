@@ -42,6 +42,8 @@ const char* to_string(Location l) {
       return "box_face";
     case Location::singular_point:
       return "singular_point";
+    case Location::pole:
+      return "pole";
     case Location::unknown:
       return "unknown";
   }
@@ -64,6 +66,18 @@ const char* to_string(CertificateReason r) {
       return "not_requested";
   }
   return "unknown";
+}
+
+const char* to_string(Multiplicity m) {
+  switch (m) {
+    case Multiplicity::unique:
+      return "unique";
+    case Multiplicity::tied:
+      return "tied";
+    case Multiplicity::continuum:
+      return "continuum";
+  }
+  return "unique";
 }
 
 double Summary::residual() const {

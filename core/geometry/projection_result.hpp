@@ -26,8 +26,24 @@ enum class Status {
 };
 const char* to_string(Status s);
 
-enum class Location { interior, edge, corner, endpoint, box_face, singular_point, unknown };
+// Where the foot point lies: inside the domain, on an edge or corner of a surface's parameter box
+// (a seam of a closed direction is no edge: it is interior), at a pole of a surface (an edge that
+// is one point: every parameter along it gives the foot), at an end of a parametric curve (not of a
+// closed one), on a face of an implicit curve's box, at a singular point.
+enum class Location { interior, edge, corner, endpoint, box_face, singular_point, pole, unknown };
 const char* to_string(Location l);
+
+// How many points of the geometry are nearest: one; k distinct feet at the same distance (within
+// the certificate's gap); or a continuum (a curve of them: the foot's Hessian of the distance is
+// singular along the geometry, as on the axis of a torus or at the centre of a sphere).
+enum class Multiplicity { unique, tied, continuum };
+const char* to_string(Multiplicity m);
+struct AnswerMultiplicity {
+  bool computed = false;  // auto only
+  Multiplicity kind = Multiplicity::unique;
+  int count = 1;                            // distinct feet (tied)
+  std::vector<std::array<double, 3>> feet;  // tied: the feet, the answer's first
+};
 
 struct Summary {
   std::string method;  // the method that ran ("auto", "gsa", ...)
@@ -43,7 +59,8 @@ struct Summary {
   Location location = Location::unknown;
   bool on_boundary = false;  // foot point on the domain's edge/corner/endpoint/box face
   Certificate certificate;   // the proof of global optimality (geometry/certificate.hpp)
-  double residual() const;   // the largest of orthogonality and equation residuals
+  AnswerMultiplicity multiplicity;
+  double residual() const;  // the largest of orthogonality and equation residuals
   bool converged() const { return status == Status::converged; }
 };
 
@@ -63,6 +80,7 @@ struct ProjectionResult {
   double distance = std::numeric_limits<double>::quiet_NaN();
   Summary summary;
   std::vector<Minimum> minima;               // with options.all_minima, best first
+  bool minima_truncated = false;             // more minima were found than options.max_minima
   std::vector<std::array<double, 3>> trace;  // with options.trace: per-iteration increments
 };
 
@@ -73,6 +91,9 @@ struct Options {
   int max_iterations = 0;                        // 0 selects the method's default
   std::optional<std::array<double, 3>> initial;  // a start: (u,v) / (t) / (x,y,z)
   bool all_minima = false;
+  // all_minima lists at most this many (0: kDefaultMaxMinima), and says when it truncated.
+  int max_minima = 0;
+  static constexpr int kDefaultMaxMinima = 64;
   bool trace = false;
   double max_distance = std::numeric_limits<double>::infinity();
   // Compute a certificate (geometry/certificate.hpp). Unset: the method's default - `auto`

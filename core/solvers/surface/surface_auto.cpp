@@ -66,11 +66,12 @@ class Search {
   struct Candidate;
 
  public:
-  Search(const SurfaceCells& cells, const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p,
-         const Options& options)
+  Search(const SurfaceCells& cells, const SurfaceFormulas& formulas, const ParamBox& box,
+         const SurfaceClosure& closure, const Vec3& p, const Options& options)
       : cells_(cells),
         formulas_(formulas),
         box_(box),
+        closure_(closure),
         p_(p),
         options_(options),
         criteria_(convergence_criteria(options, box, kLocalMaxIterations)),
@@ -81,6 +82,10 @@ class Search {
   void run() {
     const auto& nodes = cells_.nodes();
     if (!(cells_.root_distance2(p_) < bound_ * bound_)) return;
+    // options.initial: a warm start (a neighbour's foot in a sequence of points, as ICP loops
+    // send them): its solve's distance bounds the walk from the start, which the global search
+    // then does as always
+    if (options_.initial) solve((*options_.initial)[0], (*options_.initial)[1]);
     // the leaf down the nearest boxes first: usually the answer's cell, so that the walk below
     // starts with a tight bound
     PathStep path[kStack];
@@ -147,59 +152,175 @@ class Search {
 
   ProjectionResult result() {
     ProjectionResult r;
-    if (has_best_) {
-      const LocalSolution& s = best_.sol;
-      r = surface_result("auto", p_, s.u, s.v, s.jet.s, s.jet.su, s.jet.sv, box_);
-      r.summary.status = s.status;
-      r.summary.iterations = s.iterations;
-      r.summary.step_norm = s.step_norm;
-      if (!(s.distance <= options_.max_distance)) r.summary.status = Status::beyond_max_distance;
-      if (options_.trace)
-        projected_newton(formulas_, box_, p_, best_.u_start, best_.v_start, criteria_, &r.trace);
+    const bool within = has_best_ && best_.sol.distance <= options_.max_distance;
+    if (within) {
+      r = answer(best_.sol);
+      if (options_.trace) solve_across_seams(best_.u_start, best_.v_start, &r.trace);
     } else {
-      // No solve: every box is beyond max_distance (or no cell is finite). Report the centre of
-      // the cell reached by walking down the nearest boxes, without solving.
-      const SurfaceCell& c = cells_.cells()[static_cast<std::size_t>(descend())];
-      r = surface_result("auto", p_, c.uc(), c.vc(), c.centre.s, c.centre.su, c.centre.sv, box_);
-      r.summary.status = c.finite && options_.max_distance < std::numeric_limits<double>::infinity()
-                             ? Status::beyond_max_distance
-                             : Status::non_finite;
+      r = no_answer();
     }
     r.summary.starts = solves_;
-    if (options_.all_minima) r.minima = minima();
-    if (has_best_ && options_.certify.value_or(true)) certify(r);
+    if (options_.certify.value_or(true) && (within || r.summary.status == Status::beyond_max_distance))
+      certify(r, within);
+    if (std::isfinite(r.distance)) r.summary.multiplicity = multiplicity(r);
+    if (options_.all_minima) r.minima = minima(r, &r.minima_truncated);
+    return r;
+  }
+
+ private:
+  // The local solve (solvers/surface/projected_newton.hpp) on the surface rather than on its
+  // parameter box: a solve that stops on a bound of a closed direction because the distance still
+  // decreases across it (the gradient <s - p, s_u> of ½|s - p|^2 points out of the box, by more
+  // than rounding) goes on from the opposite bound, the same points of the surface
+  // (geometry/surface_closure.hpp); at most kSeamCrossings times.
+  LocalSolution solve_across_seams(double u, double v, std::vector<std::array<double, 3>>* trace = nullptr,
+                                   const EarlyStop* early = nullptr,
+                                   const SurfaceJet* start_jet = nullptr) const {
+    LocalSolution s = projected_newton(formulas_, box_, p_, u, v, criteria_, trace, early, start_jet);
+    for (int crossing = 0; crossing < kSeamCrossings && !s.abandoned && std::isfinite(s.distance);
+         ++crossing) {
+      const Vec3 d = s.jet.s - p_;
+      auto across = [&](int k, double t, double lo, double hi, const Vec3& tangent) {
+        if (!closure_.periodic(k)) return t;
+        const double slope = dot(d, tangent), size = kSeamSlope * norm(d) * norm(tangent);
+        if (t == lo && slope > size) return hi;  // s comes nearer as t decreases below lo
+        if (t == hi && slope < -size) return lo;
+        return t;
+      };
+      const double nu = across(0, s.u, box_.umin, box_.umax, s.jet.su);
+      const double nv = across(1, s.v, box_.vmin, box_.vmax, s.jet.sv);
+      if (nu == s.u && nv == s.v) break;
+      LocalSolution t = projected_newton(formulas_, box_, p_, nu, nv, criteria_, trace, early);
+      if (t.abandoned) return t;
+      if (!(t.distance <= s.distance)) break;
+      s = t;
+    }
+    return s;
+  }
+  static constexpr int kSeamCrossings = 4;
+  static constexpr double kSeamSlope = 1e-10;
+
+  // The result at a local solve's minimiser.
+  ProjectionResult answer(const LocalSolution& s) const {
+    ProjectionResult r = surface_result("auto", p_, s.u, s.v, s.jet.s, s.jet.su, s.jet.sv, box_, &closure_);
+    r.summary.status = s.status;
+    r.summary.iterations = s.iterations;
+    r.summary.step_norm = s.step_norm;
+    return r;
+  }
+
+  // No point of the surface within options.max_distance (or none finite): no foot point,
+  // parameters or distance (null in JSON), never an intermediate point.
+  ProjectionResult no_answer() const {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    ProjectionResult r;
+    r.dim = 3;
+    r.num_params = 2;
+    r.foot = {nan, nan, nan};
+    r.params = {nan, nan};
+    r.summary.method = "auto";
+    r.summary.location = Location::unknown;
+    const bool some_finite = std::any_of(cells_.cells().begin(), cells_.cells().end(),
+                                         [](const SurfaceCell& c) { return c.finite; });
+    r.summary.status = some_finite && std::isfinite(options_.max_distance) ? Status::beyond_max_distance
+                                                                           : Status::non_finite;
     return r;
   }
 
  private:
   // The certificate of the answer (solvers/surface/surface_certificate.hpp), from every minimiser
   // the search found; where it finds a nearer minimum (the search's estimates lost its basin), that
-  // one is the answer.
-  void certify(ProjectionResult& r) {
+  // one is the answer. Without an answer within options.max_distance, the certificate proves that
+  // none is nearer than it (a lower bound of at least max_distance, to the gap) - or finds one.
+  void certify(ProjectionResult& r, bool within) {
     // the minimisers at the answer's distance (its copies on a periodic or folded
     // parametrisation: each needs its own bound) and near it
     std::vector<std::array<double, 2>> known;
-    const double near_best = best_.sol.distance * (1.0 + 1e-6) + 1e-12;
+    LocalSolution target;
+    if (within) {
+      target = best_.sol;
+    } else {  // the point of the surface at max_distance to certify against: none nearer
+      const SurfaceCell& c = cells_.cells()[static_cast<std::size_t>(descend())];
+      target.u = c.uc();
+      target.v = c.vc();
+      target.jet = c.centre;
+      target.distance = options_.max_distance;
+    }
+    const double near_best = target.distance * (1.0 + 1e-6) + 1e-12;
     for (int i = 0; i < minimisers_count_; ++i)
-      if (minimisers_[i][2] <= near_best) known.push_back({minimisers_[i][0], minimisers_[i][1]});
+      if (minimisers_[i].distance <= near_best) known.push_back({minimisers_[i].u, minimisers_[i].v});
     for (const Found& f : all_)
       if (f.sol.distance <= near_best) known.push_back({f.sol.u, f.sol.v});
-    const SurfaceLocalSolve solve = [&](double u, double v) {
-      return projected_newton(formulas_, box_, p_, u, v, criteria_);
-    };
-    const SurfaceCertification c =
-        certify_surface(cells_, formulas_, box_, p_, best_.sol, known, solve, true);
-    if (c.improved) {
-      const LocalSolution& s = c.better;
+    const SurfaceLocalSolve solve = [&](double u, double v) { return solve_across_seams(u, v); };
+    const SurfaceCertification c = certify_surface(cells_, formulas_, box_, p_, target, known, solve, true);
+    if (c.improved && c.better.distance <= options_.max_distance) {
       const int starts = r.summary.starts;
-      r = surface_result("auto", p_, s.u, s.v, s.jet.s, s.jet.su, s.jet.sv, box_);
-      r.summary.status = s.status;
-      r.summary.iterations = s.iterations;
-      r.summary.step_norm = s.step_norm;
+      r = answer(c.better);
       r.summary.starts = starts;
-      if (!(s.distance <= options_.max_distance)) r.summary.status = Status::beyond_max_distance;
+      record_solution(c.better);
     }
     r.summary.certificate = c.certificate;
+  }
+
+  // How many feet are nearest (geometry/projection_result.hpp): a continuum where the Hessian of
+  // f = ½|s - p|^2 at the answer, over the parameters free there, is singular to rounding (a
+  // direction along which the distance stays); else the distinct feet among the minima solved to
+  // the end at the answer's distance within the certificate's gap.
+  AnswerMultiplicity multiplicity(const ProjectionResult& r) const {
+    AnswerMultiplicity m;
+    m.computed = true;
+    const double u = r.params[0], v = r.params[1];
+    const SurfaceJet j = formulas_.jet(u, v);
+    const Vec3 d = j.s - p_;
+    const double h[2][2] = {{dot(j.su, j.su) + dot(d, j.suu), dot(j.su, j.sv) + dot(d, j.suv)},
+                            {dot(j.su, j.sv) + dot(d, j.suv), dot(j.sv, j.sv) + dot(d, j.svv)}};
+    // a parameter on a bound that is no seam is held there; at a pole every parameter along the
+    // pole gives the one foot (not a continuum in space)
+    const bool free_u = !((u == box_.umin || u == box_.umax) && !closure_.periodic(0));
+    const bool free_v = !((v == box_.vmin || v == box_.vmax) && !closure_.periodic(1));
+    const bool pole = r.summary.location == Location::pole;
+    const double scale = std::abs(h[0][0]) + std::abs(h[1][1]) + 2.0 * std::abs(h[0][1]) + 1e-300;
+    double smallest = scale;
+    if (free_u && free_v) {
+      const double a = h[0][0], b = h[0][1], c = h[1][1];
+      smallest = 0.5 * (a + c) - std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+    } else if (free_u) {
+      smallest = h[0][0];
+    } else if (free_v) {
+      smallest = h[1][1];
+    }
+    if (!pole && smallest <= 1e-8 * scale && r.distance > 0.0) {
+      m.kind = Multiplicity::continuum;
+      return m;
+    }
+    const double gap =
+        std::fmax(Certificate::kRelativeGap * r.distance, Certificate::absolute_gap_at(p_, j.s));
+    m.feet.push_back(r.foot);
+    auto consider = [&](const Vec3& foot, double distance) {
+      if (!(std::abs(distance - r.distance) <= gap)) return;
+      const double same = kDistinctFoot * (1.0 + norm(foot));
+      for (const auto& f : m.feet)
+        if (norm2(Vec3{f[0], f[1], f[2]} - foot) <= same * same) return;
+      m.feet.push_back({foot.x, foot.y, foot.z});
+    };
+    for (int i = 0; i < minimisers_count_; ++i) {
+      const Minimiser& m = minimisers_[i];
+      if (m.complete) {
+        consider(m.foot, m.distance);
+      } else if (m.distance <= r.distance + gap) {
+        // a basin left early whose lower bound does not exclude a tie: solved to the end
+        const LocalSolution t = solve_across_seams(m.u, m.v);
+        if (t.status == Status::converged) consider(t.jet.s, t.distance);
+      }
+    }
+    for (const Found& f : all_) consider(f.sol.jet.s, f.sol.distance);
+    m.count = static_cast<int>(m.feet.size());
+    if (m.count > 1) {
+      m.kind = Multiplicity::tied;
+    } else {
+      m.feet.clear();
+    }
+    return m;
   }
 
   void visit(std::int32_t index, double box_lb) {
@@ -426,8 +547,7 @@ class Search {
     const SurfaceJet* start_jet = nullptr;
     for (const SurfaceCorner& corner : cells_.corners())
       if (corner.u == f.u_start && corner.v == f.v_start) start_jet = &corner.jet;
-    f.sol =
-        projected_newton(formulas_, box_, p_, f.u_start, f.v_start, criteria_, nullptr, &early, start_jet);
+    f.sol = solve_across_seams(f.u_start, f.v_start, nullptr, &early, start_jet);
     ++solves_;
     if (f.sol.abandoned) {  // its predicted minimiser still answers for its basin (rule 4)
       if (std::isfinite(f.sol.distance)) remember(f.sol.u, f.sol.v, f.sol.distance);
@@ -435,6 +555,10 @@ class Search {
     }
     if (!std::isfinite(f.sol.distance)) return;
     remember(f.sol.u, f.sol.v, f.sol.distance);
+    if (minimisers_count_ > 0 && f.sol.status == Status::converged) {
+      minimisers_[minimisers_count_ - 1].foot = f.sol.jet.s;
+      minimisers_[minimisers_count_ - 1].complete = true;
+    }
     if (options_.all_minima) {
       all_.push_back(f);
     } else {
@@ -446,8 +570,19 @@ class Search {
     }
   }
 
+  // A minimum the certificate found: among the minima for the multiplicity and all_minima.
+  void record_solution(const LocalSolution& s) {
+    Found f;
+    f.sol = s;
+    f.u_start = s.u;
+    f.v_start = s.v;
+    if (options_.all_minima) all_.push_back(f);
+    if (minimisers_count_ < kMinimisers)
+      minimisers_[minimisers_count_++] = {s.u, s.v, s.distance, s.jet.s, s.status == Status::converged};
+  }
+
   void remember(double u, double v, double distance) {
-    if (minimisers_count_ < kMinimisers) minimisers_[minimisers_count_++] = {u, v, distance};
+    if (minimisers_count_ < kMinimisers) minimisers_[minimisers_count_++] = {u, v, distance, Vec3{}, false};
     const int i = feet_count_ < kRemembered ? feet_count_++ : solves_ % kRemembered;
     feet_[i] = {u, v};
     feet_distance_[i] = distance;
@@ -489,25 +624,47 @@ class Search {
     return ~k;
   }
 
-  std::vector<Minimum> minima() const {
+  // Every distinct minimum found within max_distance, best first, at most options.max_minima
+  // (*truncated when more were found); a continuum at the answer's distance is its one
+  // representative, the answer.
+  std::vector<Minimum> minima(const ProjectionResult& r, bool* truncated) const {
     std::vector<const Found*> order;
     for (const Found& f : all_)
       if (f.sol.status == Status::converged && f.sol.distance <= options_.max_distance) order.push_back(&f);
     std::stable_sort(order.begin(), order.end(),
                      [](const Found* a, const Found* b) { return a->sol.distance < b->sol.distance; });
+    const bool continuum = r.summary.multiplicity.kind == Multiplicity::continuum;
+    const double gap = std::fmax(Certificate::kRelativeGap * r.distance,
+                                 Certificate::absolute_gap_at(p_, Vec3{r.foot[0], r.foot[1], r.foot[2]}));
+    const std::size_t cap =
+        static_cast<std::size_t>(options_.max_minima > 0 ? options_.max_minima : Options::kDefaultMaxMinima);
     std::vector<Minimum> out;
+    *truncated = false;
+    if (continuum) {
+      Minimum m;
+      m.foot = r.foot;
+      m.params = r.params;
+      m.distance = r.distance;
+      m.location = r.summary.location;
+      out.push_back(m);
+    }
     for (const Found* f : order) {
       const Vec3& s = f->sol.jet.s;
+      if (continuum && std::abs(f->sol.distance - r.distance) <= gap) continue;
       const double tol = kDistinctFoot * (1.0 + norm(s));
       const bool seen = std::any_of(out.begin(), out.end(), [&](const Minimum& m) {
         return norm2(Vec3{m.foot[0], m.foot[1], m.foot[2]} - s) <= tol * tol;
       });
       if (seen) continue;
+      if (out.size() == cap) {
+        *truncated = true;
+        break;
+      }
       Minimum m;
       m.foot = {s.x, s.y, s.z};
       m.params = {f->sol.u, f->sol.v};
       m.distance = f->sol.distance;
-      m.location = location_in(box_, f->sol.u, f->sol.v);
+      m.location = location_in(box_, f->sol.u, f->sol.v, &closure_);
       out.push_back(m);
     }
     return out;
@@ -516,6 +673,7 @@ class Search {
   const SurfaceCells& cells_;
   const SurfaceFormulas& formulas_;
   const ParamBox& box_;
+  const SurfaceClosure& closure_;
   const Vec3 p_;
   const Options& options_;
   const ConvergenceCriteria criteria_;
@@ -552,15 +710,20 @@ class Search {
   // every minimiser found (u, v, distance; abandoned solves: the predicted minimiser and a lower
   // bound), for the certificate
   static constexpr int kMinimisers = 64;
-  std::array<double, 3> minimisers_[kMinimisers];
+  struct Minimiser {
+    double u, v, distance;
+    Vec3 foot;      // when complete
+    bool complete;  // solved to the end (not abandoned early)
+  };
+  Minimiser minimisers_[kMinimisers];
   int minimisers_count_ = 0;
 };
 
 }  // namespace
 
 ProjectionResult project_auto(const SurfaceCells& cells, const SurfaceFormulas& formulas, const ParamBox& box,
-                              const Vec3& p, const Options& options) {
-  Search search(cells, formulas, box, p, options);
+                              const SurfaceClosure& closure, const Vec3& p, const Options& options) {
+  Search search(cells, formulas, box, closure, p, options);
   search.run();
   return search.result();
 }

@@ -38,14 +38,19 @@
 #pragma once
 #include "geometry/parametric_surface.hpp"
 #include "geometry/projection_result.hpp"
+#include "geometry/surface_closure.hpp"
 #include "seeding/surface_cells.hpp"
 
 namespace footpoint::surface {
 
-// options.initial is not used (the search needs no start); options.all_minima returns every
-// distinct local minimum found (interior, edge, corner), best first; options.trace the steps of
-// the local solve that gave the answer.
+// options.initial is a warm start: solved from first, its distance bounds the search from the
+// start (a neighbour's foot speeds up a coherent sequence of points); the search is global as
+// always. options.all_minima returns every distinct local minimum found (interior, edge, corner,
+// pole), best first, at most options.max_minima. options.trace: the steps of the local solve that
+// gave the answer. With no point within options.max_distance: beyond_max_distance, no foot point,
+// and a certificate that none is nearer. `closure` (geometry/surface_closure.hpp): seams are no
+// edges, poles are their own location. diagnostics.multiplicity: unique, tied or continuum.
 ProjectionResult project_auto(const SurfaceCells& cells, const SurfaceFormulas& formulas, const ParamBox& box,
-                              const Vec3& p, const Options& options);
+                              const SurfaceClosure& closure, const Vec3& p, const Options& options);
 
 }  // namespace footpoint::surface
