@@ -67,6 +67,27 @@ class PointsReservation {
   std::size_t n_;
 };
 
+// A geometry id is what POST /v1/geometries answers: 32 lower-case hex digits. Anything else is
+// a client's mistake (400), not an id that is not held (404: post it again).
+void check_geometry_id(std::string_view id) {
+  bool hex = id.size() == 32, lower_case = true;
+  for (const char c : id) {
+    const bool digit = c >= '0' && c <= '9', small = c >= 'a' && c <= 'f', capital = c >= 'A' && c <= 'F';
+    hex = hex && (digit || small || capital);
+    lower_case = lower_case && !capital;
+  }
+  if (hex && lower_case) return;
+  std::string suggestion;
+  if (hex)
+    for (const char c : id) suggestion += c >= 'A' && c <= 'F' ? static_cast<char>(c - 'A' + 'a') : c;
+  throw ApiError(400, "invalid_geometry_id",
+                 "'" + std::string(id.substr(0, 80)) + (id.size() > 80 ? "..." : "") +
+                     "' is not a geometry id: an id is the 32 lower-case hex digits of the geometry_id that "
+                     "POST /v1/geometries answers" +
+                     (hex ? " (this one has capitals)" : ""),
+                 "id", -1, suggestion);
+}
+
 void write_method_names(JsonWriter& w, const CompiledGeometry& g) {
   w.begin_array();
   for (const auto& m : g.methods()) w.string(m.name);
@@ -219,7 +240,7 @@ GeometryCache::Lookup Api::compile(const GeometryDefinition& def, const std::str
     return lookup;
   } catch (const GeometryError& e) {
     throw ApiError(422, e.code, e.what(), e.field.empty() ? std::string() : field_prefix + e.field,
-                   e.position);
+                   e.position, e.suggestion);
   }
 }
 
@@ -242,7 +263,7 @@ std::shared_ptr<const CompiledGeometry> Api::held_geometry(std::string_view id) 
                    "id");
   } catch (const GeometryError& e) {
     throw ApiError(422, e.code, std::string("the stored definition does not compile here: ") + e.what(),
-                   e.field, e.position);
+                   e.field, e.position, e.suggestion);
   }
 }
 
@@ -289,6 +310,7 @@ ApiResponse Api::create_geometry(std::string_view body) {
 }
 
 ApiResponse Api::get_geometry(std::string_view id) {
+  check_geometry_id(id);
   const auto g = held_geometry(id);
   if (!g)
     throw ApiError(404, "geometry_not_found",
@@ -320,6 +342,7 @@ ApiResponse Api::get_geometry(std::string_view id) {
 }
 
 ApiResponse Api::delete_geometry(std::string_view id) {
+  check_geometry_id(id);
   bool held = false;
   if (registry_) {
     try {
@@ -343,6 +366,7 @@ ApiResponse Api::project(std::string_view id, std::string_view body) {
   const bool inline_geometry = id.empty();
   std::shared_ptr<const CompiledGeometry> geometry;
   if (!inline_geometry) {
+    check_geometry_id(id);
     geometry = held_geometry(id);
     if (!geometry)
       throw ApiError(404, "geometry_not_found",
@@ -378,6 +402,7 @@ ApiResponse Api::project(std::string_view id, std::string_view body) {
 }
 
 ApiResponse Api::mesh(std::string_view id, std::string_view query) {
+  check_geometry_id(id);
   const auto geometry = held_geometry(id);
   if (!geometry)
     throw ApiError(404, "geometry_not_found",

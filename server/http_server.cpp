@@ -88,7 +88,10 @@ ApiError http_error(int status) {
     case 408:
       return ApiError(408, "request_timeout", "the request was not received in time");
     case 413:
-      return ApiError(413, "body_too_large", "the body is over the size limit");
+      return ApiError(
+          413, "body_too_large",
+          "the body is over the size limit (--max-body-bytes): split the batch into smaller requests",
+          "body");
     case 414:
       return ApiError(414, "uri_too_long", "the request URI is too long");
     case 416:
@@ -206,8 +209,11 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     if (length > config_.max_body_bytes)
       return reject(res,
                     ApiError(413, "body_too_large",
-                             "the body has " + std::to_string(length) + " bytes, the limit is " +
-                                 std::to_string(config_.max_body_bytes)),
+                             "the body has " + std::to_string(length) + " bytes, over the limit of " +
+                                 std::to_string(config_.max_body_bytes) +
+                                 " (--max-body-bytes): split the batch into smaller requests, or have the "
+                                 "operator raise --max-body-bytes",
+                             "body"),
                     true);
     const std::string encoding = lower(req.get_header_value("Content-Encoding"));
     if (!encoding.empty() && encoding != "identity")

@@ -24,8 +24,13 @@ void read_points(JsonReader& r, ProjectRequest& request, std::size_t max_points)
     started = true;
     while (r.next_element()) {
       if (i == max_points)
-        throw ApiError(413, "too_many_points",
-                       "more than " + std::to_string(max_points) + " points in one request", "points");
+        throw ApiError(
+            413, "too_many_points",
+            "more than " + std::to_string(max_points) +
+                " points in one request, the limit (--max-points): split the batch into requests of at "
+                "most " +
+                std::to_string(max_points) + " points",
+            "points");
       j = 0;
       r.begin_array();
       in_point = true;
@@ -221,6 +226,16 @@ ProjectRequest read_request(std::string_view body, bool inline_geometry, std::si
       read_options(r, request);
     } else if (key == "geometry" && inline_geometry) {
       request.geometry = read_geometry(r, "geometry.");
+    } else if (key == "type" || key == "x" || key == "equations" || key == "domain" || key == "constants") {
+      // a definition's member where a projection request is expected
+      throw ApiError(
+          400, "unknown_field",
+          "unknown field " + key +
+              (inline_geometry ? ": POST /v1/project takes the definition under \"geometry\": "
+                                 "{\"geometry\": {\"type\": ...}, \"point\": [...]}"
+                               : ": this route projects onto the geometry its id names; post a definition to "
+                                 "POST /v1/geometries, or send it under \"geometry\" to POST /v1/project"),
+          key);
     } else {
       throw ApiError(400, "unknown_field",
                      "unknown field " + key +

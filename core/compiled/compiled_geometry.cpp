@@ -44,7 +44,7 @@ formula::Program compile_formulas(const GeometryDefinition& def, const std::vect
   try {
     return formula::Program::compile(def.formulas, variables, def.constants, limits);
   } catch (const formula::FormulaError& e) {
-    throw GeometryError(formula::to_string(e.kind), e.formula, e.position, e.what());
+    throw GeometryError(formula::to_string(e.kind), e.formula, e.position, e.what(), e.suggestion);
   }
 }
 

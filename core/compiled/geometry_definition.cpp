@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <string_view>
 #include <system_error>
 #include <vector>
@@ -49,6 +50,19 @@ std::string GeometryDefinition::canonical() const {
 }
 
 std::string GeometryDefinition::id() const { return sha256_hex(canonical()).substr(0, 32); }
+
+Expected<double, GeometryError> evaluate_bound(const std::string& field, const std::string& expression,
+                                               const std::map<std::string, double>& constants) {
+  double value = 0.0;
+  try {
+    value = formula::Program::constant_value({field, expression}, constants);
+  } catch (const formula::FormulaError& e) {
+    return GeometryError(formula::to_string(e.kind), e.formula, e.position, e.what(), e.suggestion);
+  }
+  if (!std::isfinite(value))
+    return GeometryError("bad_domain", field, -1, field + ": '" + expression + "' is not a finite number");
+  return value;
+}
 
 namespace {
 
