@@ -102,6 +102,7 @@ Api::Api(const ServerConfig& config, GeometryCache& cache, ThreadPool& pool, Met
 
 ApiResponse Api::error_response(const ApiError& error) {
   ApiResponse r = json_response(error.status, error_body(error));
+  r.error_code = error.code;
   if (error.code == "overloaded" || error.code == "registry_unavailable") r.retry_after_s = 1;
   return r;
 }

@@ -29,6 +29,7 @@ struct ApiResponse {
   std::size_t points = 0;  // points projected (for the request log)
   int retry_after_s = 0;   // Retry-After header (503 overloaded, registry_unavailable), 0: none
   std::vector<std::pair<std::string, std::string>> headers;  // further headers (the pages' security policy)
+  std::string error_code;  // the error's code when this answers one (for the request log)
 };
 
 class Api {

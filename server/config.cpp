@@ -5,9 +5,12 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <thread>
 #include <vector>
 
+#include "json_writer.hpp"
 #include "redis/redis_client.hpp"
+#include "version.hpp"
 
 namespace footpoint::server {
 
@@ -244,7 +247,9 @@ ServerConfig load_config(int argc, const char* const* argv,
 
 std::string usage() {
   const ServerConfig defaults;
-  std::string text = "usage: footpoint-server [--flag value | --flag=value]...\n\n";
+  std::string text =
+      "usage: footpoint-server [--flag value | --flag=value]...\n"
+      "       footpoint-server --version | --help\n\n";
   for (const auto& s : settings()) {
     std::string line = s.flag ? std::string("  --") + s.flag : std::string("  (no flag)");
     line.resize(std::max<std::size_t>(line.size() + 1, 24), ' ');
@@ -256,8 +261,33 @@ std::string usage() {
   return text;
 }
 
+std::string effective_settings_json(const ServerConfig& config) {
+  ServerConfig effective = config;
+  if (effective.threads == 0) effective.threads = std::max(1u, std::thread::hardware_concurrency());
+  effective.max_inflight = config.effective_max_inflight();
+  if (effective.compile_deadline.count() == 0) effective.compile_deadline = effective.deadline;
+  JsonWriter w;
+  w.begin_object();
+  for (const auto& s : settings()) {
+    if (!s.flag) continue;  // the password
+    w.key(s.flag);
+    const std::string value = s.show(effective);
+    if (!value.empty() && value.find_first_not_of("0123456789") == std::string::npos)
+      w.raw(value);
+    else
+      w.string(value == "\"\"" ? std::string() : value);
+  }
+  w.end_object();
+  return w.take();
+}
+
 int configure_from_command_line(int argc, const char* const* argv, const char* program,
                                 ServerConfig& config) {
+  for (int i = 1; i < argc; ++i)
+    if (std::string_view(argv[i]) == "--version") {
+      std::printf("footpoint-server %.*s\n", static_cast<int>(kVersion.size()), kVersion.data());
+      return 0;
+    }
   try {
     bool help = false;
     config = load_config(

@@ -98,9 +98,14 @@ ServerConfig load_config(int argc, const char* const* argv,
 // The flags, their variables and defaults, one per line.
 std::string usage();
 
+// The settings in effect, as a JSON object keyed by flag name, numbers as numbers: what a
+// setting's 0 stands for resolved (threads, max-inflight, compile-deadline-ms), the password
+// left out. The start-up log line carries it.
+std::string effective_settings_json(const ServerConfig& config);
+
 // A server executable's start: the configuration from argv and the process environment into
-// `config`, or the exit code to end with: 0 after printing usage() for --help, 2 after naming the
-// bad flag or value on stderr (prefixed with `program`). -1: go on.
+// `config`, or the exit code to end with: 0 after printing usage() for --help or the version for
+// --version, 2 after naming the bad flag or value on stderr (prefixed with `program`). -1: go on.
 int configure_from_command_line(int argc, const char* const* argv, const char* program, ServerConfig& config);
 
 }  // namespace footpoint::server

@@ -35,7 +35,8 @@ struct RequestContext {
   std::string request_id;
   Route route = Route::none;
   std::size_t points = 0;
-  bool admitted = false;  // already checked when the client asked "Expect: 100-continue"
+  std::string error_code;  // the code of the error answered, for the log line
+  bool admitted = false;   // already checked when the client asked "Expect: 100-continue"
 };
 thread_local RequestContext t_request;
 
@@ -62,6 +63,7 @@ bool parse_length(const std::string& text, std::size_t& length) {
 }
 
 void set_response(httplib::Response& res, ApiResponse&& r) {
+  t_request.error_code = std::move(r.error_code);
   res.status = r.status;
   res.body = std::move(r.body);
   if (!r.content_type.empty()) res.set_header("Content-Type", r.content_type);
@@ -269,8 +271,10 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
         if (!res.has_header("X-Request-Id"))
           res.set_header("X-Request-Id", t_request.active ? t_request.request_id : make_request_id());
         if (res.body.empty()) {
-          res.body = error_body(http_error(res.status));
+          const ApiError error = http_error(res.status);
+          res.body = error_body(error);
           res.set_header("Content-Type", "application/json");
+          t_request.error_code = error.code;
         }
         return httplib::Server::HandlerResponse::Handled;
       }));
@@ -296,11 +300,13 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       record.route = route_template(route);
       record.remote_addr = req.remote_addr;
       record.status = res.status;
+      record.code = ctx.error_code;
       record.points = ctx.active ? ctx.points : 0;
       record.body_bytes = req.body.size();
       record.duration_ms = seconds * 1e3;
       log_request(record);
       ctx.active = false;
+      ctx.error_code.clear();
     } catch (...) {
     }
   });

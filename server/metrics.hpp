@@ -1,4 +1,6 @@
 // Prometheus metrics (text exposition format 0.0.4), recorded lock-free with atomics:
+//   footpoint_build_info{version}                            gauge (1)
+//   process_*                                                the process's (process_metrics.hpp)
 //   footpoint_http_requests_total{route,status}              counter
 //   footpoint_http_request_duration_seconds{route}           histogram
 //   footpoint_http_requests_in_flight                        gauge
