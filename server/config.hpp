@@ -56,7 +56,7 @@ struct ServerConfig {
   // --cache-bytes / FOOTPOINT_CACHE_BYTES: memory the kept geometries may hold (LRU): 256 MiB.
   std::size_t cache_bytes = std::size_t{256} << 20;
   // --keep-alive-timeout-s / FOOTPOINT_KEEP_ALIVE_TIMEOUT_S: an idle connection is closed after
-  // this long; it also bounds how long a graceful shutdown waits for idle connections.
+  // this long (a graceful shutdown closes the idle ones at once).
   int keep_alive_timeout_s = 5;
   // --keep-alive-max / FOOTPOINT_KEEP_ALIVE_MAX: requests served per connection before it closes.
   std::size_t keep_alive_max = 100000;

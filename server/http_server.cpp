@@ -1,12 +1,16 @@
 #include "http_server.hpp"
 
+#include <dirent.h>
 #include <malloc.h>
+#include <netinet/in.h>
 #include <sys/socket.h>
 
 #include <cctype>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -39,6 +43,20 @@ struct RequestContext {
   bool admitted = false;   // already checked when the client asked "Expect: 100-continue"
 };
 thread_local RequestContext t_request;
+
+// The busy slot of the connection thread running this code, and the server it belongs to.
+struct ConnectionSlot {
+  const void* owner = nullptr;
+  std::atomic<int>* port = nullptr;
+};
+thread_local ConnectionSlot t_slot;
+
+// The port of a socket's address (IPv4 or IPv6), or -1.
+int port_of(const sockaddr_storage& a) {
+  if (a.ss_family == AF_INET) return ntohs(reinterpret_cast<const sockaddr_in&>(a).sin_port);
+  if (a.ss_family == AF_INET6) return ntohs(reinterpret_cast<const sockaddr_in6&>(a).sin6_port);
+  return -1;
+}
 
 std::string lower(std::string s) {
   for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -126,7 +144,8 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       pool_(config_.threads),
       api_(config_, cache_, pool_, metrics_, registry_.get()),
       handler_(std::move(handler)),
-      http_(std::make_unique<Listener>()) {
+      http_(std::make_unique<Listener>()),
+      busy_ports_(std::make_unique<std::atomic<int>[]>(config_.connection_threads)) {
   init_logging(config_.log_level);
   if (!handler_)
     handler_ = [this](const RouteMatch& m, std::string_view method, std::string_view body,
@@ -154,6 +173,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     ctx = RequestContext{};
     ctx.active = true;
     ctx.start = Clock::now();
+    mark_busy(req.remote_port);
     // httplib would compress the response by the client's Accept-Encoding (brotli at quality 11
     // costs far more than the projection) and cut it by Range: the service sends plain, whole
     // bodies. The request object is httplib's own mutable one, handed over as const.
@@ -256,6 +276,8 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     ApiResponse r = handler_(match, req.method, req.body, query);
     t_request.points = r.points;
     set_response(res, std::move(r));
+    // A request answered while the server shuts down is the connection's last.
+    if (api_.shutting_down()) res.set_header("Connection", "close");
   };
   http.Get(".*", handle);
   http.Post(".*", handle);
@@ -307,6 +329,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       log_request(record);
       ctx.active = false;
       ctx.error_code.clear();
+      mark_idle();
     } catch (...) {
     }
   });
@@ -347,7 +370,45 @@ void HttpServer::shutdown() {
   if (http_->is_running()) {
     http_->stop();
     stopped_ = true;
+    close_idle_connections();
   }
+}
+
+void HttpServer::mark_busy(int remote_port) {
+  if (t_slot.owner != this) {
+    const unsigned slot = slots_taken_.fetch_add(1);
+    t_slot = {this, slot < config_.connection_threads ? &busy_ports_[slot] : nullptr};
+  }
+  if (t_slot.port && remote_port > 0) t_slot.port->store(remote_port);
+}
+
+void HttpServer::mark_idle() {
+  if (t_slot.owner == this && t_slot.port) t_slot.port->store(0);
+}
+
+void HttpServer::close_idle_connections() {
+  std::set<int> busy;
+  for (unsigned i = 0; i < std::min(slots_taken_.load(), config_.connection_threads); ++i)
+    if (const int port = busy_ports_[i].load(); port > 0) busy.insert(port);
+  // The process's sockets connected from this server's port: its connections. httplib keeps no
+  // list of them, the kernel does.
+  DIR* dir = opendir("/proc/self/fd");
+  if (!dir) return;
+  while (const dirent* entry = readdir(dir)) {
+    if (entry->d_name[0] == '.') continue;
+    const int fd = std::atoi(entry->d_name);
+    int type = 0;
+    socklen_t type_length = sizeof type;
+    sockaddr_storage local{}, peer{};
+    socklen_t local_length = sizeof local, peer_length = sizeof peer;
+    if (::getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &type_length) != 0 || type != SOCK_STREAM) continue;
+    if (::getsockname(fd, reinterpret_cast<sockaddr*>(&local), &local_length) != 0 || port_of(local) != port_)
+      continue;
+    if (::getpeername(fd, reinterpret_cast<sockaddr*>(&peer), &peer_length) != 0) continue;
+    // Its thread waits for the next request: it reads the end of the stream and closes.
+    if (busy.count(port_of(peer)) == 0) ::shutdown(fd, SHUT_RDWR);
+  }
+  closedir(dir);
 }
 
 void keep_large_buffers_for_reuse() {

@@ -238,3 +238,49 @@ TEST_CASE("the binary's log: start-up line with version and settings, request li
   CHECK(server.event("shutting down")["signal"] == "SIGTERM");
   server.event("stopped");
 }
+
+TEST_CASE("SIGTERM: idle keep-alive connections close at once, the request in flight finishes, exit 0") {
+  ServerProcess server(
+      {"--host", "127.0.0.1", "--port", "0", "--threads", "1", "--keep-alive-timeout-s", "60"});
+  const int port = server.event("listening")["port"];
+  httplib::Client c("127.0.0.1", port);
+  c.set_keep_alive(true);
+  c.set_read_timeout(120, 0);
+  auto r = c.Post(
+      "/v1/geometries",
+      R"J({"type":"parametric_surface","x":"u+v","y":"sin(u)+2*cos(v)","z":"sin(u+v)","domain":{"u":[-25,25],"v":[-25,25]}})J",
+      "application/json");
+  REQUIRE(r);
+  REQUIRE(r->status == 201);
+  const std::string id = json::parse(r->body)["geometry_id"];
+  std::string batch = R"J({"points":[)J";
+  for (int i = 0; i < 20000; ++i)
+    batch += (i ? ",[" : "[") + std::to_string(-9 + 18.0 * (i % 97) / 97) + "," +
+             std::to_string(-9 + 18.0 * (i % 89) / 89) + "," + std::to_string(-9 + 18.0 * (i % 83) / 83) +
+             "]";
+  batch += "]}";
+  httplib::Result in_flight{nullptr, httplib::Error::Unknown};
+  std::thread slow([&] {
+    httplib::Client b("127.0.0.1", port);
+    b.set_read_timeout(120, 0);
+    in_flight = b.Post("/v1/geometries/" + id + "/project", batch, "application/json");
+  });
+  // `c` stays open, idle: it waits for the batch to be in flight.
+  for (int i = 0; i < 2000; ++i) {
+    auto m = c.Get("/metrics");
+    REQUIRE(m);
+    if (m->body.find("\nfootpoint_http_requests_in_flight 1\n") != std::string::npos) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const int code = server.stop(SIGTERM);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  slow.join();
+  CHECK(code == 0);
+  CHECK(seconds < 20.0);  // the batch's time, not the idle connection's 60 s keep-alive
+  REQUIRE(in_flight);
+  CHECK(in_flight->status == 200);
+  CHECK(json::parse(in_flight->body)["results"].size() == 20000);
+  MESSAGE("SIGTERM to exit with an idle keep-alive connection and a 20,000-point batch in flight: " << seconds
+                                                                                                    << " s");
+}
