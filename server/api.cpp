@@ -395,9 +395,8 @@ ApiResponse Api::project(std::string_view id, std::string_view body) {
   for (const auto& r : results) ++by_status[static_cast<std::size_t>(reported_status(r))];
   metrics_.add_projections(by_status);
 
-  ApiResponse r =
-      json_response(200, project_response(geometry->id(), results, request.single, request.options.all_minima,
-                                          request.options.trace, elapsed_ms));
+  ApiResponse r = json_response(
+      200, project_response(geometry->id(), results, request.single, request.fields, elapsed_ms));
   r.points = results.size();
   return r;
 }

@@ -171,6 +171,35 @@ void read_options(JsonReader& r, ProjectRequest& request) {
   }
 }
 
+// "fields": ["distance", "foot_point", "diagnostics.status", ...], at least one.
+ResultFields read_fields(JsonReader& r) {
+  ResultFields fields{0};
+  std::size_t i = 0;
+  try {
+    r.begin_array();
+    for (; r.next_element(); ++i) {
+      const std::string item = indexed("fields", i);
+      std::string name;
+      try {
+        name = r.string();
+      } catch (const JsonReadError& e) {
+        throw request_error(e, item);
+      }
+      const std::uint32_t members = ResultFields::parse(name);
+      if (members == 0)
+        throw ApiError(400, "unknown_field",
+                       item + ": '" + name + "' is no member of a result (" + ResultFields::names() + ")",
+                       item);
+      fields.members |= members;
+    }
+  } catch (const JsonReadError& e) {
+    throw request_error(e, i == 0 ? std::string("fields") : indexed("fields", i));
+  }
+  if (i == 0)
+    throw ApiError(400, "wrong_shape", "fields is empty: name the members each result should have", "fields");
+  return fields;
+}
+
 }  // namespace
 
 namespace {
@@ -178,7 +207,7 @@ namespace {
 ProjectRequest read_request(std::string_view body, bool inline_geometry, std::size_t max_points) {
   ProjectRequest request;
   JsonReader r(body);
-  bool has_point = false, has_points = false;
+  bool has_point = false, has_points = false, fields_given = false;
   std::vector<std::string> seen;
   try {
     r.begin_object();
@@ -224,6 +253,9 @@ ProjectRequest read_request(std::string_view body, bool inline_geometry, std::si
       }
     } else if (key == "options") {
       read_options(r, request);
+    } else if (key == "fields") {
+      request.fields = read_fields(r);
+      fields_given = true;
     } else if (key == "geometry" && inline_geometry) {
       request.geometry = read_geometry(r, "geometry.");
     } else if (key == "type" || key == "x" || key == "equations" || key == "domain" || key == "constants") {
@@ -239,8 +271,8 @@ ProjectRequest read_request(std::string_view body, bool inline_geometry, std::si
     } else {
       throw ApiError(400, "unknown_field",
                      "unknown field " + key +
-                         (inline_geometry ? " (geometry, point, points, method, options)"
-                                          : " (point, points, method, options)"),
+                         (inline_geometry ? " (geometry, point, points, method, options, fields)"
+                                          : " (point, points, method, options, fields)"),
                      key);
     }
     if (has_point && has_points)
@@ -256,6 +288,18 @@ ProjectRequest read_request(std::string_view body, bool inline_geometry, std::si
   if (inline_geometry && !request.geometry)
     throw ApiError(400, "missing_field", "geometry (the definition) is required", "geometry");
   request.single = has_point;
+  // minima and trace are computed on request only; "fields" cannot ask for them alone.
+  for (const auto& [member, option] :
+       {std::pair{ResultFields::minima, "all_minima"}, std::pair{ResultFields::trace, "trace"}}) {
+    const bool asked = member == ResultFields::minima ? request.options.all_minima : request.options.trace;
+    if (asked) continue;
+    if (fields_given && request.fields.has(member))
+      throw ApiError(400, "conflicting_fields",
+                     std::string("fields names ") + (member == ResultFields::minima ? "minima" : "trace") +
+                         ", which only options." + option + ": true computes",
+                     "fields");
+    request.fields.members &= ~member;
+  }
   if (!request.initials.empty() && request.initials.size() != request.count)
     throw ApiError(400, "wrong_shape",
                    "options.initial has " + std::to_string(request.initials.size()) + " starts for " +

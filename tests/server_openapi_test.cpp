@@ -81,6 +81,17 @@ for s in samples:
     errors = sorted(Draft202012Validator(root).iter_errors(instance), key=lambda e: list(e.path))
     for e in errors[:3]:
         failures.append("%s: %s at %s" % (where, e.message[:300], "/".join(map(str, e.path))))
+    # Without "fields" a result has every member x-required-without-fields lists.
+    if media == "application/json" and s["status"] == 200 and s["request"] and "fields" not in json.loads(s["request"]):
+        result_schema = spec["components"]["schemas"]["ProjectionResult"]
+        diagnostics_schema = spec["components"]["schemas"]["Diagnostics"]
+        for r in ([instance["result"]] if "result" in instance else instance.get("results", [])):
+            for name in result_schema["x-required-without-fields"]:
+                if name not in r:
+                    failures.append("%s: a result without fields lacks %s" % (where, name))
+            for name in diagnostics_schema["x-required-without-fields"]:
+                if name not in r.get("diagnostics", {}):
+                    failures.append("%s: diagnostics without fields lack %s" % (where, name))
 
 for path, ops in spec["paths"].items():
     for method in ops:
@@ -163,6 +174,8 @@ TEST_CASE("every response matches openapi.yaml") {
        R"J({"points":[[1,2,2],[0,0,3],[5,-1,0.5]],"options":{"all_minima":true,"trace":true}})J");
   post(project, on, R"J({"point":[1,2,2],"method":"gsa","options":{"initial":[0.5,0.7],"trace":true}})J");
   post(project, on, R"J({"point":[100,2,2],"options":{"max_distance":1}})J");
+  post(project, on,
+       R"J({"points":[[1,2,2],[0,0,3]],"fields":["foot_point","distance","diagnostics.status"]})J");
   post(project, "/v1/geometries/" + curve_id + "/project",
        R"J({"point":[217,273,129],"options":{"all_minima":true}})J");
   {
