@@ -150,6 +150,32 @@ const std::vector<Setting>& settings() {
          throw ConfigError(n + ": unknown log level '" + v + "'");
        },
        [](const ServerConfig& c) { return c.log_level; }},
+      {"cors-origins", "FOOTPOINT_CORS_ORIGINS",
+       "origins (scheme://host[:port]) whose pages may call the API, comma-separated, or * (\"\": none)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.cors_origins.clear();
+         std::size_t start = 0;
+         while (start <= v.size()) {
+           const auto comma = std::min(v.find(',', start), v.size());
+           std::string origin = v.substr(start, comma - start);
+           origin.erase(0, origin.find_first_not_of(' '));
+           origin.erase(origin.find_last_not_of(' ') + 1);
+           start = comma + 1;
+           if (origin.empty()) continue;
+           const auto scheme = origin.find("://");
+           const bool web = origin.rfind("http://", 0) == 0 || origin.rfind("https://", 0) == 0;
+           if (origin != "*" && (!web || origin.size() == scheme + 3 ||
+                                 origin.find_first_of("/?# ", scheme + 3) != std::string::npos))
+             throw ConfigError(n + ": '" + origin +
+                               "' is not an origin: scheme://host[:port] (http or https, no path), or *");
+           c.cors_origins.push_back(origin);
+         }
+       },
+       [](const ServerConfig& c) {
+         std::string s;
+         for (const auto& o : c.cors_origins) (s += s.empty() ? "" : ",") += o;
+         return s.empty() ? std::string("\"\"") : s;
+       }},
       {"registry-url", "FOOTPOINT_REGISTRY_URL",
        "shared geometry registry, redis://[user@]host[:port][/db] (\"\": none, one process)",
        [](ServerConfig& c, const std::string& n, const std::string& v) {

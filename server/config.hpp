@@ -6,6 +6,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace footpoint::server {
 
@@ -66,6 +67,10 @@ struct ServerConfig {
   int backlog = 1024;
   // --log-level / FOOTPOINT_LOG_LEVEL: trace, debug, info, warn, error, critical or off.
   std::string log_level = "info";
+  // --cors-origins / FOOTPOINT_CORS_ORIGINS: the origins (scheme://host[:port]) whose browser pages
+  // may call the API from another origin, comma-separated, or "*" for any; empty: none (CORS off,
+  // OPTIONS answers 405).
+  std::vector<std::string> cors_origins;
 
   // The shared geometry registry (server/geometry_registry.hpp), off when the URL is empty.
   // --registry-url / FOOTPOINT_REGISTRY_URL: redis://[user@]host[:port][/db].

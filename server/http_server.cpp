@@ -208,6 +208,35 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       return reject(res,
                     ApiError(404, "route_not_found", "no route " + req.path + " (see GET /openapi.yaml)"),
                     has_body);
+    if (!config_.cors_origins.empty() && req.has_header("Origin")) {
+      // Cross-origin calls from the configured origins' pages: their responses (errors too)
+      // may be read by the page, and a preflight OPTIONS is answered here.
+      const std::string origin = req.get_header_value("Origin");
+      bool any = false, allowed = false;
+      for (const auto& o : config_.cors_origins) {
+        any = any || o == "*";
+        allowed = allowed || o == "*" || o == origin;
+      }
+      res.set_header("Vary", "Origin");
+      if (allowed) {
+        res.set_header("Access-Control-Allow-Origin", any ? "*" : origin);
+        res.set_header("Access-Control-Expose-Headers",
+                       "X-Request-Id, Location, Retry-After, Content-Disposition");
+      }
+      if (req.method == "OPTIONS") {
+        if (!allowed)
+          return reject(
+              res,
+              ApiError(403, "origin_not_allowed",
+                       "origin " + origin + " may not call this API (--cors-origins lists the origins)"),
+              has_body);
+        res.status = 204;
+        res.set_header("Access-Control-Allow-Methods", match.allow);
+        res.set_header("Access-Control-Allow-Headers", "Content-Type, X-Request-Id");
+        res.set_header("Access-Control-Max-Age", "600");
+        return httplib::Server::HandlerResponse::Handled;
+      }
+    }
     if (!match.method_allowed) {
       res.set_header("Allow", match.allow);
       return reject(res,

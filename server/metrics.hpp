@@ -57,7 +57,7 @@ class Metrics {
 
  private:
   // Statuses counted by name; anything else lands in "other".
-  static constexpr std::array<int, 16> kHttpStatuses{200, 201, 204, 400, 404, 405, 408, 411,
+  static constexpr std::array<int, 17> kHttpStatuses{200, 201, 204, 400, 403, 404, 405, 408, 411,
                                                      413, 414, 415, 416, 422, 500, 503, 0};
   static int status_index(int status);
 

@@ -82,7 +82,8 @@ for s in samples:
     for e in errors[:3]:
         failures.append("%s: %s at %s" % (where, e.message[:300], "/".join(map(str, e.path))))
     # Without "fields" a result has every member x-required-without-fields lists.
-    if media == "application/json" and s["status"] == 200 and s["request"] and "fields" not in json.loads(s["request"]):
+    if (s["template"].endswith("/project") and media == "application/json" and s["status"] == 200
+            and "fields" not in json.loads(s["request"])):
         result_schema = spec["components"]["schemas"]["ProjectionResult"]
         diagnostics_schema = spec["components"]["schemas"]["Diagnostics"]
         for r in ([instance["result"]] if "result" in instance else instance.get("results", [])):
@@ -97,6 +98,43 @@ for path, ops in spec["paths"].items():
     for method in ops:
         if method in ("get", "post", "delete", "put", "patch") and (path, method) not in seen:
             failures.append("%s %s: no sample exercised it" % (method.upper(), path))
+
+# Every operation shows what it answers: its success response has an example, and every example
+# (responses and request bodies) matches its schema.
+def check_example(where, schema_pointer, example):
+    root = dict(spec)
+    root["$ref"] = schema_pointer
+    for e in list(Draft202012Validator(root).iter_errors(example))[:3]:
+        failures.append("%s: example: %s at %s" % (where, e.message[:300], "/".join(map(str, e.path))))
+
+examples = 0
+for path, ops in spec["paths"].items():
+    for method, op in ops.items():
+        if method not in ("get", "post", "delete", "put", "patch"):
+            continue
+        where = "%s %s" % (method.upper(), path)
+        shown = False
+        for status, response in op["responses"].items():
+            response, pointer = resolve(response, "#/paths/%s/%s/responses/%s" % (esc(path), method, status))
+            content = response.get("content") or {}
+            if status.startswith("2") and not content:
+                shown = True  # 204: nothing to show
+            for media, body in content.items():
+                if "example" not in body:
+                    continue
+                examples += 1
+                shown = shown or status.startswith("2")
+                if media == "application/json":
+                    check_example("%s -> %s" % (where, status), pointer + "/content/" + esc(media) + "/schema", body["example"])
+        if not shown:
+            failures.append(where + ": no example of its success response")
+        request = op.get("requestBody", {}).get("content", {}).get("application/json", {})
+        for name, example in request.get("examples", {}).items():
+            examples += 1
+            check_example("%s request example %s" % (where, name),
+                          "#/paths/%s/%s/requestBody/content/application~1json/schema" % (esc(path), method), example["value"])
+if examples < 20:
+    failures.append("only %d examples" % examples)
 
 for f in failures:
     print(f)
@@ -186,6 +224,20 @@ TEST_CASE("every response matches openapi.yaml") {
   post("/v1/project", "/v1/project", R"J({"geometry":)J" + planar + R"J(,"points":[[2,2],[0,0]]})J");
   post("/v1/project", "/v1/project",
        R"J({"geometry":)J" + param + R"J(,"point":[1,1,1],"options":{"all_minima":true}})J");
+
+  // The list, and evaluation at parameters.
+  record("GET", "/v1/geometries", c->Get("/v1/geometries?limit=2"));
+  record("GET", "/v1/geometries", c->Get("/v1/geometries?limit=2&after=" + id));
+  record("GET", "/v1/geometries", c->Get("/v1/geometries?limit=0"));  // 400
+  const std::string evaluate = "/v1/geometries/{id}/evaluate";
+  post(evaluate, "/v1/geometries/" + id + "/evaluate",
+       R"J({"parameters":[[0.5,1],[1,2]],"derivatives":2,"normals":true})J");
+  post(evaluate, "/v1/geometries/" + param_id + "/evaluate",
+       R"J({"parameter":[1],"derivatives":1,"normals":true})J");
+  post(evaluate, "/v1/geometries/" + curve_id + "/evaluate", R"J({"parameter":[1]})J");  // 400
+  post(evaluate, "/v1/geometries/00000000000000000000000000000000/evaluate",
+       R"J({"parameter":[1]})J");                                         // 404
+  record("GET", evaluate, c->Get("/v1/geometries/" + id + "/evaluate"));  // 405
 
   // Errors of every class.
   post(project, on, R"J({"point":[1,2,)J");                                                            // 400

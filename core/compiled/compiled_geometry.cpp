@@ -27,6 +27,12 @@ Expected<ProjectionResult, UnknownMethod> CompiledGeometry::project(const double
   return m->project(p, options);
 }
 
+const char* option_name(std::uint32_t bit_index) {
+  static const char* const names[kMethodOptionCount] = {
+      "tolerance", "max_iterations", "initial", "all_minima", "trace", "max_distance", "certify"};
+  return bit_index < kMethodOptionCount ? names[bit_index] : "unknown";
+}
+
 const std::vector<MethodInfo>& methods_of(GeometryType type) {
   switch (type) {
     case GeometryType::parametric_surface:
