@@ -107,7 +107,7 @@ ApiResponse echo(const RouteMatch& match, std::string_view body, std::size_t max
     ApiResponse response;
     response.body =
         project_response(inline_geometry ? "8ca9f0e028af69e7a85f954715c1f082" : std::string(match.id),
-                         results, request.single, false, false, 0.0);
+                         results, request.single, request.fields, 0.0);
     response.points = results.size();
     return response;
   } catch (const ApiError& e) {

@@ -13,7 +13,9 @@
 #      pairs per domain: the ratio of each pair, and the medians (a pair sees the same machine
 #      load, so the ratio moves less than either throughput). The echo replays the server's own
 #      answer to the batch (echo_server_bench --replay): the same request parsed, the same
-#      response written, byte for byte, without the projection.
+#      response written, byte for byte, without the projection;
+#   3. on the first domain, the same batches with "fields": ["foot_point", "distance"] against
+#      the full answer, in REPEATS interleaved pairs: what trimming the answer saves.
 # Only 127.0.0.1 is targeted; every step is bounded by `timeout` and the whole script by 600 s.
 set -euo pipefail
 
@@ -75,13 +77,16 @@ awk 'BEGIN {
     printf "%s[%.17g,%.17g,%.17g]", (i ? "," : ""), rand() * 40 - 20, rand() * 6 - 3, rand() * 3 - 1.5
   printf "]}"
 }' >"$work/batch.json"
-cat >"$work/batch.lua" <<LUA
+sed 's/]}$/],"fields":["foot_point","distance"]}/' "$work/batch.json" >"$work/batch_fields.json"
+for name in batch batch_fields; do
+  cat >"$work/$name.lua" <<LUA
 wrk.method = "POST"
 wrk.headers["Content-Type"] = "application/json"
-local f = assert(io.open("$work/batch.json", "rb"))
+local f = assert(io.open("$work/$name.json", "rb"))
 wrk.body = f:read("*a")
 f:close()
 LUA
+done
 
 # HALF_WIDTHS: the parameter domains [-w,w]^2 measured (default "3 25"): 3 is S1 of the Open CASCADE
 # comparison (bench/occt/), 25 the reference cases' domain for this example, where the surface
@@ -129,6 +134,11 @@ for k in "${!widths[@]}"; do
 done
 timeout 30 wrk -t2 -c"$CONNECTIONS" -d2s -s "$work/single.lua" "$echo_url" >/dev/null
 run_wrk echo_single "$CONNECTIONS" "$work/single.lua" "$echo_url"
+fields_url="http://$HOST:$PORT/v1/geometries/${ids[0]}/project"
+for r in $(seq "$REPEATS"); do
+  run_wrk "full_$r" "$BATCH_CONNECTIONS" "$work/batch.lua" "$fields_url"
+  run_wrk "fields_$r" "$BATCH_CONNECTIONS" "$work/batch_fields.lua" "$fields_url"
+done
 
 echo "http_bench: wrk -t2 on $HOST, ${DURATION}s per run, $(nproc) cores; [GSA] Example 1 surface"
 printf '  echo baseline: single point, %d connections: %s req/s (p50 %s, p99 %s)\n' \
@@ -149,11 +159,27 @@ for w in "${widths[@]}"; do
     "$(for r in $(seq "$REPEATS"); do points "echo_batch_${w}_$r"; echo; done | median)" \
     "$(printf '%s\n' "${ratios[@]}" | median)"
 done
+full_bytes=$(curl -fsS --max-time 60 -H 'Content-Type: application/json' --data-binary "@$work/batch.json" "$fields_url" | wc -c)
+fields_bytes=$(curl -fsS --max-time 60 -H 'Content-Type: application/json' --data-binary "@$work/batch_fields.json" "$fields_url" | wc -c)
+printf '  fields ["foot_point","distance"] on [-%s,%s]^2, 10,000-point batches: %s bytes an answer instead of %s\n' \
+  "${widths[0]}" "${widths[0]}" "$fields_bytes" "$full_bytes"
+speedups=()
+for r in $(seq "$REPEATS"); do
+  speedup=$(awk -v a="$(rps "fields_$r")" -v b="$(rps "full_$r")" 'BEGIN {if (b > 0) printf "%.3f", a / b; else print "nan"}')
+  speedups+=("$speedup")
+  printf '    pair %d: full %s points/s (p50 %s), fields %s points/s (p50 %s): %sx\n' "$r" \
+    "$(points "full_$r")" "$(pct "full_$r" 50%)" "$(points "fields_$r")" "$(pct "fields_$r" 50%)" "$speedup"
+done
+printf '    medians: full %s points/s, fields %s points/s; fields / full throughput: %sx\n' \
+  "$(for r in $(seq "$REPEATS"); do points "full_$r"; echo; done | median)" \
+  "$(for r in $(seq "$REPEATS"); do points "fields_$r"; echo; done | median)" \
+  "$(printf '%s\n' "${speedups[@]}" | median)"
 runs=(echo_single)
 for w in "${widths[@]}"; do
   runs+=("single_$w")
   for r in $(seq "$REPEATS"); do runs+=("batch_${w}_$r" "echo_batch_${w}_$r"); done
 done
+for r in $(seq "$REPEATS"); do runs+=("full_$r" "fields_$r"); done
 for run in "${runs[@]}"; do
   e=$(errors "$run")
   [ -z "$e" ] || echo "  $run: $e"

@@ -1,6 +1,7 @@
 // The JSON layer's cost per point for a 10,000-point batch: reading the request body (pull
 // reader, std::from_chars) and writing the response (std::to_chars), against nlohmann's DOM for
-// reference. Target (issue 5): parse + serialize <= 1 us per point. Prints medians of 31 runs.
+// reference, and the response trimmed by "fields" to foot_point and distance. Target (issue 5):
+// parse + serialize <= 1 us per point. Prints medians of 31 runs.
 //   build/bench/json_bench [points]
 #include <algorithm>
 #include <chrono>
@@ -79,14 +80,25 @@ int main(int argc, char** argv) {
   std::size_t response_bytes = 0;
   const double write = median_ns_per_point(
       [&] {
-        const std::string out =
-            project_response("8ca9f0e028af69e7a85f954715c1f082", results, false, false, false, 1.0);
+        const std::string out = project_response("8ca9f0e028af69e7a85f954715c1f082", results, false,
+                                                 ResultFields{ResultFields::kPlain}, 1.0);
         response_bytes = out.size();
         sink = out.size();
       },
       n);
-  const std::string response =
-      project_response("8ca9f0e028af69e7a85f954715c1f082", results, false, false, false, 1.0);
+  const std::string response = project_response("8ca9f0e028af69e7a85f954715c1f082", results, false,
+                                                ResultFields{ResultFields::kPlain}, 1.0);
+  // "fields": ["foot_point", "distance"]
+  const ResultFields trimmed{ResultFields::foot_point | ResultFields::distance};
+  std::size_t trimmed_bytes = 0;
+  const double write_trimmed = median_ns_per_point(
+      [&] {
+        const std::string out =
+            project_response("8ca9f0e028af69e7a85f954715c1f082", results, false, trimmed, 1.0);
+        trimmed_bytes = out.size();
+        sink = out.size();
+      },
+      n);
   const double dom_parse =
       median_ns_per_point([&] { sink = nlohmann::json::parse(body)["points"].size(); }, n, 11);
   const double dom_write =
@@ -99,6 +111,10 @@ int main(int argc, char** argv) {
   std::printf("  write response (direct writer + to_chars): %7.1f ns/point\n", write);
   std::printf("  parse + write                            : %7.1f ns/point  (target <= 1000)\n",
               parse + write);
+  std::printf(
+      "  write with fields [foot_point, distance]: %7.1f ns/point, %zu bytes (%.0f%% of the full response)\n",
+      write_trimmed, trimmed_bytes,
+      100.0 * static_cast<double>(trimmed_bytes) / static_cast<double>(response_bytes));
   std::printf("  reference, nlohmann DOM: parse request %.1f ns/point, dump response %.1f ns/point\n",
               dom_parse, dom_write);
   return parse + write <= 1000.0 ? 0 : 1;

@@ -5,7 +5,11 @@
 
 Takes the first FILE whose operations section has ```sh blocks: README.md's text between
 <!-- operations:begin --> and <!-- operations:end -->, or a whole file without those markers
-(deploy/OPERATIONS.md). Every command of every block runs, in order, in one bash (so that `ID=$(...)`
+(deploy/OPERATIONS.md), and with it the file's Results and Formulas sections (between
+<!-- results:begin/end --> and <!-- formulas:begin/end -->), whose blocks run first. The Results
+section must name every member, status, location and certificate reason of a result as the
+server's /openapi.yaml has them, and the Formulas section every function and operator of its
+Formula schema (x-functions, x-operators). Every command of every block runs, in order, in one bash (so that `ID=$(...)`
 carries over), with localhost:8080 replaced by BASE_URL. A command starting with `curl` must answer
 2xx, unless a comment `# → CODE (STATUS ...)` just above it names the error code and status it
 expects; its body must then be that JSON error. JSON answers must parse; /metrics, /openapi.yaml and a
@@ -28,6 +32,43 @@ def section(text):
     if BEGIN in text:
         return text.split(BEGIN, 1)[1].split(END, 1)[0]
     return text
+
+
+def named_section(text, name):
+    """The text between <!-- NAME:begin --> and <!-- NAME:end -->, or None."""
+    begin, end = f"<!-- {name}:begin -->", f"<!-- {name}:end -->"
+    if begin not in text:
+        return None
+    return text.split(begin, 1)[1].split(end, 1)[0]
+
+
+def check_reference_sections(results, formulas, spec):
+    """What the Results and Formulas sections must name, from the served openapi.yaml."""
+    problems = []
+    if results is None or formulas is None:
+        return ["the Results or the Formulas section is missing (<!-- results:begin --> / <!-- formulas:begin -->)"]
+    schemas = spec["components"]["schemas"]
+    names = {
+        "result member": list(schemas["ProjectionResult"]["properties"]),
+        "diagnostics member": list(schemas["Diagnostics"]["properties"]),
+        "status": schemas["Status"]["enum"],
+        "location": schemas["Location"]["enum"],
+        "certificate member": list(schemas["Certificate"]["properties"]),
+        "certificate reason": schemas["Certificate"]["properties"]["reason"]["enum"],
+        "stats member": list(schemas["ProjectStats"]["properties"]),
+    }
+    for kind, values in names.items():
+        for v in values:
+            if f"`{v}`" not in results:
+                problems.append(f"the Results section does not name the {kind} `{v}`")
+    operators_text = formulas.replace("\\|", "|")
+    for f in schemas["Formula"]["x-functions"]:
+        if f"`{f}(" not in formulas:
+            problems.append(f"the Formulas section does not list the function {f}")
+    for o in schemas["Formula"]["x-operators"]:
+        if o not in operators_text:
+            problems.append(f"the Formulas section does not list the operator {o}")
+    return problems
 
 
 def commands(block):
@@ -81,14 +122,18 @@ def main():
     base = args[0].rstrip("/")
     host = re.sub(r"^https?://", "", base)
     blocks = []
+    results = formulas = None
     for path in args[1:]:
         if not os.path.exists(path):
             continue
         with open(path, encoding="utf-8") as f:
-            text = section(f.read())
+            whole = f.read()
+        text = section(whole)
         blocks = re.findall(r"```sh\n(.*?)```", text, re.S)
         if blocks:
             source = path
+            results, formulas = named_section(whole, "results"), named_section(whole, "formulas")
+            blocks = [b for s in (results, formulas) if s for b in re.findall(r"```sh\n(.*?)```", s, re.S)] + blocks
             break
     if not blocks:
         print("FAIL: no ```sh blocks in " + ", ".join(args[1:]))
@@ -163,8 +208,15 @@ def main():
             if "error" in doc:
                 problems.append(f"{first}: unexpected error {doc['error']}")
             for r in [doc.get("result")] + list(doc.get("results") or []):
-                if r is not None and r.get("diagnostics", {}).get("status") not in ("converged", "beyond_max_distance"):
+                # projections' results (an evaluation's have no diagnostics)
+                if r is not None and "diagnostics" in r and \
+                        r["diagnostics"].get("status") not in ("converged", "beyond_max_distance"):
                     problems.append(f"{first}: a result did not converge: {r}")
+    try:
+        served = subprocess.run(["curl", "-sf", base + "/openapi.yaml"], capture_output=True, text=True, check=True).stdout
+        problems += check_reference_sections(results, formulas, yaml.safe_load(served))
+    except (subprocess.CalledProcessError, yaml.YAMLError) as e:
+        problems.append(f"cannot read the served /openapi.yaml: {e}")
     settings = 0
     if server:
         table_problems, settings = check_configuration_table(text, server)
@@ -173,7 +225,8 @@ def main():
         print("FAIL:", q)
     if problems:
         return 1
-    print(f"ok: {len(cmds)} curl examples of {source} ({len(blocks)} blocks) answered as documented"
+    print(f"ok: {len(cmds)} curl examples of {source} ({len(blocks)} blocks) answered as documented; "
+          "the Results and Formulas sections name what /openapi.yaml does"
           + (f"; its configuration table matches --help ({settings} settings)" if server else ""))
     return 0
 

@@ -162,21 +162,42 @@ FOOTPOINT_URL=$base "$source_dir/examples/project_csv.sh" "$source_dir/examples/
 # c = R (x, y, 0) / |(x, y)|, the foot point c + r (p - c) / |p - c|, the distance ||p - c| - r|.
 "$python" - "$source_dir/examples/points.csv" "$tmp/feet.csv" <<'EOF' || fail "examples/project_csv.sh output"
 import csv, math, sys
-points = [list(map(float, row)) for row in csv.reader(open(sys.argv[1])) if row and row[0][0] in "-+.0123456789"]
+lines = list(csv.reader(open(sys.argv[1])))
+points = [(n, list(map(float, row))) for n, row in enumerate(lines, 1) if row and row[0][0] in "-+.0123456789"]
 rows = list(csv.reader(open(sys.argv[2])))
-assert rows[0] == ["foot_x", "foot_y", "foot_z", "distance", "status"], rows[0]
+assert rows[0] == ["line", "foot_x", "foot_y", "foot_z", "distance", "status", "u", "v"], rows[0]
 assert len(rows) == len(points) + 1, (len(rows), len(points))
 worst = 0.0
-for p, row in zip(points, rows[1:]):
+for (n, p), row in zip(points, rows[1:]):
+    assert int(row[0]) == n, (row[0], n)  # the point's line in the input
     rho = math.hypot(p[0], p[1])
     c = [2 * p[0] / rho, 2 * p[1] / rho, 0.0]
     d = math.dist(p, c)
     foot = [c[i] + 0.5 * (p[i] - c[i]) / d for i in range(3)]
-    assert row[4] == "converged", row
-    worst = max(worst, abs(float(row[3]) - abs(d - 0.5)), max(abs(float(row[i]) - foot[i]) for i in range(3)))
+    assert row[5] == "converged", row
+    # the parameters give the foot point through the torus's formulas
+    u, v = float(row[6]), float(row[7])
+    at = [(2 + 0.5 * math.cos(v)) * math.cos(u), (2 + 0.5 * math.cos(v)) * math.sin(u), 0.5 * math.sin(v)]
+    worst = max(worst, abs(float(row[4]) - abs(d - 0.5)), max(abs(float(row[1 + i]) - foot[i]) for i in range(3)),
+                max(abs(at[i] - foot[i]) for i in range(3)))
 assert worst < 1e-12, worst
-print(f"ok: examples/project_csv.sh: {len(points)} points in batches of 4, max error {worst:.1e} against the exact torus foot points")
+print(f"ok: examples/project_csv.sh: {len(points)} points in batches of 4, their lines and parameters, max error {worst:.1e} against the exact torus foot points")
 EOF
+# What it says of a file it cannot read as points: a header alone, spaces or semicolons.
+printf 'x,y,z\n# nothing else\n' > "$tmp/header-only.csv"
+printf 'x y z\n1 2 3\n' > "$tmp/spaces.csv"
+printf 'x;y;z\n1;2;0,5\n' > "$tmp/semicolons.csv"
+for case in "header-only:holds no point" "spaces:line 2: '1 2 3' is separated by spaces" \
+  "semicolons:line 2: '1;2;0,5' is separated by semicolons"; do
+  file=${case%%:*}
+  expected=${case#*:}
+  if FOOTPOINT_URL=$base "$source_dir/examples/project_csv.sh" "$source_dir/examples/torus.json" "$tmp/$file.csv" \
+    > /dev/null 2> "$tmp/$file.err"; then
+    fail "examples/project_csv.sh accepted $file.csv"
+  fi
+  grep -qF "$expected" "$tmp/$file.err" || fail "examples/project_csv.sh on $file.csv said: $(cat "$tmp/$file.err")"
+done
+pass "examples/project_csv.sh names the problem of a header-only, a space- and a semicolon-separated file"
 
 # Scale-out: two replicas behind a round-robin proxy (one backend per connection; curl opens one
 # per request), so the geometry is posted to one replica and every batch lands on the other. With

@@ -4,9 +4,11 @@
 #   examples/project_csv.sh GEOMETRY.json POINTS.csv [BATCH_SIZE] > feet.csv
 #   FOOTPOINT_URL=http://footpoint:8080 examples/project_csv.sh examples/torus.json examples/points.csv
 #
-# POINTS.csv: one point per line, "x,y,z" (or "x,y" for a planar curve); lines that do not start
-# with a number (a header, comments) are skipped. Output, in input order:
-#   foot_x,foot_y[,foot_z],distance,status
+# POINTS.csv: one point per line, "x,y,z" (or "x,y" for a planar curve), comma-separated; lines
+# that do not start with a number (a header, comments) are skipped. Output, in input order:
+#   line,foot_x,foot_y[,foot_z],distance,status[,u,v | ,t]
+# line: the point's line in POINTS.csv (from 1, the header counted); u,v (surfaces) or t
+# (parametric curves): the foot point's parameters (implicit curves have none).
 #
 # The geometry is posted once (POST /v1/geometries answers its id, a hash of the definition); the
 # points go in batches to POST /v1/geometries/{id}/project, which carries no definition. With a
@@ -18,7 +20,7 @@
 set -euo pipefail
 
 if [ $# -lt 2 ] || [ $# -gt 3 ]; then
-  sed -n '2,9p' "$0" >&2
+  sed -n '2,11p' "$0" >&2
   exit 2
 fi
 geometry_file=$1
@@ -28,6 +30,31 @@ url=${FOOTPOINT_URL:-http://localhost:8080}
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+
+usage_error() {
+  echo "project_csv.sh: $1" >&2
+  exit 2
+}
+
+# The numeric lines with their line numbers ("12:1.5,2,3"), checked before anything is sent.
+[ -r "$points_file" ] || usage_error "cannot read $points_file"
+grep -nE '^[[:space:]]*[-+.0-9]' "$points_file" > "$work/points" || true
+if [ ! -s "$work/points" ]; then
+  usage_error "$points_file holds no point: no line starts with a number (a header or comments only?); write one point per line, x,y,z"
+fi
+# The first line that is not comma-separated numbers says how it is separated instead.
+bad=$(grep -vE '^[0-9]+:[[:space:]]*[-+.0-9eE]+([[:space:]]*,[[:space:]]*[-+.0-9eE]+){1,2}[[:space:]]*$' "$work/points" | head -n 1 || true)
+if [ -n "$bad" ]; then
+  number=${bad%%:*}
+  text=${bad#*:}
+  case $text in
+    *';'*) how="semicolons" ;;
+    *,*) how="commas, but not as 2 or 3 numbers" ;;
+    *[[:space:]]*[0-9]*) how="spaces" ;;
+    *) how="nothing (one number)" ;;
+  esac
+  usage_error "$points_file line $number: '$text' is separated by $how; write x,y,z (or x,y) with commas between the coordinates and '.' as the decimal point"
+fi
 
 # POSTs a JSON file; prints the HTTP status, leaves the body in $work/response.json.
 post() {
@@ -44,15 +71,21 @@ fail() {
 status=$(post /v1/geometries "$geometry_file")
 case $status in 200 | 201) ;; *) fail "the geometry was refused" "$status" ;; esac
 id=$(jq -r '.geometry_id' "$work/response.json")
+dim=$(jq -r '.point_dim' "$work/response.json")
+params=$(jq -r '.num_params' "$work/response.json")
+header="line,foot_x,foot_y"
+[ "$dim" = 3 ] && header="$header,foot_z"
+header="$header,distance,status"
+case $params in 2) header="$header,u,v" ;; 1) header="$header,t" ;; esac
+echo "$header"
 
-# Numeric lines only, split into batches of $batch_size lines.
-grep -E '^[[:space:]]*[-+.0-9]' "$points_file" | split -l "$batch_size" -a 6 - "$work/batch."
+split -l "$batch_size" -a 6 "$work/points" "$work/batch."
 
-first=1
 for batch in "$work"/batch.*; do
-  # "1,2,3" lines -> {"points": [[1,2,3], ...]}
-  jq -R -s '{points: (split("\n") | map(select(length > 0) | split(",") | map(tonumber)))}' \
-    "$batch" > "$work/request.json"
+  # "12:1,2,3" lines -> {"points": [[1,2,3], ...]}; the line numbers go aside
+  cut -d: -f1 "$batch" > "$work/lines"
+  cut -d: -f2- "$batch" | tr -d '\r \t' |
+    jq -R -s '{points: (split("\n") | map(select(length > 0) | split(",") | map(tonumber)))}' > "$work/request.json"
   status=$(post "/v1/geometries/$id/project" "$work/request.json")
   code=$(jq -r '.error.code // empty' "$work/response.json")
   if { [ "$status" = 404 ] && [ "$code" = geometry_not_found ]; } ||
@@ -61,11 +94,10 @@ for batch in "$work"/batch.*; do
     status=$(post /v1/project "$work/oneshot.json")
   fi
   [ "$status" = 200 ] || fail "a batch was refused" "$status"
-  if [ $first = 1 ]; then
-    jq -r '.results[0].foot_point | length | if . == 2 then "foot_x,foot_y,distance,status"
-           else "foot_x,foot_y,foot_z,distance,status" end' "$work/response.json"
-    first=0
-  fi
-  jq -r '.results[] | [.foot_point[], .distance, .diagnostics.status] | map(tostring) | join(",")' \
-    "$work/response.json"
+  # A point without a finite answer has empty foot point, distance and parameters.
+  jq -r --argjson dim "$dim" --argjson params "$params" '.results[]
+         | [(.foot_point // [range($dim) | null])[], .distance, .diagnostics.status]
+           + (if $params > 0 then (.parameters // [range($params) | null]) else [] end)
+         | map(if . == null then "" else tostring end) | join(",")' "$work/response.json" |
+    paste -d, "$work/lines" -
 done

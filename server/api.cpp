@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "batch/batch.hpp"
+#include "evaluate_request.hpp"
 #include "geometry_json.hpp"
 #include "json_reader.hpp"
 #include "json_writer.hpp"
@@ -13,6 +14,7 @@
 #include "mesh_response.hpp"
 #include "openapi_text.hpp"
 #include "project_request.hpp"
+#include "query.hpp"
 #include "request_log.hpp"
 #include "result_json.hpp"
 #include "ui_files.hpp"
@@ -67,6 +69,27 @@ class PointsReservation {
   std::size_t n_;
 };
 
+// A geometry id is what POST /v1/geometries answers: 32 lower-case hex digits. Anything else is
+// a client's mistake (400), not an id that is not held (404: post it again).
+void check_geometry_id(std::string_view id, const char* field = "id") {
+  bool hex = id.size() == 32, lower_case = true;
+  for (const char c : id) {
+    const bool digit = c >= '0' && c <= '9', small = c >= 'a' && c <= 'f', capital = c >= 'A' && c <= 'F';
+    hex = hex && (digit || small || capital);
+    lower_case = lower_case && !capital;
+  }
+  if (hex && lower_case) return;
+  std::string suggestion;
+  if (hex)
+    for (const char c : id) suggestion += c >= 'A' && c <= 'F' ? static_cast<char>(c - 'A' + 'a') : c;
+  throw ApiError(400, "invalid_geometry_id",
+                 "'" + std::string(id.substr(0, 80)) + (id.size() > 80 ? "..." : "") +
+                     "' is not a geometry id: an id is the 32 lower-case hex digits of the geometry_id that "
+                     "POST /v1/geometries answers" +
+                     (hex ? " (this one has capitals)" : ""),
+                 field, -1, suggestion);
+}
+
 void write_method_names(JsonWriter& w, const CompiledGeometry& g) {
   w.begin_array();
   for (const auto& m : g.methods()) w.string(m.name);
@@ -81,6 +104,7 @@ Api::Api(const ServerConfig& config, GeometryCache& cache, ThreadPool& pool, Met
 
 ApiResponse Api::error_response(const ApiError& error) {
   ApiResponse r = json_response(error.status, error_body(error));
+  r.error_code = error.code;
   if (error.code == "overloaded" || error.code == "registry_unavailable") r.retry_after_s = 1;
   return r;
 }
@@ -112,6 +136,7 @@ ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::s
       case Route::methods:
         return methods();
       case Route::geometries: {
+        if (method != "POST") return list_geometries(query);  // HEAD: the HTTP layer drops the body
         InFlight counted(in_flight_);
         return create_geometry(body);
       }
@@ -125,6 +150,10 @@ ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::s
       case Route::geometry_mesh: {
         InFlight counted(in_flight_);
         return mesh(match.id, query);
+      }
+      case Route::geometry_evaluate: {
+        InFlight counted(in_flight_);
+        return evaluate(match.id, body);
       }
       case Route::project: {
         InFlight counted(in_flight_);
@@ -192,6 +221,21 @@ ApiResponse Api::methods() {
         w.string(m.description);
         w.key("paper");
         w.string(m.paper);
+        w.key("citations");
+        w.begin_array();
+        for (const auto citation : m.citations)
+          if (!citation.empty()) w.string(citation);
+        w.end_array();
+        w.key("options");
+        w.begin_array();
+        for (std::uint32_t bit = 0; bit < kMethodOptionCount; ++bit)
+          if (m.options & (1u << bit)) w.string(option_name(bit));
+        w.end_array();
+        w.key("statuses");
+        w.begin_array();
+        for (unsigned s = 0; s < static_cast<unsigned>(Metrics::kStatusCount); ++s)
+          if (m.statuses & (1u << s)) w.string(to_string(static_cast<Status>(s)));
+        w.end_array();
         w.end_object();
       }
       w.end_array();
@@ -219,7 +263,7 @@ GeometryCache::Lookup Api::compile(const GeometryDefinition& def, const std::str
     return lookup;
   } catch (const GeometryError& e) {
     throw ApiError(422, e.code, e.what(), e.field.empty() ? std::string() : field_prefix + e.field,
-                   e.position);
+                   e.position, e.suggestion);
   }
 }
 
@@ -242,8 +286,19 @@ std::shared_ptr<const CompiledGeometry> Api::held_geometry(std::string_view id) 
                    "id");
   } catch (const GeometryError& e) {
     throw ApiError(422, e.code, std::string("the stored definition does not compile here: ") + e.what(),
-                   e.field, e.position);
+                   e.field, e.position, e.suggestion);
   }
+}
+
+std::shared_ptr<const CompiledGeometry> Api::geometry_by_id(std::string_view id, const char* alternative) {
+  check_geometry_id(id);
+  auto geometry = held_geometry(id);
+  if (!geometry)
+    throw ApiError(404, "geometry_not_found",
+                   "geometry " + std::string(id) + " is not held (evicted, deleted, or never posted): " +
+                       "POST its definition to /v1/geometries again (the id stays the same)" + alternative,
+                   "id");
+  return geometry;
 }
 
 ApiResponse Api::create_geometry(std::string_view body) {
@@ -289,13 +344,52 @@ ApiResponse Api::create_geometry(std::string_view body) {
   return r;
 }
 
+ApiResponse Api::list_geometries(std::string_view query) {
+  std::size_t limit = kDefaultListLimit;
+  std::string after;
+  for (const auto& [name, value] : query_parameters(query, {"limit", "after"})) {
+    if (name == "limit") {
+      limit = static_cast<std::size_t>(query_integer(name, value, 1, kMaxListLimit));
+    } else {
+      check_geometry_id(value, "after");
+      after = value;
+    }
+  }
+  const GeometryCache::Page page = cache_.page(after, limit);
+  JsonWriter w(128 + page.held.size() * 160);
+  w.begin_object();
+  w.key("geometries");
+  w.begin_array();
+  for (const auto& [g, stats] : page.held) {
+    w.begin_object();
+    w.key("geometry_id");
+    w.string(g->id());
+    w.key("type");
+    w.string(to_string(g->definition().type));
+    w.key("point_dim");
+    w.integer(g->point_dim());
+    w.key("num_params");
+    w.integer(g->num_params());
+    w.key("memory_bytes");
+    w.integer(static_cast<long long>(stats.bytes));
+    w.key("hits");
+    w.integer(static_cast<long long>(stats.hits));
+    w.end_object();
+  }
+  w.end_array();
+  w.key("held");
+  w.integer(static_cast<long long>(cache_.stats().size));
+  w.key("next");
+  if (page.more)
+    w.string(page.held.back().geometry->id());
+  else
+    w.null();
+  w.end_object();
+  return json_response(200, w.take());
+}
+
 ApiResponse Api::get_geometry(std::string_view id) {
-  const auto g = held_geometry(id);
-  if (!g)
-    throw ApiError(404, "geometry_not_found",
-                   "geometry " + std::string(id) + " is not held (evicted, deleted, or never posted): " +
-                       "POST its definition to /v1/geometries again (the id stays the same)",
-                   "id");
+  const auto g = geometry_by_id(id);
   const auto entry = cache_.entry_stats(g->id());
   JsonWriter w;
   w.begin_object();
@@ -322,6 +416,7 @@ ApiResponse Api::get_geometry(std::string_view id) {
 }
 
 ApiResponse Api::delete_geometry(std::string_view id) {
+  check_geometry_id(id);
   bool held = false;
   if (registry_) {
     try {
@@ -345,13 +440,7 @@ ApiResponse Api::project(std::string_view id, std::string_view body) {
   const bool inline_geometry = id.empty();
   std::shared_ptr<const CompiledGeometry> geometry;
   if (!inline_geometry) {
-    geometry = held_geometry(id);
-    if (!geometry)
-      throw ApiError(404, "geometry_not_found",
-                     "geometry " + std::string(id) + " is not held (evicted, deleted, or never posted): " +
-                         "POST its definition to /v1/geometries again (the id stays the same), or use " +
-                         "POST /v1/project with the definition inline",
-                     "id");
+    geometry = geometry_by_id(id, ", or use POST /v1/project with the definition inline");
   }
   ProjectRequest request = read_project_request(body, inline_geometry, config_.max_points);
   if (inline_geometry) geometry = compile(*request.geometry, "geometry.").geometry;
@@ -372,20 +461,14 @@ ApiResponse Api::project(std::string_view id, std::string_view body) {
   for (const auto& r : results) ++by_status[static_cast<std::size_t>(reported_status(r))];
   metrics_.add_projections(by_status);
 
-  ApiResponse r =
-      json_response(200, project_response(geometry->id(), results, request.single, request.options.all_minima,
-                                          request.options.trace, elapsed_ms));
+  ApiResponse r = json_response(
+      200, project_response(geometry->id(), results, request.single, request.fields, elapsed_ms));
   r.points = results.size();
   return r;
 }
 
 ApiResponse Api::mesh(std::string_view id, std::string_view query) {
-  const auto geometry = held_geometry(id);
-  if (!geometry)
-    throw ApiError(404, "geometry_not_found",
-                   "geometry " + std::string(id) + " is not held (evicted, deleted, or never posted): " +
-                       "POST its definition to /v1/geometries again (the id stays the same)",
-                   "id");
+  const auto geometry = geometry_by_id(id);
   MeshRequest request = read_mesh_request(query, config_.max_mesh_resolution);
   if (request.resolution == 0)
     request.resolution =
@@ -401,6 +484,15 @@ ApiResponse Api::mesh(std::string_view id, std::string_view query) {
   } else {
     r.body = mesh_json(*geometry, mesh, request.resolution);
   }
+  return r;
+}
+
+ApiResponse Api::evaluate(std::string_view id, std::string_view body) {
+  const auto geometry = geometry_by_id(id);
+  const EvaluateRequest request = read_evaluate_request(body, config_.max_points);
+  const PointsReservation reserved(in_flight_points_, request.count, config_.max_inflight_points);
+  ApiResponse r = json_response(200, evaluate_response(*geometry, request));
+  r.points = request.count;
   return r;
 }
 

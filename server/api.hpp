@@ -29,6 +29,7 @@ struct ApiResponse {
   std::size_t points = 0;  // points projected (for the request log)
   int retry_after_s = 0;   // Retry-After header (503 overloaded, registry_unavailable), 0: none
   std::vector<std::pair<std::string, std::string>> headers;  // further headers (the pages' security policy)
+  std::string error_code;  // the error's code when this answers one (for the request log)
 };
 
 class Api {
@@ -60,10 +61,14 @@ class Api {
   ApiResponse openapi() const;
   ApiResponse methods();
   ApiResponse create_geometry(std::string_view body);
+  // GET /v1/geometries?limit=N&after=ID: a page of this replica's cache in id order.
+  ApiResponse list_geometries(std::string_view query);
+  static constexpr long long kDefaultListLimit = 100, kMaxListLimit = 1000;
   ApiResponse get_geometry(std::string_view id);
   ApiResponse delete_geometry(std::string_view id);
   ApiResponse project(std::string_view id, std::string_view body);  // id empty: inline geometry
   ApiResponse mesh(std::string_view id, std::string_view query);
+  ApiResponse evaluate(std::string_view id, std::string_view body);
   ApiResponse ui(const RouteMatch& match) const;
 
   formula::CompileLimits compile_limits() const;
@@ -71,6 +76,9 @@ class Api {
   // The geometry with this id from the cache, else from the registry; nullptr when neither holds
   // it. Throws ApiError (503 registry_unavailable, 422 when a stored definition does not compile).
   std::shared_ptr<const CompiledGeometry> held_geometry(std::string_view id);
+  // The held geometry with this id; 400 invalid_geometry_id for what is no id, 404
+  // geometry_not_found (post it again; `alternative` adds another way) when it is not held.
+  std::shared_ptr<const CompiledGeometry> geometry_by_id(std::string_view id, const char* alternative = "");
 
   const ServerConfig& config_;
   GeometryCache& cache_;

@@ -46,6 +46,10 @@ std::string error_body(const ApiError& error) {
     w.key("position");
     w.integer(error.position);
   }
+  if (!error.suggestion.empty()) {
+    w.key("suggestion");
+    w.string(error.suggestion);
+  }
   w.end_object();
   w.end_object();
   return w.take();

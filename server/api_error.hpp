@@ -1,8 +1,9 @@
 // The one error a request can end with: an HTTP status and the JSON body
-//   {"error":{"code":"...","message":"...","field":"...","position":n}}
+//   {"error":{"code":"...","message":"...","field":"...","position":n,"suggestion":"..."}}
 // `code` is stable and machine-readable, `field` names the offending request field when there is
 // one ("points[17][2]", "geometry.x", "options.tolerance"), `position` is a character position
-// (in the body for malformed JSON, in the formula for a formula that does not compile).
+// (in the body for malformed JSON, in the formula for a formula that does not compile),
+// `suggestion` what to write at that position instead, when something near is known.
 #pragma once
 #include <stdexcept>
 #include <string>
@@ -14,16 +15,18 @@ namespace footpoint::server {
 
 struct ApiError : std::runtime_error {
   ApiError(int status, std::string code, const std::string& message, std::string field = {},
-           long position = -1)
+           long position = -1, std::string suggestion = {})
       : std::runtime_error(message),
         status(status),
         code(std::move(code)),
         field(std::move(field)),
-        position(position) {}
+        position(position),
+        suggestion(std::move(suggestion)) {}
   int status;
   std::string code;
-  std::string field;  // empty when the error is not about one field
-  long position;      // -1 when there is no position
+  std::string field;       // empty when the error is not about one field
+  long position;           // -1 when there is no position
+  std::string suggestion;  // empty when there is none
 };
 
 // A JSON reading problem at `field` as a 400: malformed_json (syntax; no field), wrong_type or

@@ -5,9 +5,12 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <thread>
 #include <vector>
 
+#include "json_writer.hpp"
 #include "redis/redis_client.hpp"
+#include "version.hpp"
 
 namespace footpoint::server {
 
@@ -147,6 +150,32 @@ const std::vector<Setting>& settings() {
          throw ConfigError(n + ": unknown log level '" + v + "'");
        },
        [](const ServerConfig& c) { return c.log_level; }},
+      {"cors-origins", "FOOTPOINT_CORS_ORIGINS",
+       "origins (scheme://host[:port]) whose pages may call the API, comma-separated, or * (\"\": none)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.cors_origins.clear();
+         std::size_t start = 0;
+         while (start <= v.size()) {
+           const auto comma = std::min(v.find(',', start), v.size());
+           std::string origin = v.substr(start, comma - start);
+           origin.erase(0, origin.find_first_not_of(' '));
+           origin.erase(origin.find_last_not_of(' ') + 1);
+           start = comma + 1;
+           if (origin.empty()) continue;
+           const auto scheme = origin.find("://");
+           const bool web = origin.rfind("http://", 0) == 0 || origin.rfind("https://", 0) == 0;
+           if (origin != "*" && (!web || origin.size() == scheme + 3 ||
+                                 origin.find_first_of("/?# ", scheme + 3) != std::string::npos))
+             throw ConfigError(n + ": '" + origin +
+                               "' is not an origin: scheme://host[:port] (http or https, no path), or *");
+           c.cors_origins.push_back(origin);
+         }
+       },
+       [](const ServerConfig& c) {
+         std::string s;
+         for (const auto& o : c.cors_origins) (s += s.empty() ? "" : ",") += o;
+         return s.empty() ? std::string("\"\"") : s;
+       }},
       {"registry-url", "FOOTPOINT_REGISTRY_URL",
        "shared geometry registry, redis://[user@]host[:port][/db] (\"\": none, one process)",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
@@ -244,7 +273,9 @@ ServerConfig load_config(int argc, const char* const* argv,
 
 std::string usage() {
   const ServerConfig defaults;
-  std::string text = "usage: footpoint-server [--flag value | --flag=value]...\n\n";
+  std::string text =
+      "usage: footpoint-server [--flag value | --flag=value]...\n"
+      "       footpoint-server --version | --help\n\n";
   for (const auto& s : settings()) {
     std::string line = s.flag ? std::string("  --") + s.flag : std::string("  (no flag)");
     line.resize(std::max<std::size_t>(line.size() + 1, 24), ' ');
@@ -256,8 +287,33 @@ std::string usage() {
   return text;
 }
 
+std::string effective_settings_json(const ServerConfig& config) {
+  ServerConfig effective = config;
+  if (effective.threads == 0) effective.threads = std::max(1u, std::thread::hardware_concurrency());
+  effective.max_inflight = config.effective_max_inflight();
+  if (effective.compile_deadline.count() == 0) effective.compile_deadline = effective.deadline;
+  JsonWriter w;
+  w.begin_object();
+  for (const auto& s : settings()) {
+    if (!s.flag) continue;  // the password
+    w.key(s.flag);
+    const std::string value = s.show(effective);
+    if (!value.empty() && value.find_first_not_of("0123456789") == std::string::npos)
+      w.raw(value);
+    else
+      w.string(value == "\"\"" ? std::string() : value);
+  }
+  w.end_object();
+  return w.take();
+}
+
 int configure_from_command_line(int argc, const char* const* argv, const char* program,
                                 ServerConfig& config) {
+  for (int i = 1; i < argc; ++i)
+    if (std::string_view(argv[i]) == "--version") {
+      std::printf("footpoint-server %.*s\n", static_cast<int>(kVersion.size()), kVersion.data());
+      return 0;
+    }
   try {
     bool help = false;
     config = load_config(

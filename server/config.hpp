@@ -6,6 +6,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace footpoint::server {
 
@@ -56,7 +57,7 @@ struct ServerConfig {
   // --cache-bytes / FOOTPOINT_CACHE_BYTES: memory the kept geometries may hold (LRU): 256 MiB.
   std::size_t cache_bytes = std::size_t{256} << 20;
   // --keep-alive-timeout-s / FOOTPOINT_KEEP_ALIVE_TIMEOUT_S: an idle connection is closed after
-  // this long; it also bounds how long a graceful shutdown waits for idle connections.
+  // this long (a graceful shutdown closes the idle ones at once).
   int keep_alive_timeout_s = 5;
   // --keep-alive-max / FOOTPOINT_KEEP_ALIVE_MAX: requests served per connection before it closes.
   std::size_t keep_alive_max = 100000;
@@ -66,6 +67,10 @@ struct ServerConfig {
   int backlog = 1024;
   // --log-level / FOOTPOINT_LOG_LEVEL: trace, debug, info, warn, error, critical or off.
   std::string log_level = "info";
+  // --cors-origins / FOOTPOINT_CORS_ORIGINS: the origins (scheme://host[:port]) whose browser pages
+  // may call the API from another origin, comma-separated, or "*" for any; empty: none (CORS off,
+  // OPTIONS answers 405).
+  std::vector<std::string> cors_origins;
 
   // The shared geometry registry (server/geometry_registry.hpp), off when the URL is empty.
   // --registry-url / FOOTPOINT_REGISTRY_URL: redis://[user@]host[:port][/db].
@@ -98,9 +103,14 @@ ServerConfig load_config(int argc, const char* const* argv,
 // The flags, their variables and defaults, one per line.
 std::string usage();
 
+// The settings in effect, as a JSON object keyed by flag name, numbers as numbers: what a
+// setting's 0 stands for resolved (threads, max-inflight, compile-deadline-ms), the password
+// left out. The start-up log line carries it.
+std::string effective_settings_json(const ServerConfig& config);
+
 // A server executable's start: the configuration from argv and the process environment into
-// `config`, or the exit code to end with: 0 after printing usage() for --help, 2 after naming the
-// bad flag or value on stderr (prefixed with `program`). -1: go on.
+// `config`, or the exit code to end with: 0 after printing usage() for --help or the version for
+// --version, 2 after naming the bad flag or value on stderr (prefixed with `program`). -1: go on.
 int configure_from_command_line(int argc, const char* const* argv, const char* program, ServerConfig& config);
 
 }  // namespace footpoint::server

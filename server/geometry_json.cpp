@@ -8,12 +8,19 @@
 #include "api_error.hpp"
 #include "compiled/parametric_curve_geometry.hpp"
 #include "compiled/parametric_surface_geometry.hpp"
+#include "request_object.hpp"
 
 namespace footpoint::server {
 
 namespace {
 
-using Interval = std::array<double, 2>;
+// A bound as posted: a number, or a constant expression in the formula syntax ("2*_pi"), which
+// is evaluated once the definition's constants are known.
+struct Bound {
+  double value = 0.0;
+  std::optional<std::string> expression;
+};
+using Interval = std::array<Bound, 2>;
 
 std::string join(const std::vector<std::string>& names) {
   std::string s;
@@ -30,47 +37,37 @@ struct RawDefinition {
   std::optional<std::vector<std::string>> periodic;
 };
 
+// [lo, hi], each a number or a constant expression string.
 Interval read_interval(JsonReader& r, const std::string& field) {
   Interval v{};
   int n = 0;
   try {
     r.begin_array();
-    while (r.next_element()) {
-      if (n == 2) throw ApiError(400, "wrong_shape", field + " must be [lo, hi]", field);
-      v[n++] = r.number();
-    }
   } catch (const JsonReadError& e) {
-    throw request_error(e, n < 2 ? field + "[" + std::to_string(n) + "]" : field);
+    throw request_error(e, field);
+  }
+  for (;;) {
+    const std::string item = field + "[" + std::to_string(n) + "]";
+    try {
+      if (!r.next_element()) break;
+      if (n == 2) throw ApiError(400, "wrong_shape", field + " must be [lo, hi]", field);
+      const JsonReader::Type type = r.peek();
+      if (type == JsonReader::Type::string)
+        v[n].expression = r.string();
+      else if (type == JsonReader::Type::number)
+        v[n].value = r.number();
+      else
+        throw ApiError(400, "wrong_type",
+                       item + ": expected a number or a constant expression such as \"2*_pi\", got " +
+                           JsonReader::name(type),
+                       item);
+      ++n;
+    } catch (const JsonReadError& e) {
+      throw request_error(e, item);
+    }
   }
   if (n != 2) throw ApiError(400, "wrong_shape", field + " must be [lo, hi]", field);
   return v;
-}
-
-// Reads an object member by member: read_value(name, field) reads each value, field being the
-// member's name after `prefix`. A JSON error in the object's structure names `object_field` (at
-// its start) or `member_field` (between members); a member named twice is a duplicate_field error.
-template <class ReadValue>
-void read_object(JsonReader& r, const std::string& object_field, const std::string& member_field,
-                 const std::string& prefix, ReadValue&& read_value) {
-  try {
-    r.begin_object();
-  } catch (const JsonReadError& e) {
-    throw request_error(e, object_field);
-  }
-  std::vector<std::string> seen;
-  std::string name;
-  for (;;) {
-    try {
-      if (!r.next_member(name)) break;
-    } catch (const JsonReadError& e) {
-      throw request_error(e, member_field);
-    }
-    const std::string field = prefix + name;
-    for (const auto& s : seen)
-      if (s == name) throw ApiError(400, "duplicate_field", field + " appears twice", field);
-    seen.push_back(name);
-    read_value(name, field);
-  }
 }
 
 RawDefinition read_members(JsonReader& r, const std::string& prefix) {
@@ -130,8 +127,17 @@ RawDefinition read_members(JsonReader& r, const std::string& prefix) {
           throw request_error(e, item);
         }
       });
+    } else if (prefix.empty() && (key == "geometry" || key == "point" || key == "points")) {
+      // a projection request sent to POST /v1/geometries
+      throw ApiError(400, "unknown_field",
+                     "unknown field " + key +
+                         ": POST /v1/geometries takes a definition alone ({\"type\": ..., \"domain\": ...}); "
+                         "a body with geometry and point or points is for POST /v1/project, which projects "
+                         "with the definition inline",
+                     field);
     } else {
-      throw ApiError(400, "unknown_field", "unknown field " + field, field);
+      throw ApiError(400, "unknown_field",
+                     "unknown field " + field + " (type, x, y, z, equations, domain, constants)", field);
     }
   });
   return raw;
@@ -206,7 +212,22 @@ GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
       if (d.first == n) found = &d;
     if (!found)
       throw ApiError(400, "missing_field", prefix + "domain." + n + " is required", prefix + "domain." + n);
-    def.domain.push_back(*found);
+    std::array<double, 2> range{};
+    for (std::size_t k = 0; k < 2; ++k) {
+      const Bound& bound = found->second[k];
+      if (!bound.expression) {
+        range[k] = bound.value;
+        continue;
+      }
+      const auto value =
+          evaluate_bound("domain." + n + "[" + std::to_string(k) + "]", *bound.expression, raw.constants);
+      if (!value) {
+        const GeometryError& e = value.error();
+        throw ApiError(422, e.code, e.what(), prefix + e.field, e.position, e.suggestion);
+      }
+      range[k] = *value;
+    }
+    def.domain.emplace_back(n, range);
   }
   def.constants = std::move(raw.constants);
   if (raw.periodic) {

@@ -183,7 +183,7 @@ GeometryCache::Lookup GeometryRegistry::fetch_and_compile(const std::string& id,
   auto refuse = [&](const std::string& why) {
     metrics_.rejected.fetch_add(1, std::memory_order_relaxed);
     log_event(spdlog::level::err, "registry entry refused",
-              {{"id", id}, {"key", k}, {"reason", why}, {"bytes", std::to_string(text->size())}});
+              {{"id", id}, {"key", k}, {"reason", why}, {"bytes", text->size()}});
     return GeometryCache::Lookup{};
   };
   if (text->size() > options_.max_entry_bytes) return refuse("longer than the request body limit");
@@ -286,10 +286,9 @@ void GeometryRegistry::recover() {
       [&](redis::Connection& c, Clock::time_point deadline) { return c.command({"PING"}, deadline); }, true);
   // Up before revalidating: a post from now on is stored by its own request.
   if (!metrics_.up.exchange(true))
-    log_event(spdlog::level::info, "registry connected",
-              {{"host", options_.endpoint.host},
-               {"address", pool_.address()},
-               {"port", std::to_string(options_.endpoint.port)}});
+    log_event(
+        spdlog::level::info, "registry connected",
+        {{"host", options_.endpoint.host}, {"address", pool_.address()}, {"port", options_.endpoint.port}});
   const std::vector<std::string> ids = cache_.ids();
   for (std::size_t begin = 0; begin < ids.size(); begin += kBatch) {
     const std::size_t end = std::min(ids.size(), begin + kBatch);

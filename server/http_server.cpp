@@ -1,12 +1,16 @@
 #include "http_server.hpp"
 
+#include <dirent.h>
 #include <malloc.h>
+#include <netinet/in.h>
 #include <sys/socket.h>
 
 #include <cctype>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -35,9 +39,24 @@ struct RequestContext {
   std::string request_id;
   Route route = Route::none;
   std::size_t points = 0;
-  bool admitted = false;  // already checked when the client asked "Expect: 100-continue"
+  std::string error_code;  // the code of the error answered, for the log line
+  bool admitted = false;   // already checked when the client asked "Expect: 100-continue"
 };
 thread_local RequestContext t_request;
+
+// The busy slot of the connection thread running this code, and the server it belongs to.
+struct ConnectionSlot {
+  const void* owner = nullptr;
+  std::atomic<int>* port = nullptr;
+};
+thread_local ConnectionSlot t_slot;
+
+// The port of a socket's address (IPv4 or IPv6), or -1.
+int port_of(const sockaddr_storage& a) {
+  if (a.ss_family == AF_INET) return ntohs(reinterpret_cast<const sockaddr_in&>(a).sin_port);
+  if (a.ss_family == AF_INET6) return ntohs(reinterpret_cast<const sockaddr_in6&>(a).sin6_port);
+  return -1;
+}
 
 std::string lower(std::string s) {
   for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -62,6 +81,7 @@ bool parse_length(const std::string& text, std::size_t& length) {
 }
 
 void set_response(httplib::Response& res, ApiResponse&& r) {
+  t_request.error_code = std::move(r.error_code);
   res.status = r.status;
   res.body = std::move(r.body);
   if (!r.content_type.empty()) res.set_header("Content-Type", r.content_type);
@@ -88,7 +108,10 @@ ApiError http_error(int status) {
     case 408:
       return ApiError(408, "request_timeout", "the request was not received in time");
     case 413:
-      return ApiError(413, "body_too_large", "the body is over the size limit");
+      return ApiError(
+          413, "body_too_large",
+          "the body is over the size limit (--max-body-bytes): split the batch into smaller requests",
+          "body");
     case 414:
       return ApiError(414, "uri_too_long", "the request URI is too long");
     case 416:
@@ -121,7 +144,8 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       pool_(config_.threads),
       api_(config_, cache_, pool_, metrics_, registry_.get()),
       handler_(std::move(handler)),
-      http_(std::make_unique<Listener>()) {
+      http_(std::make_unique<Listener>()),
+      busy_ports_(std::make_unique<std::atomic<int>[]>(config_.connection_threads)) {
   init_logging(config_.log_level);
   if (!handler_)
     handler_ = [this](const RouteMatch& m, std::string_view method, std::string_view body,
@@ -149,6 +173,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     ctx = RequestContext{};
     ctx.active = true;
     ctx.start = Clock::now();
+    mark_busy(req.remote_port);
     // httplib would compress the response by the client's Accept-Encoding (brotli at quality 11
     // costs far more than the projection) and cut it by Range: the service sends plain, whole
     // bodies. The request object is httplib's own mutable one, handed over as const.
@@ -183,6 +208,35 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       return reject(res,
                     ApiError(404, "route_not_found", "no route " + req.path + " (see GET /openapi.yaml)"),
                     has_body);
+    if (!config_.cors_origins.empty() && req.has_header("Origin")) {
+      // Cross-origin calls from the configured origins' pages: their responses (errors too)
+      // may be read by the page, and a preflight OPTIONS is answered here.
+      const std::string origin = req.get_header_value("Origin");
+      bool any = false, allowed = false;
+      for (const auto& o : config_.cors_origins) {
+        any = any || o == "*";
+        allowed = allowed || o == "*" || o == origin;
+      }
+      res.set_header("Vary", "Origin");
+      if (allowed) {
+        res.set_header("Access-Control-Allow-Origin", any ? "*" : origin);
+        res.set_header("Access-Control-Expose-Headers",
+                       "X-Request-Id, Location, Retry-After, Content-Disposition");
+      }
+      if (req.method == "OPTIONS") {
+        if (!allowed)
+          return reject(
+              res,
+              ApiError(403, "origin_not_allowed",
+                       "origin " + origin + " may not call this API (--cors-origins lists the origins)"),
+              has_body);
+        res.status = 204;
+        res.set_header("Access-Control-Allow-Methods", match.allow);
+        res.set_header("Access-Control-Allow-Headers", "Content-Type, X-Request-Id");
+        res.set_header("Access-Control-Max-Age", "600");
+        return httplib::Server::HandlerResponse::Handled;
+      }
+    }
     if (!match.method_allowed) {
       res.set_header("Allow", match.allow);
       return reject(res,
@@ -206,8 +260,11 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     if (length > config_.max_body_bytes)
       return reject(res,
                     ApiError(413, "body_too_large",
-                             "the body has " + std::to_string(length) + " bytes, the limit is " +
-                                 std::to_string(config_.max_body_bytes)),
+                             "the body has " + std::to_string(length) + " bytes, over the limit of " +
+                                 std::to_string(config_.max_body_bytes) +
+                                 " (--max-body-bytes): split the batch into smaller requests, or have the "
+                                 "operator raise --max-body-bytes",
+                             "body"),
                     true);
     const std::string encoding = lower(req.get_header_value("Content-Encoding"));
     if (!encoding.empty() && encoding != "identity")
@@ -248,6 +305,8 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     ApiResponse r = handler_(match, req.method, req.body, query);
     t_request.points = r.points;
     set_response(res, std::move(r));
+    // A request answered while the server shuts down is the connection's last.
+    if (api_.shutting_down()) res.set_header("Connection", "close");
   };
   http.Get(".*", handle);
   http.Post(".*", handle);
@@ -263,8 +322,10 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
         if (!res.has_header("X-Request-Id"))
           res.set_header("X-Request-Id", t_request.active ? t_request.request_id : make_request_id());
         if (res.body.empty()) {
-          res.body = error_body(http_error(res.status));
+          const ApiError error = http_error(res.status);
+          res.body = error_body(error);
           res.set_header("Content-Type", "application/json");
+          t_request.error_code = error.code;
         }
         return httplib::Server::HandlerResponse::Handled;
       }));
@@ -290,11 +351,14 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       record.route = route_template(route);
       record.remote_addr = req.remote_addr;
       record.status = res.status;
+      record.code = ctx.error_code;
       record.points = ctx.active ? ctx.points : 0;
       record.body_bytes = req.body.size();
       record.duration_ms = seconds * 1e3;
       log_request(record);
       ctx.active = false;
+      ctx.error_code.clear();
+      mark_idle();
     } catch (...) {
     }
   });
@@ -335,7 +399,45 @@ void HttpServer::shutdown() {
   if (http_->is_running()) {
     http_->stop();
     stopped_ = true;
+    close_idle_connections();
   }
+}
+
+void HttpServer::mark_busy(int remote_port) {
+  if (t_slot.owner != this) {
+    const unsigned slot = slots_taken_.fetch_add(1);
+    t_slot = {this, slot < config_.connection_threads ? &busy_ports_[slot] : nullptr};
+  }
+  if (t_slot.port && remote_port > 0) t_slot.port->store(remote_port);
+}
+
+void HttpServer::mark_idle() {
+  if (t_slot.owner == this && t_slot.port) t_slot.port->store(0);
+}
+
+void HttpServer::close_idle_connections() {
+  std::set<int> busy;
+  for (unsigned i = 0; i < std::min(slots_taken_.load(), config_.connection_threads); ++i)
+    if (const int port = busy_ports_[i].load(); port > 0) busy.insert(port);
+  // The process's sockets connected from this server's port: its connections. httplib keeps no
+  // list of them, the kernel does.
+  DIR* dir = opendir("/proc/self/fd");
+  if (!dir) return;
+  while (const dirent* entry = readdir(dir)) {
+    if (entry->d_name[0] == '.') continue;
+    const int fd = std::atoi(entry->d_name);
+    int type = 0;
+    socklen_t type_length = sizeof type;
+    sockaddr_storage local{}, peer{};
+    socklen_t local_length = sizeof local, peer_length = sizeof peer;
+    if (::getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &type_length) != 0 || type != SOCK_STREAM) continue;
+    if (::getsockname(fd, reinterpret_cast<sockaddr*>(&local), &local_length) != 0 || port_of(local) != port_)
+      continue;
+    if (::getpeername(fd, reinterpret_cast<sockaddr*>(&peer), &peer_length) != 0) continue;
+    // Its thread waits for the next request: it reads the end of the stream and closes.
+    if (busy.count(port_of(peer)) == 0) ::shutdown(fd, SHUT_RDWR);
+  }
+  closedir(dir);
 }
 
 void keep_large_buffers_for_reuse() {

@@ -6,8 +6,10 @@
 // the body limit, 415 for Content-Encoding or a non-JSON Content-Type) and load (503 beyond
 // --max-inflight; the Api also sheds beyond --max-inflight-points once the body is read). Responses are never
 // compressed (clients' Accept-Encoding is ignored), byte ranges are ignored. One JSON log line and the
-// metrics are recorded per request. Graceful shutdown: stop accepting, answer 503 to requests arriving on
-// open connections, let in-flight requests finish; run() returns when every connection is closed.
+// metrics are recorded per request. Graceful shutdown: stop accepting, close the idle keep-alive
+// connections at once (httplib alone would wait out their keep-alive timeout), answer 503 to a request
+// that arrives on an open connection meanwhile, let in-flight requests finish (their responses say
+// Connection: close); run() returns when every connection is closed.
 #pragma once
 #include <atomic>
 #include <functional>
@@ -41,7 +43,8 @@ class HttpServer {
   int bind();
   // Serves until shutdown(); returns once in-flight requests are answered.
   void run();
-  // Starts a graceful shutdown and returns at once. Thread-safe; later calls do nothing.
+  // Starts a graceful shutdown and returns at once: no new connection is accepted and the idle
+  // ones are closed. Thread-safe; later calls do nothing.
   void shutdown();
 
   int port() const { return port_; }
@@ -53,6 +56,13 @@ class HttpServer {
   class Listener;  // the httplib server
 
  private:
+  // Which connections are answering a request: one slot per connection thread holding the remote
+  // port of the request it answers (0: between requests). shutdown() closes every connection of
+  // this server whose port is in no slot.
+  void mark_busy(int remote_port);
+  void mark_idle();
+  void close_idle_connections();
+
   ServerConfig config_;
   Metrics metrics_;
   GeometryCache cache_;
@@ -66,6 +76,8 @@ class HttpServer {
   std::atomic<RunState> run_state_{RunState::idle};
   std::mutex stop_mutex_;
   bool stopped_ = false;
+  std::unique_ptr<std::atomic<int>[]> busy_ports_;  // config_.connection_threads slots
+  std::atomic<unsigned> slots_taken_{0};
 };
 
 // Large transient buffers - request bodies, results, responses: a 10,000-point batch moves about

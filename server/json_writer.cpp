@@ -96,15 +96,9 @@ void JsonWriter::raw(std::string_view json) {
   out_ += json;
 }
 
-void JsonAppender::literal(std::string_view text) {
-  if (text.size() > sizeof buf_) {
-    flush();
-    out_.append(text);
-    return;
-  }
-  room(text.size());
-  std::memcpy(p_, text.data(), text.size());
-  p_ += text.size();
+void JsonAppender::literal_large(std::string_view text) {
+  flush();
+  out_.append(text);
 }
 
 void JsonAppender::number(double x) {

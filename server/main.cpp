@@ -3,6 +3,7 @@
 #include <pthread.h>
 #include <csignal>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +17,7 @@
 #include "http_server.hpp"
 #include "request_log.hpp"
 #include "shutdown_signals.hpp"
+#include "version.hpp"
 
 int main(int argc, char** argv) {
   using namespace footpoint::server;
@@ -31,12 +33,15 @@ int main(int argc, char** argv) {
   try {
     HttpServer server(config);
     const int port = server.bind();
-    const unsigned threads = config.threads ? config.threads : std::thread::hardware_concurrency();
+    const unsigned threads =
+        config.threads ? config.threads : std::max(1u, std::thread::hardware_concurrency());
     log_event(spdlog::level::info, "listening",
-              {{"host", config.host},
-               {"port", std::to_string(port)},
-               {"threads", std::to_string(threads)},
-               {"connection_threads", std::to_string(config.connection_threads)}});
+              {{"version", kVersion},
+               {"host", config.host},
+               {"port", port},
+               {"threads", threads},
+               {"connection_threads", config.connection_threads},
+               {"settings", LogValue::json(effective_settings_json(config))}});
 
     std::atomic<bool> signalled{false};
     std::thread signals([&server, &signalled] {

@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "json_writer.hpp"
+#include "process_metrics.hpp"
 #include "prometheus_text.hpp"
+#include "version.hpp"
 
 namespace footpoint::server {
 
@@ -67,6 +69,10 @@ void Metrics::add_projections(const std::array<std::uint64_t, kStatusCount>& by_
 std::string Metrics::render(const Gauges& g) const {
   std::string out;
   out.reserve(8192);
+  header(out, "footpoint_build_info", "gauge",
+         "The footpoint version this server was built from (always 1).");
+  line(out, "footpoint_build_info", "version=\"" + std::string(kVersion) + "\"", 1.0);
+  render_process_metrics(out);
   header(out, "footpoint_http_requests_total", "counter", "HTTP requests answered, by route and status.");
   for (int r = 0; r < kRouteCount; ++r)
     for (std::size_t s = 0; s < kHttpStatuses.size(); ++s) {

@@ -1,4 +1,6 @@
 // Prometheus metrics (text exposition format 0.0.4), recorded lock-free with atomics:
+//   footpoint_build_info{version}                            gauge (1)
+//   process_*                                                the process's (process_metrics.hpp)
 //   footpoint_http_requests_total{route,status}              counter
 //   footpoint_http_request_duration_seconds{route}           histogram
 //   footpoint_http_requests_in_flight                        gauge
@@ -55,7 +57,7 @@ class Metrics {
 
  private:
   // Statuses counted by name; anything else lands in "other".
-  static constexpr std::array<int, 16> kHttpStatuses{200, 201, 204, 400, 404, 405, 408, 411,
+  static constexpr std::array<int, 17> kHttpStatuses{200, 201, 204, 400, 403, 404, 405, 408, 411,
                                                      413, 414, 415, 416, 422, 500, 503, 0};
   static int status_index(int status);
 

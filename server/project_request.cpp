@@ -5,6 +5,8 @@
 #include "api_error.hpp"
 #include "geometry_json.hpp"
 #include "json_reader.hpp"
+#include "number_rows.hpp"
+#include "request_object.hpp"
 
 namespace footpoint::server {
 
@@ -12,50 +14,6 @@ namespace {
 
 std::string indexed(const char* name, std::size_t i) {
   return std::string(name) + "[" + std::to_string(i) + "]";
-}
-
-// Points: [[x,y(,z)], ...] appended to request.coords, all of one length (1 to 3 numbers).
-void read_points(JsonReader& r, ProjectRequest& request, std::size_t max_points) {
-  std::size_t i = 0;
-  int j = 0;
-  bool started = false, in_point = false;  // where a reading error happened, to name the field
-  try {
-    r.begin_array();
-    started = true;
-    while (r.next_element()) {
-      if (i == max_points)
-        throw ApiError(413, "too_many_points",
-                       "more than " + std::to_string(max_points) + " points in one request", "points");
-      j = 0;
-      r.begin_array();
-      in_point = true;
-      while (r.next_element()) {
-        if (j == 3)
-          throw ApiError(400, "wrong_dimension", indexed("points", i) + " has more than 3 coordinates",
-                         indexed("points", i));
-        request.coords.push_back(r.number());
-        ++j;
-      }
-      in_point = false;
-      if (j == 0)
-        throw ApiError(400, "wrong_dimension", indexed("points", i) + " is empty", indexed("points", i));
-      if (i == 0) {
-        request.point_length = j;
-      } else if (j != request.point_length) {
-        throw ApiError(400, "wrong_dimension",
-                       indexed("points", i) + " has " + std::to_string(j) + " coordinates, points[0] has " +
-                           std::to_string(request.point_length),
-                       indexed("points", i));
-      }
-      ++i;
-    }
-  } catch (const JsonReadError& e) {
-    throw request_error(e, !started   ? std::string("points")
-                           : in_point ? indexed("points", i) + "[" + std::to_string(j) + "]"
-                                      : indexed("points", i));
-  }
-  if (i == 0) throw ApiError(400, "empty_batch", "points is empty", "points");
-  request.count = i;
 }
 
 // A start: [a(,b(,c))] (1 to 3 numbers).
@@ -112,23 +70,7 @@ void read_initial(JsonReader& r, ProjectRequest& request) {
 
 void read_options(JsonReader& r, ProjectRequest& request) {
   Options& o = request.options;
-  std::vector<std::string> seen;
-  try {
-    r.begin_object();
-  } catch (const JsonReadError& e) {
-    throw request_error(e, "options");
-  }
-  std::string key;
-  for (;;) {
-    try {
-      if (!r.next_member(key)) break;
-    } catch (const JsonReadError& e) {
-      throw request_error(e, "options");
-    }
-    const std::string field = "options." + key;
-    for (const auto& s : seen)
-      if (s == key) throw ApiError(400, "duplicate_field", field + " appears twice", field);
-    seen.push_back(key);
+  read_object(r, "options", "options", "options.", [&](const std::string& key, const std::string& field) {
     try {
       if (key == "tolerance") {
         const double t = r.number();
@@ -169,7 +111,36 @@ void read_options(JsonReader& r, ProjectRequest& request) {
     } catch (const JsonReadError& e) {
       throw request_error(e, field);
     }
+  });
+}
+
+// "fields": ["distance", "foot_point", "diagnostics.status", ...], at least one.
+ResultFields read_fields(JsonReader& r) {
+  ResultFields fields{0};
+  std::size_t i = 0;
+  try {
+    r.begin_array();
+    for (; r.next_element(); ++i) {
+      const std::string item = indexed("fields", i);
+      std::string name;
+      try {
+        name = r.string();
+      } catch (const JsonReadError& e) {
+        throw request_error(e, item);
+      }
+      const std::uint32_t members = ResultFields::parse(name);
+      if (members == 0)
+        throw ApiError(400, "unknown_field",
+                       item + ": '" + name + "' is no member of a result (" + ResultFields::names() + ")",
+                       item);
+      fields.members |= members;
+    }
+  } catch (const JsonReadError& e) {
+    throw request_error(e, i == 0 ? std::string("fields") : indexed("fields", i));
   }
+  if (i == 0)
+    throw ApiError(400, "wrong_shape", "fields is empty: name the members each result should have", "fields");
+  return fields;
 }
 
 }  // namespace
@@ -179,43 +150,14 @@ namespace {
 ProjectRequest read_request(std::string_view body, bool inline_geometry, std::size_t max_points) {
   ProjectRequest request;
   JsonReader r(body);
-  bool has_point = false, has_points = false;
-  std::vector<std::string> seen;
-  try {
-    r.begin_object();
-  } catch (const JsonReadError& e) {
-    throw request_error(e, "body");
-  }
-  std::string key;
-  for (;;) {
-    try {
-      if (!r.next_member(key)) break;
-    } catch (const JsonReadError& e) {
-      throw request_error(e, "body");
-    }
-    for (const auto& s : seen)
-      if (s == key) throw ApiError(400, "duplicate_field", key + " appears twice", key);
-    seen.push_back(key);
+  bool has_point = false, has_points = false, fields_given = false;
+  read_object(r, "body", "body", "", [&](const std::string& key, const std::string&) {
     if (key == "point") {
-      int n = 0;
-      bool started = false;
-      try {
-        r.begin_array();
-        started = true;
-        while (r.next_element()) {
-          if (n == 3) throw ApiError(400, "wrong_dimension", "point has more than 3 coordinates", "point");
-          request.coords.push_back(r.number());
-          ++n;
-        }
-      } catch (const JsonReadError& e) {
-        throw request_error(e, started ? indexed("point", n) : std::string("point"));
-      }
-      if (n == 0) throw ApiError(400, "wrong_dimension", "point is empty", "point");
-      request.point_length = n;
+      request.point_length = read_row(r, "point", request.coords);
       request.count = 1;
       has_point = true;
     } else if (key == "points") {
-      read_points(r, request, max_points);
+      request.count = read_rows(r, "points", max_points, request.coords, request.point_length);
       has_points = true;
     } else if (key == "method") {
       try {
@@ -225,18 +167,31 @@ ProjectRequest read_request(std::string_view body, bool inline_geometry, std::si
       }
     } else if (key == "options") {
       read_options(r, request);
+    } else if (key == "fields") {
+      request.fields = read_fields(r);
+      fields_given = true;
     } else if (key == "geometry" && inline_geometry) {
       request.geometry = read_geometry(r, "geometry.");
+    } else if (key == "type" || key == "x" || key == "equations" || key == "domain" || key == "constants") {
+      // a definition's member where a projection request is expected
+      throw ApiError(
+          400, "unknown_field",
+          "unknown field " + key +
+              (inline_geometry ? ": POST /v1/project takes the definition under \"geometry\": "
+                                 "{\"geometry\": {\"type\": ...}, \"point\": [...]}"
+                               : ": this route projects onto the geometry its id names; post a definition to "
+                                 "POST /v1/geometries, or send it under \"geometry\" to POST /v1/project"),
+          key);
     } else {
       throw ApiError(400, "unknown_field",
                      "unknown field " + key +
-                         (inline_geometry ? " (geometry, point, points, method, options)"
-                                          : " (point, points, method, options)"),
+                         (inline_geometry ? " (geometry, point, points, method, options, fields)"
+                                          : " (point, points, method, options, fields)"),
                      key);
     }
     if (has_point && has_points)
       throw ApiError(400, "conflicting_fields", "give either point or points, not both", "points");
-  }
+  });
   try {
     r.finish();
   } catch (const JsonReadError& e) {
@@ -247,6 +202,18 @@ ProjectRequest read_request(std::string_view body, bool inline_geometry, std::si
   if (inline_geometry && !request.geometry)
     throw ApiError(400, "missing_field", "geometry (the definition) is required", "geometry");
   request.single = has_point;
+  // minima and trace are computed on request only; "fields" cannot ask for them alone.
+  for (const auto& [member, option] :
+       {std::pair{ResultFields::minima, "all_minima"}, std::pair{ResultFields::trace, "trace"}}) {
+    const bool asked = member == ResultFields::minima ? request.options.all_minima : request.options.trace;
+    if (asked) continue;
+    if (fields_given && request.fields.has(member))
+      throw ApiError(400, "conflicting_fields",
+                     std::string("fields names ") + (member == ResultFields::minima ? "minima" : "trace") +
+                         ", which only options." + option + ": true computes",
+                     "fields");
+    request.fields.members &= ~member;
+  }
   if (!request.initials.empty() && request.initials.size() != request.count)
     throw ApiError(400, "wrong_shape",
                    "options.initial has " + std::to_string(request.initials.size()) + " starts for " +

@@ -1,6 +1,7 @@
 // The body of POST /v1/geometries/{id}/project and POST /v1/project:
 //   {"point":[x,y,z]} or {"points":[[x,y,z],...]}, "method", "options":{tolerance, max_iterations,
-//   initial, all_minima, trace, max_distance}, and for /v1/project the inline "geometry".
+//   initial, all_minima, trace, max_distance, certify}, "fields":[...] (the members of each
+//   result), and for /v1/project the inline "geometry".
 // Read in one pass with the pull reader; the points go straight into one flat array of doubles.
 #pragma once
 #include <array>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
+#include "result_json.hpp"
 
 namespace footpoint::server {
 
@@ -24,6 +26,8 @@ struct ProjectRequest {
   Options options;                              // options.initial is set when one start serves all points
   std::vector<std::array<double, 3>> initials;  // one start per point (options.initial unset)
   int initial_length = 0;                       // numbers per start (0: no start given)
+  // The members each result has: "fields", or all; minima and trace only when the options ask.
+  ResultFields fields;
 };
 
 // Reads and checks the shape of a request body; throws ApiError (400 for shapes, 413 for more

@@ -1,5 +1,6 @@
 #include "request_log.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <mutex>
 #include <random>
@@ -17,17 +18,21 @@ namespace {
 
 // The members after "ts" and "level": the formatter writes `{"ts":…,"level":…,` + message + `}`.
 std::string members(std::string_view msg,
-                    std::initializer_list<std::pair<std::string_view, std::string_view>> fields) {
+                    std::initializer_list<std::pair<std::string_view, LogValue>> fields) {
   std::string s = "\"msg\":";
   append_json_string(s, msg);
   for (const auto& [key, value] : fields) {
     s += ',';
     append_json_string(s, key);
     s += ':';
-    append_json_string(s, value);
+    value.append_to(s);
   }
   return s;
 }
+
+// Milliseconds to the microsecond: what a request's duration means at the clock's resolution
+// of the work it measures.
+double to_microseconds(double ms) { return std::round(ms * 1e3) / 1e3; }
 
 }  // namespace
 
@@ -47,8 +52,22 @@ void init_logging(const std::string& level) {
   spdlog::set_level(spdlog::level::from_str(level));
 }
 
+LogValue::LogValue(double x) {
+  if (std::isfinite(x))
+    append_shortest(text_, x);
+  else
+    text_ = "null";
+}
+
+void LogValue::append_to(std::string& out) const {
+  if (quoted_)
+    append_json_string(out, text_);
+  else
+    out += text_;
+}
+
 void log_event(spdlog::level::level_enum level, std::string_view msg,
-               std::initializer_list<std::pair<std::string_view, std::string_view>> fields) {
+               std::initializer_list<std::pair<std::string_view, LogValue>> fields) {
   if (!spdlog::should_log(level)) return;
   spdlog::log(level, "{}", members(msg, fields));
 }
@@ -83,10 +102,14 @@ void log_request(const RequestRecord& r) {
   s += ",\"route\":";
   append_json_string(s, r.route);
   s += ",\"status\":" + std::to_string(r.status);
+  if (!r.code.empty()) {
+    s += ",\"code\":";
+    append_json_string(s, r.code);
+  }
   s += ",\"points\":" + std::to_string(r.points);
   s += ",\"body_bytes\":" + std::to_string(r.body_bytes);
   s += ",\"duration_ms\":";
-  append_shortest(s, r.duration_ms);
+  append_shortest(s, to_microseconds(r.duration_ms));
   s += ",\"remote\":";
   append_json_string(s, r.remote_addr);
   spdlog::info("{}", s);

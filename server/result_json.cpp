@@ -1,6 +1,9 @@
 #include "result_json.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstddef>
+#include <string>
 
 #include "json_writer.hpp"
 
@@ -26,103 +29,154 @@ void name(JsonAppender& o, std::string_view s) {
   o.literal("\"");
 }
 
-// Writes one result; returns its reported status.
-Status write_result(JsonAppender& o, const ProjectionResult& r, bool with_minima, bool with_trace) {
-  const bool answer = finite_answer(r);
-  const Status status = reported_status(r);
-  o.literal("{\"foot_point\":");
+// The members of an object in their order: each key is written with the comma before it, which
+// the first member of the object leaves out.
+class Members {
+ public:
+  explicit Members(JsonAppender& o) : o_(o) {}
+  // `key` is the comma, the quoted name and the colon: ",\"distance\":".
+  void key(std::string_view key) {
+    o_.literal(first_ ? key.substr(1) : key);
+    first_ = false;
+  }
+
+ private:
+  JsonAppender& o_;
+  bool first_ = true;
+};
+
+void write_certificate(JsonAppender& o, const Certificate& c, const ProjectionResult& r, bool answer) {
+  if (!c.computed) return o.literal("null");
+  o.literal(c.certified ? "{\"certified\":true,\"lower_bound\":" : "{\"certified\":false,\"lower_bound\":");
+  o.number(c.lower_bound);
+  o.literal(",\"gap\":");
   if (answer)
-    o.numbers(r.foot.data(), r.dim);
+    o.number(std::fmax(r.distance - c.lower_bound, 0.0));
   else
     o.literal("null");
-  if (r.num_params > 0) {
-    o.literal(",\"parameters\":");
+  o.literal(",\"reason\":");
+  name(o, to_string(c.reason));
+  o.literal(",\"boxes\":");
+  o.integer(c.boxes);
+  o.literal("}");
+}
+
+// How many feet are nearest (null without an answer, or from a method that does not say).
+void write_multiplicity(JsonAppender& o, const AnswerMultiplicity& m, const ProjectionResult& r,
+                        bool answer) {
+  if (!m.computed || !answer) {
+    o.literal("null");
+    return;
+  }
+  o.literal("{\"kind\":");
+  name(o, to_string(m.kind));
+  if (m.kind == Multiplicity::tied) {
+    o.literal(",\"count\":");
+    o.integer(m.count);
+    o.literal(",\"feet\":[");
+    for (std::size_t i = 0; i < m.feet.size(); ++i) {
+      if (i) o.literal(",");
+      o.numbers(m.feet[i].data(), r.dim);
+    }
+    o.literal("]");
+  }
+  o.literal("}");
+}
+
+// Writes one result with the members `f` selects; returns its reported status.
+Status write_result(JsonAppender& o, const ProjectionResult& r, ResultFields f) {
+  const bool answer = finite_answer(r);
+  const Status status = reported_status(r);
+  o.literal("{");
+  Members m(o);
+  if (f.has(ResultFields::foot_point)) {
+    m.key(",\"foot_point\":");
+    if (answer)
+      o.numbers(r.foot.data(), r.dim);
+    else
+      o.literal("null");
+  }
+  if (r.num_params > 0 && f.has(ResultFields::parameters)) {
+    m.key(",\"parameters\":");
     if (answer)
       o.numbers(r.params.data(), r.num_params);
     else
       o.literal("null");
   }
-  o.literal(",\"distance\":");
-  if (answer)
-    o.number(r.distance);
-  else
-    o.literal("null");
-
-  const Summary& s = r.summary;
-  o.literal(",\"diagnostics\":{\"method\":");
-  name(o, s.method);
-  o.literal(",\"status\":");
-  name(o, to_string(status));
-  o.literal(status == Status::converged ? ",\"converged\":true,\"iterations\":"
-                                        : ",\"converged\":false,\"iterations\":");
-  o.integer(s.iterations);
-  o.literal(",\"residual\":");
-  o.number(s.residual());
-  o.literal(",\"step_norm\":");
-  o.number(s.step_norm);
-  o.literal(",\"starts\":");
-  o.integer(s.starts);
-  o.literal(",\"location\":");
-  name(o, to_string(s.location));
-  o.literal(",\"certificate\":");
-  const Certificate& c = s.certificate;
-  if (c.computed) {
-    o.literal(c.certified ? "{\"certified\":true,\"lower_bound\":" : "{\"certified\":false,\"lower_bound\":");
-    o.number(c.lower_bound);
-    o.literal(",\"gap\":");
+  if (f.has(ResultFields::distance)) {
+    m.key(",\"distance\":");
     if (answer)
-      o.number(std::fmax(r.distance - c.lower_bound, 0.0));
+      o.number(r.distance);
     else
       o.literal("null");
-    o.literal(",\"reason\":");
-    name(o, to_string(c.reason));
-    o.literal(",\"boxes\":");
-    o.integer(c.boxes);
-    o.literal("}");
-  } else {
-    o.literal("null");
   }
-  o.literal(",\"multiplicity\":");
-  const AnswerMultiplicity& m = s.multiplicity;
-  if (m.computed && answer) {
-    o.literal("{\"kind\":");
-    name(o, to_string(m.kind));
-    if (m.kind == Multiplicity::tied) {
-      o.literal(",\"count\":");
-      o.integer(m.count);
-      o.literal(",\"feet\":[");
-      for (std::size_t i = 0; i < m.feet.size(); ++i) {
-        if (i) o.literal(",");
-        o.numbers(m.feet[i].data(), r.dim);
-      }
-      o.literal("]");
+  const Summary& s = r.summary;
+  if (f.has(ResultFields::kDiagnostics)) {
+    m.key(",\"diagnostics\":{");
+    Members d(o);
+    if (f.has(ResultFields::method)) {
+      d.key(",\"method\":");
+      name(o, s.method);
+    }
+    if (f.has(ResultFields::status)) {
+      d.key(",\"status\":");
+      name(o, to_string(status));
+    }
+    if (f.has(ResultFields::converged)) {
+      d.key(",\"converged\":");
+      o.literal(status == Status::converged ? "true" : "false");
+    }
+    if (f.has(ResultFields::iterations)) {
+      d.key(",\"iterations\":");
+      o.integer(s.iterations);
+    }
+    if (f.has(ResultFields::residual)) {
+      d.key(",\"residual\":");
+      o.number(s.residual());
+    }
+    if (f.has(ResultFields::step_norm)) {
+      d.key(",\"step_norm\":");
+      o.number(s.step_norm);
+    }
+    if (f.has(ResultFields::starts)) {
+      d.key(",\"starts\":");
+      o.integer(s.starts);
+    }
+    if (f.has(ResultFields::location)) {
+      d.key(",\"location\":");
+      name(o, to_string(s.location));
+    }
+    if (f.has(ResultFields::certificate)) {
+      d.key(",\"certificate\":");
+      write_certificate(o, s.certificate, r, answer);
+    }
+    if (f.has(ResultFields::multiplicity)) {
+      d.key(",\"multiplicity\":");
+      write_multiplicity(o, s.multiplicity, r, answer);
     }
     o.literal("}");
-  } else {
-    o.literal("null");
   }
-  o.literal("}");
 
-  if (with_minima) {
-    o.literal(",\"minima\":[");
+  if (f.has(ResultFields::minima)) {
+    m.key(",\"minima\":[");
     for (std::size_t i = 0; i < r.minima.size(); ++i) {
-      const Minimum& m = r.minima[i];
+      const Minimum& mn = r.minima[i];
       o.literal(i ? ",{\"foot_point\":" : "{\"foot_point\":");
-      o.numbers(m.foot.data(), r.dim);
+      o.numbers(mn.foot.data(), r.dim);
       if (r.num_params > 0) {
         o.literal(",\"parameters\":");
-        o.numbers(m.params.data(), r.num_params);
+        o.numbers(mn.params.data(), r.num_params);
       }
       o.literal(",\"distance\":");
-      o.number(m.distance);
+      o.number(mn.distance);
       o.literal(",\"location\":");
-      name(o, to_string(m.location));
+      name(o, to_string(mn.location));
       o.literal("}");
     }
     o.literal(r.minima_truncated ? "],\"minima_truncated\":true" : "],\"minima_truncated\":false");
   }
-  if (with_trace) {
-    o.literal(",\"trace\":[");
+  if (f.has(ResultFields::trace)) {
+    m.key(",\"trace\":[");
     for (std::size_t i = 0; i < r.trace.size(); ++i) {
       if (i) o.literal(",");
       o.numbers(r.trace[i].data(), 3);
@@ -133,6 +187,30 @@ Status write_result(JsonAppender& o, const ProjectionResult& r, bool with_minima
   return status;
 }
 
+// Field names and the members they select, in the order of a result.
+struct FieldName {
+  std::string_view name;
+  std::uint32_t members;
+};
+constexpr FieldName kFieldNames[] = {
+    {"foot_point", ResultFields::foot_point},
+    {"parameters", ResultFields::parameters},
+    {"distance", ResultFields::distance},
+    {"diagnostics", ResultFields::kDiagnostics},
+    {"diagnostics.method", ResultFields::method},
+    {"diagnostics.status", ResultFields::status},
+    {"diagnostics.converged", ResultFields::converged},
+    {"diagnostics.iterations", ResultFields::iterations},
+    {"diagnostics.residual", ResultFields::residual},
+    {"diagnostics.step_norm", ResultFields::step_norm},
+    {"diagnostics.starts", ResultFields::starts},
+    {"diagnostics.location", ResultFields::location},
+    {"diagnostics.certificate", ResultFields::certificate},
+    {"diagnostics.multiplicity", ResultFields::multiplicity},
+    {"minima", ResultFields::minima},
+    {"trace", ResultFields::trace},
+};
+
 }  // namespace
 
 Status reported_status(const ProjectionResult& r) {
@@ -140,25 +218,50 @@ Status reported_status(const ProjectionResult& r) {
   return r.summary.status;
 }
 
+std::uint32_t ResultFields::parse(std::string_view name) {
+  for (const auto& f : kFieldNames)
+    if (f.name == name) return f.members;
+  return 0;
+}
+
+const char* ResultFields::names() {
+  static const std::string text = [] {
+    std::string s;
+    for (const auto& f : kFieldNames) (s += s.empty() ? "" : ", ") += f.name;
+    return s;
+  }();
+  return text.c_str();
+}
+
 std::string project_response(const std::string& geometry_id, const std::vector<ProjectionResult>& results,
-                             bool single, bool with_minima, bool with_trace, double elapsed_ms) {
-  // ~330 bytes per plain result; more with minima or trace.
+                             bool single, ResultFields fields, double elapsed_ms) {
+  // ~330 bytes per plain result; more with minima or trace, less when trimmed.
   std::string out;
-  out.reserve(128 + results.size() * (with_minima || with_trace ? 1024 : 340));
+  out.reserve(192 + results.size() * (fields.has(ResultFields::minima | ResultFields::trace) ? 1024 : 340));
   JsonAppender o(out);
   o.literal("{\"geometry_id\":");
   o.string(geometry_id);
-  std::size_t converged = 0;
+  std::array<std::size_t, static_cast<std::size_t>(Status::deadline_exceeded) + 1> by_status{};
   o.literal(single ? ",\"result\":" : ",\"results\":[");
   for (std::size_t i = 0; i < results.size(); ++i) {
     if (i) o.literal(",");
-    converged += write_result(o, results[i], with_minima, with_trace) == Status::converged;
+    ++by_status[static_cast<std::size_t>(write_result(o, results[i], fields))];
   }
   o.literal(single ? ",\"stats\":{\"points\":" : "],\"stats\":{\"points\":");
   o.integer(static_cast<long long>(results.size()));
   o.literal(",\"converged\":");
-  o.integer(static_cast<long long>(converged));
-  o.literal(",\"elapsed_ms\":");
+  o.integer(static_cast<long long>(by_status[static_cast<std::size_t>(Status::converged)]));
+  o.literal(",\"statuses\":{");
+  bool first = true;
+  for (std::size_t k = 0; k < by_status.size(); ++k) {
+    if (by_status[k] == 0) continue;
+    o.literal(first ? "\"" : ",\"");
+    first = false;
+    o.literal(to_string(static_cast<Status>(k)));
+    o.literal("\":");
+    o.integer(static_cast<long long>(by_status[k]));
+  }
+  o.literal("},\"elapsed_ms\":");
   o.number(elapsed_ms);
   o.literal("}}");
   o.flush();

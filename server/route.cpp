@@ -22,6 +22,8 @@ const char* route_template(Route route) {
       return "/v1/geometries/{id}/project";
     case Route::geometry_mesh:
       return "/v1/geometries/{id}/mesh";
+    case Route::geometry_evaluate:
+      return "/v1/geometries/{id}/evaluate";
     case Route::project:
       return "/v1/project";
     case Route::ui_playground:
@@ -71,10 +73,10 @@ RouteMatch match_route(std::string_view method, std::string_view path) {
     allow(method == "POST", "POST");
   } else if (path == "/v1/geometries") {
     m.route = Route::geometries;
-    allow(method == "POST", "POST");
+    allow(get || method == "POST", "GET, HEAD, POST");
   } else if (constexpr std::string_view prefix = "/v1/geometries/"; path.substr(0, prefix.size()) == prefix) {
     std::string_view rest = path.substr(prefix.size());
-    constexpr std::string_view project = "/project", mesh = "/mesh";
+    constexpr std::string_view project = "/project", mesh = "/mesh", evaluate = "/evaluate";
     const auto slash = rest.find('/');
     if (slash == std::string_view::npos) {
       if (rest.empty()) return m;
@@ -89,6 +91,10 @@ RouteMatch match_route(std::string_view method, std::string_view path) {
       m.route = Route::geometry_mesh;
       m.id = rest.substr(0, slash);
       allow(get, "GET, HEAD");
+    } else if (slash > 0 && rest.substr(slash) == evaluate) {
+      m.route = Route::geometry_evaluate;
+      m.id = rest.substr(0, slash);
+      allow(method == "POST", "POST");
     }
   }
   return m;

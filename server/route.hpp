@@ -5,20 +5,21 @@
 namespace footpoint::server {
 
 enum class Route {
-  healthz,           // GET /healthz
-  readyz,            // GET /readyz
-  metrics,           // GET /metrics
-  openapi,           // GET /openapi.yaml
-  methods,           // GET /v1/methods
-  geometries,        // POST /v1/geometries
-  geometry,          // GET, DELETE /v1/geometries/{id}
-  geometry_project,  // POST /v1/geometries/{id}/project
-  geometry_mesh,     // GET /v1/geometries/{id}/mesh
-  project,           // POST /v1/project
-  ui_playground,     // GET / (the geometry playground)
-  ui_docs,           // GET /docs (the API reference)
-  ui_asset,          // GET /ui/{file} (the pages' scripts, styles, three.js)
-  none,              // no such path
+  healthz,            // GET /healthz
+  readyz,             // GET /readyz
+  metrics,            // GET /metrics
+  openapi,            // GET /openapi.yaml
+  methods,            // GET /v1/methods
+  geometries,         // GET (the list), POST /v1/geometries
+  geometry,           // GET, DELETE /v1/geometries/{id}
+  geometry_project,   // POST /v1/geometries/{id}/project
+  geometry_mesh,      // GET /v1/geometries/{id}/mesh
+  geometry_evaluate,  // POST /v1/geometries/{id}/evaluate
+  project,            // POST /v1/project
+  ui_playground,      // GET / (the geometry playground)
+  ui_docs,            // GET /docs (the API reference)
+  ui_asset,           // GET /ui/{file} (the pages' scripts, styles, three.js)
+  none,               // no such path
 };
 inline constexpr int kRouteCount = static_cast<int>(Route::none) + 1;
 
@@ -42,7 +43,8 @@ inline bool is_ui_route(Route r) {
 
 // Routes whose work runs on the numerical pool (load shedding applies to them).
 inline bool is_compute_route(Route r) {
-  return r == Route::geometries || r == Route::geometry_project || r == Route::project;
+  return r == Route::geometries || r == Route::geometry_project || r == Route::project ||
+         r == Route::geometry_evaluate;
 }
 
 }  // namespace footpoint::server

@@ -30,7 +30,7 @@ TEST_CASE("syntax errors name the formula and the position") {
   const auto e = error_of({{"x", "u+v"}, {"y", "u*(v+"}});
   CHECK(e.kind == FormulaError::Kind::syntax);
   CHECK(e.formula == "y");
-  CHECK(e.position == 6);
+  CHECK(e.position == 4);  // the '+' that lacks its operand
   const auto e2 = error_of({{"z", "sin(u))"}});
   CHECK(e2.kind == FormulaError::Kind::syntax);
   CHECK(e2.position == 6);
@@ -43,7 +43,7 @@ TEST_CASE("a variable that may not be used is an error, not a silent zero") {
   CHECK(e.position == 4);
   CHECK(std::string(e.what()).find("'x'") != std::string::npos);
   const auto f = error_of({{"x", "foo(u)"}});
-  CHECK(f.kind == FormulaError::Kind::unknown_variable);
+  CHECK(f.kind == FormulaError::Kind::unknown_function);
   CHECK(std::string(f.what()).find("'foo'") != std::string::npos);
 }
 
@@ -70,7 +70,7 @@ TEST_CASE("deep nesting and huge numbers compile or fail cleanly") {
   double v;
   p.values(&u, &v);
   CHECK(v == 2.0);
-  // muparser cannot read 1e400 as a number: a clean syntax error at its position.
+  // 1e400 is no double: a clean syntax error at its position.
   const auto e = error_of({{"x", "u+1e400"}}, {"u"});
   CHECK(e.kind == FormulaError::Kind::syntax);
   CHECK(e.position == 2);

@@ -33,11 +33,6 @@ const json kPlanarImplicit =
     json::parse(R"J({"type":"implicit_curve","equations":["x^2+y^2-1"],"domain":{"x":[-2,2],"y":[-2,2]}})J");
 const std::string kGoodPoint = R"J({"point":[1,2,2]})J";
 
-json with(json j, const std::string& key, const json& value) {
-  j[key] = value;
-  return j;
-}
-
 // An inline /v1/project body: the geometry, then the other members.
 std::string inline_body(const json& geometry, const json& rest) {
   json b = rest;
@@ -240,7 +235,7 @@ TEST_CASE("bad-input matrix: exact status and code for each kind, and the server
       {"unknown variable", "POST", "/v1/geometries", J, with(kSurface, "x", "u+w").dump(), 422,
        "unknown_variable", "x"},
       {"unknown function", "POST", "/v1/geometries", J, with(kSurface, "y", "foo(u)").dump(), 422,
-       "unknown_variable", "y"},
+       "unknown_function", "y"},
       {"empty formula", "POST", "/v1/geometries", J, with(kSurface, "z", "  ").dump(), 422, "empty_formula",
        "z"},
       {"1 MB formula", "POST", "/v1/project", J,
@@ -253,7 +248,9 @@ TEST_CASE("bad-input matrix: exact status and code for each kind, and the server
       // ---- routes, methods, media types, sizes ----
       {"unknown geometry id", "POST", "/v1/geometries/0123456789abcdef0123456789abcdef/project", J,
        kGoodPoint, 404, "geometry_not_found", "id"},
-      {"DELETE of an unknown id", "DELETE", "/v1/geometries/not-an-id", "", "", 404, "geometry_not_found",
+      {"DELETE of an unknown id", "DELETE", "/v1/geometries/0123456789abcdef0123456789abcdef", "", "", 404,
+       "geometry_not_found", "id"},
+      {"DELETE of what is no id", "DELETE", "/v1/geometries/not-an-id", "", "", 400, "invalid_geometry_id",
        "id"},
       {"unknown route", "GET", "/v2/project", "", "", 404, "route_not_found", nullptr},
       {"path traversal", "GET", "/v1/geometries/../../etc/passwd", "", "", 404, "route_not_found", nullptr},
@@ -263,7 +260,7 @@ TEST_CASE("bad-input matrix: exact status and code for each kind, and the server
       {"form body", "POST", "ID", "application/x-www-form-urlencoded", "point=1,2,2", 415,
        "unsupported_media_type", nullptr},
       {"body over the limit", "POST", "/v1/project", J,
-       inline_body(with(kSurface, "x", repeat("u+", 1500000) + "u"), p3), 413, "body_too_large", nullptr},
+       inline_body(with(kSurface, "x", repeat("u+", 1500000) + "u"), p3), 413, "body_too_large", "body"},
   };
   REQUIRE(cases.size() >= 40);
   MESSAGE(cases.size() << " kinds of bad request");

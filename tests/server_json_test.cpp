@@ -248,8 +248,10 @@ TEST_CASE("geometry definitions: canonical order, and shape errors name the fiel
        "unknown_field", "geometry.domain.t"},
       {R"J({"type":"parametric_surface","x":"u","y":"v","z":"0","domain":{"u":[0,1,2],"v":[0,1]}})J",
        "wrong_shape", "geometry.domain.u"},
-      {R"J({"type":"parametric_surface","x":"u","y":"v","z":"0","domain":{"u":[0,"1"],"v":[0,1]}})J",
+      {R"J({"type":"parametric_surface","x":"u","y":"v","z":"0","domain":{"u":[0,true],"v":[0,1]}})J",
        "wrong_type", "geometry.domain.u[1]"},
+      {R"J({"type":"parametric_surface","x":"u","y":"v","z":"0","domain":{"u":{"lo":0,"hi":1},"v":[0,1]}})J",
+       "wrong_type", "geometry.domain.u"},
       {R"J({"type":"parametric_curve","x":"t","y":"t","equations":["x"],"domain":{"t":[0,1]}})J",
        "unknown_field", "geometry.equations"},
       {R"J({"type":"implicit_curve","equations":[],"domain":{"x":[0,1],"y":[0,1]}})J", "wrong_shape",
@@ -274,6 +276,55 @@ TEST_CASE("geometry definitions: canonical order, and shape errors name the fiel
     CHECK(e.status == 400);
     CHECK(e.code == c.code);
     CHECK(e.field == c.field);
+  }
+}
+
+TEST_CASE("domain bounds as constant expressions: evaluated before the id, errors as for formulas") {
+  auto read = [](const std::string& body) {
+    JsonReader reader(body);
+    return read_geometry(reader, "geometry.");
+  };
+  const GeometryDefinition by_expression = read(
+      R"J({"type":"parametric_curve","x":"R*cos(t)","y":"R*sin(t)","domain":{"t":["-_pi/2", "2*_pi+R-R"]},
+           "constants":{"R":1.5}})J");
+  const GeometryDefinition by_number = read(
+      R"J({"type":"parametric_curve","x":"R*cos(t)","y":"R*sin(t)","domain":{"t":[-1.5707963267948966, 6.283185307179586]},
+           "constants":{"R":1.5}})J");
+  CHECK(by_expression.domain[0].second[0] == -1.5707963267948966);
+  CHECK(by_expression.domain[0].second[1] == 6.283185307179586);
+  CHECK(by_expression.id() == by_number.id());
+  CHECK(by_expression.canonical().find("domain.t=[-1.5707963267948966,6.283185307179586]") !=
+        std::string::npos);
+
+  struct Bad {
+    const char* body;
+    const char* code;
+    const char* field;
+    int position;
+    const char* suggestion;
+  };
+  const Bad cases[] = {
+      {R"J({"type":"parametric_curve","x":"t","y":"t","domain":{"t":[0,"2*pi"]}})J", "unknown_variable",
+       "geometry.domain.t[1]", 2, "_pi"},
+      {R"J({"type":"parametric_curve","x":"t","y":"t","domain":{"t":["t",1]}})J", "unknown_variable",
+       "geometry.domain.t[0]", 0, ""},
+      {R"J({"type":"parametric_curve","x":"t","y":"t","domain":{"t":[0,"2**3"]}})J", "formula_syntax",
+       "geometry.domain.t[1]", 1, "^"},
+      {R"J({"type":"parametric_curve","x":"t","y":"t","domain":{"t":[0,"sqrt(2"]}})J", "formula_syntax",
+       "geometry.domain.t[1]", 4, ""},
+      {R"J({"type":"parametric_curve","x":"t","y":"t","domain":{"t":[0,"1/0"]}})J", "bad_domain",
+       "geometry.domain.t[1]", -1, ""},
+      {R"J({"type":"parametric_curve","x":"t","y":"t","domain":{"t":[0," "]}})J", "empty_formula",
+       "geometry.domain.t[1]", -1, ""},
+  };
+  for (const auto& c : cases) {
+    CAPTURE(c.body);
+    const auto e = api_error_of([&] { read(c.body); });
+    CHECK(e.status == 422);
+    CHECK(e.code == c.code);
+    CHECK(e.field == c.field);
+    CHECK(e.position == c.position);
+    CHECK(e.suggestion == c.suggestion);
   }
 }
 

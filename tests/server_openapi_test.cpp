@@ -81,11 +81,60 @@ for s in samples:
     errors = sorted(Draft202012Validator(root).iter_errors(instance), key=lambda e: list(e.path))
     for e in errors[:3]:
         failures.append("%s: %s at %s" % (where, e.message[:300], "/".join(map(str, e.path))))
+    # Without "fields" a result has every member x-required-without-fields lists.
+    if (s["template"].endswith("/project") and media == "application/json" and s["status"] == 200
+            and "fields" not in json.loads(s["request"])):
+        result_schema = spec["components"]["schemas"]["ProjectionResult"]
+        diagnostics_schema = spec["components"]["schemas"]["Diagnostics"]
+        for r in ([instance["result"]] if "result" in instance else instance.get("results", [])):
+            for name in result_schema["x-required-without-fields"]:
+                if name not in r:
+                    failures.append("%s: a result without fields lacks %s" % (where, name))
+            for name in diagnostics_schema["x-required-without-fields"]:
+                if name not in r.get("diagnostics", {}):
+                    failures.append("%s: diagnostics without fields lack %s" % (where, name))
 
 for path, ops in spec["paths"].items():
     for method in ops:
         if method in ("get", "post", "delete", "put", "patch") and (path, method) not in seen:
             failures.append("%s %s: no sample exercised it" % (method.upper(), path))
+
+# Every operation shows what it answers: its success response has an example, and every example
+# (responses and request bodies) matches its schema.
+def check_example(where, schema_pointer, example):
+    root = dict(spec)
+    root["$ref"] = schema_pointer
+    for e in list(Draft202012Validator(root).iter_errors(example))[:3]:
+        failures.append("%s: example: %s at %s" % (where, e.message[:300], "/".join(map(str, e.path))))
+
+examples = 0
+for path, ops in spec["paths"].items():
+    for method, op in ops.items():
+        if method not in ("get", "post", "delete", "put", "patch"):
+            continue
+        where = "%s %s" % (method.upper(), path)
+        shown = False
+        for status, response in op["responses"].items():
+            response, pointer = resolve(response, "#/paths/%s/%s/responses/%s" % (esc(path), method, status))
+            content = response.get("content") or {}
+            if status.startswith("2") and not content:
+                shown = True  # 204: nothing to show
+            for media, body in content.items():
+                if "example" not in body:
+                    continue
+                examples += 1
+                shown = shown or status.startswith("2")
+                if media == "application/json":
+                    check_example("%s -> %s" % (where, status), pointer + "/content/" + esc(media) + "/schema", body["example"])
+        if not shown:
+            failures.append(where + ": no example of its success response")
+        request = op.get("requestBody", {}).get("content", {}).get("application/json", {})
+        for name, example in request.get("examples", {}).items():
+            examples += 1
+            check_example("%s request example %s" % (where, name),
+                          "#/paths/%s/%s/requestBody/content/application~1json/schema" % (esc(path), method), example["value"])
+if examples < 20:
+    failures.append("only %d examples" % examples)
 
 for f in failures:
     print(f)
@@ -159,19 +208,19 @@ TEST_CASE("every response matches openapi.yaml") {
   const std::string mesh = "/v1/geometries/{id}/mesh";
   const std::string planar_id = json::parse(samples[7].body)["geometry_id"];
   const std::string param_id = json::parse(samples[8].body)["geometry_id"];
-  record("GET", mesh, c->Get(("/v1/geometries/" + id + "/mesh?resolution=4").c_str()));
-  record("GET", mesh, c->Get(("/v1/geometries/" + curve_id + "/mesh?resolution=16").c_str()));
-  record("GET", mesh, c->Get(("/v1/geometries/" + planar_id + "/mesh?resolution=16&format=json").c_str()));
-  record("GET", mesh, c->Get(("/v1/geometries/" + param_id + "/mesh?resolution=8").c_str()));
-  record("GET", mesh, c->Get(("/v1/geometries/" + id + "/mesh?resolution=3&format=obj").c_str()));
-  record("GET", mesh, c->Get(("/v1/geometries/" + id + "/mesh?resolution=1").c_str()));                 // 400
-  record("GET", mesh, c->Get(("/v1/geometries/" + id + "/mesh?format=ply").c_str()));                   // 400
-  record("GET", mesh, c->Get("/v1/geometries/00000000000000000000000000000000/mesh"));                  // 404
-  record("POST", mesh, c->Post(("/v1/geometries/" + id + "/mesh").c_str(), "{}", "application/json"));  // 405
+  record("GET", mesh, c->Get("/v1/geometries/" + id + "/mesh?resolution=4"));
+  record("GET", mesh, c->Get("/v1/geometries/" + curve_id + "/mesh?resolution=16"));
+  record("GET", mesh, c->Get("/v1/geometries/" + planar_id + "/mesh?resolution=16&format=json"));
+  record("GET", mesh, c->Get("/v1/geometries/" + param_id + "/mesh?resolution=8"));
+  record("GET", mesh, c->Get("/v1/geometries/" + id + "/mesh?resolution=3&format=obj"));
+  record("GET", mesh, c->Get("/v1/geometries/" + id + "/mesh?resolution=1"));                 // 400
+  record("GET", mesh, c->Get("/v1/geometries/" + id + "/mesh?format=ply"));                   // 400
+  record("GET", mesh, c->Get("/v1/geometries/00000000000000000000000000000000/mesh"));        // 404
+  record("POST", mesh, c->Post("/v1/geometries/" + id + "/mesh", "{}", "application/json"));  // 405
 
   for (const char* page : {"/", "/docs"}) record("GET", page, c->Get(page));
   for (const char* file : {"playground.js", "playground.css", "favicon.svg", "docs.html", "nope.js"})
-    record("GET", "/ui/{file}", c->Get((std::string("/ui/") + file).c_str()));
+    record("GET", "/ui/{file}", c->Get(std::string("/ui/") + file));
 
   const std::string on = "/v1/geometries/" + id + "/project";
   post(project, on, R"J({"point":[1,2,2]})J");
@@ -179,6 +228,8 @@ TEST_CASE("every response matches openapi.yaml") {
        R"J({"points":[[1,2,2],[0,0,3],[5,-1,0.5]],"options":{"all_minima":true,"trace":true}})J");
   post(project, on, R"J({"point":[1,2,2],"method":"gsa","options":{"initial":[0.5,0.7],"trace":true}})J");
   post(project, on, R"J({"point":[100,2,2],"options":{"max_distance":1}})J");
+  post(project, on,
+       R"J({"points":[[1,2,2],[0,0,3]],"fields":["foot_point","distance","diagnostics.status"]})J");
   post(project, "/v1/geometries/" + curve_id + "/project",
        R"J({"point":[217,273,129],"options":{"all_minima":true}})J");
   {
@@ -189,6 +240,20 @@ TEST_CASE("every response matches openapi.yaml") {
   post("/v1/project", "/v1/project", R"J({"geometry":)J" + planar + R"J(,"points":[[2,2],[0,0]]})J");
   post("/v1/project", "/v1/project",
        R"J({"geometry":)J" + param + R"J(,"point":[1,1,1],"options":{"all_minima":true}})J");
+
+  // The list, and evaluation at parameters.
+  record("GET", "/v1/geometries", c->Get("/v1/geometries?limit=2"));
+  record("GET", "/v1/geometries", c->Get("/v1/geometries?limit=2&after=" + id));
+  record("GET", "/v1/geometries", c->Get("/v1/geometries?limit=0"));  // 400
+  const std::string evaluate = "/v1/geometries/{id}/evaluate";
+  post(evaluate, "/v1/geometries/" + id + "/evaluate",
+       R"J({"parameters":[[0.5,1],[1,2]],"derivatives":2,"normals":true})J");
+  post(evaluate, "/v1/geometries/" + param_id + "/evaluate",
+       R"J({"parameter":[1],"derivatives":1,"normals":true})J");
+  post(evaluate, "/v1/geometries/" + curve_id + "/evaluate", R"J({"parameter":[1]})J");  // 400
+  post(evaluate, "/v1/geometries/00000000000000000000000000000000/evaluate",
+       R"J({"parameter":[1]})J");                                         // 404
+  record("GET", evaluate, c->Get("/v1/geometries/" + id + "/evaluate"));  // 405
 
   // Errors of every class.
   post(project, on, R"J({"point":[1,2,)J");                           // 400
@@ -220,12 +285,12 @@ TEST_CASE("every response matches openapi.yaml") {
   record("DELETE", geometry, c->Delete("/v1/geometries/" + id));  // 204
   record("DELETE", geometry, c->Delete("/v1/geometries/" + id));  // 404
 
-  // 503 while shutting down, on a connection opened before. httplib closes a connection that
-  // is between two requests when the shutdown starts, so let it settle into its keep-alive wait.
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  // 503 while shutting down: what a request that arrives on an open connection meanwhile gets
+  // (the idle connections themselves are closed at once, so the Api answers it here).
   s.server().shutdown();
-  record("GET", "/readyz", c->Get("/readyz"));
-  CHECK(samples.back().status == 503);
+  const ApiResponse down = s.server().api().handle(match_route("GET", "/readyz"), "GET", "");
+  samples.push_back({"GET", "/readyz", down.status, down.content_type, down.body, ""});
+  CHECK(down.status == 503);
 
   json out = json::array();
   for (const auto& x : samples)

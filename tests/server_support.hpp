@@ -130,6 +130,12 @@ inline std::string create(httplib::Client& c, const std::string& definition) {
   return nlohmann::json::parse(r->body)["geometry_id"].get<std::string>();
 }
 
+// j with its member `key` set to `value`.
+inline nlohmann::json with(nlohmann::json j, const std::string& key, const nlohmann::json& value) {
+  j[key] = value;
+  return j;
+}
+
 inline std::string read_text_file(const std::string& path) {
   std::ifstream in(path);
   REQUIRE_MESSAGE(in.good(), "cannot read " << path);

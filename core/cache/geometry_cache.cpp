@@ -1,5 +1,7 @@
 #include "cache/geometry_cache.hpp"
 
+#include <algorithm>
+#include <cstddef>
 #include <utility>
 
 namespace footpoint {
@@ -116,6 +118,22 @@ std::optional<GeometryCache::EntryStats> GeometryCache::entry_stats(const std::s
   auto it = entries_.find(id);
   if (it == entries_.end()) return std::nullopt;
   return EntryStats{it->second.hits, it->second.bytes};
+}
+
+GeometryCache::Page GeometryCache::page(const std::string& after, std::size_t limit) const {
+  std::lock_guard lock(mutex_);
+  std::vector<const std::pair<const std::string, Entry>*> later;
+  for (const auto& e : entries_)
+    if (e.first > after) later.push_back(&e);
+  const auto by_id = [](const auto* a, const auto* b) { return a->first < b->first; };
+  const std::size_t n = std::min(limit, later.size());
+  std::partial_sort(later.begin(), later.begin() + static_cast<std::ptrdiff_t>(n), later.end(), by_id);
+  Page page;
+  page.more = later.size() > n;
+  for (std::size_t i = 0; i < n; ++i)
+    page.held.push_back(
+        {later[i]->second.geometry, EntryStats{later[i]->second.hits, later[i]->second.bytes}});
+  return page;
 }
 
 GeometryCacheStats GeometryCache::stats() const {

@@ -74,6 +74,19 @@ class GeometryCache {
   // Statistics of one held geometry, without touching its recency or the counters.
   std::optional<EntryStats> entry_stats(const std::string& id) const;
 
+  // A page of what is held, in id order: the geometries whose ids come after `after` ("" from
+  // the first), at most `limit` of them, with their statistics, without touching recency or the
+  // counters; `more` tells whether further ids follow the page.
+  struct Held {
+    std::shared_ptr<const CompiledGeometry> geometry;
+    EntryStats stats;
+  };
+  struct Page {
+    std::vector<Held> held;
+    bool more = false;
+  };
+  Page page(const std::string& after, std::size_t limit) const;
+
   GeometryCacheStats stats() const;
   const GeometryCacheOptions& options() const { return options_; }
 

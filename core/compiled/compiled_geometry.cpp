@@ -27,6 +27,13 @@ Expected<ProjectionResult, UnknownMethod> CompiledGeometry::project(const double
   return m->project(p, options);
 }
 
+const char* option_name(std::uint32_t bit_index) {
+  static const char* const names[kMethodOptionCount] = {"tolerance",  "max_iterations", "initial",
+                                                        "all_minima", "trace",          "max_distance",
+                                                        "certify",    "max_minima"};
+  return bit_index < kMethodOptionCount ? names[bit_index] : "unknown";
+}
+
 const std::vector<MethodInfo>& methods_of(GeometryType type) {
   switch (type) {
     case GeometryType::parametric_surface:
@@ -44,7 +51,7 @@ formula::Program compile_formulas(const GeometryDefinition& def, const std::vect
   try {
     return formula::Program::compile(def.formulas, variables, def.constants, limits);
   } catch (const formula::FormulaError& e) {
-    throw GeometryError(formula::to_string(e.kind), e.formula, e.position, e.what());
+    throw GeometryError(formula::to_string(e.kind), e.formula, e.position, e.what(), e.suggestion);
   }
 }
 

@@ -1,6 +1,7 @@
 // Compiled geometries (what the cache holds): a definition is validated and compiled once; the
 // compiled object is immutable, shared by all threads, and answers projections by method name.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -13,6 +14,7 @@
 #include "formula/program.hpp"
 #include "geometry/geometry_error.hpp"
 #include "geometry/projection_result.hpp"
+#include "geometry/vec.hpp"
 
 namespace footpoint {
 
@@ -22,6 +24,21 @@ struct UnknownMethod {
 };
 
 class CompiledGeometry;
+
+// What a parametric geometry is at given parameters (CompiledGeometry::evaluate): its point, the
+// exact first and second derivatives of the formulas, and the unit normal. Planar curves have
+// z = 0 throughout.
+struct Evaluation {
+  Vec3 point;
+  std::array<Vec3, 2> first{};   // surfaces s_u, s_v; curves c' (first[0])
+  std::array<Vec3, 3> second{};  // surfaces s_uu, s_uv, s_vv; curves c'' (second[0])
+  // Surfaces: s_u x s_v / |s_u x s_v|. Curves: the principal normal, the unit part of c''
+  // orthogonal to c' (towards the centre of curvature). Undefined (normal_defined false) where
+  // s_u x s_v = 0 (a pole, a degenerate edge) or, on a curve, where c' = 0 or the curvature is 0.
+  Vec3 normal;
+  bool normal_defined = false;
+  bool inside_domain = false;  // the parameters lie in the closed domain (formulas extend beyond it)
+};
 
 // A method of one compiled geometry, found by name (CompiledGeometry::method): projects the
 // geometry's points with it.
@@ -61,6 +78,13 @@ class CompiledGeometry {
   Expected<ProjectionResult, UnknownMethod> project(const double* p, std::string_view name,
                                                     const Options& options) const;
   virtual std::size_t memory_bytes() const = 0;
+  // The geometry at the parameters t (num_params() of them), from its formulas' exact jets.
+  // False for a geometry without parameters (an implicit curve).
+  virtual bool evaluate(const double* t, Evaluation& out) const {
+    (void)t;
+    (void)out;
+    return false;
+  }
 
  private:
   friend class GeometryMethod;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <string_view>
 #include <system_error>
 #include <vector>
@@ -59,6 +60,19 @@ std::vector<std::string> GeometryDefinition::periodic_parameters() const {
 }
 
 std::string GeometryDefinition::id() const { return sha256_hex(canonical()).substr(0, 32); }
+
+Expected<double, GeometryError> evaluate_bound(const std::string& field, const std::string& expression,
+                                               const std::map<std::string, double>& constants) {
+  double value = 0.0;
+  try {
+    value = formula::Program::constant_value({field, expression}, constants);
+  } catch (const formula::FormulaError& e) {
+    return GeometryError(formula::to_string(e.kind), e.formula, e.position, e.what(), e.suggestion);
+  }
+  if (!std::isfinite(value))
+    return GeometryError("bad_domain", field, -1, field + ": '" + expression + "' is not a finite number");
+  return value;
+}
 
 namespace {
 

@@ -9,7 +9,9 @@
 #include <utility>
 #include <vector>
 
+#include "compiled/expected.hpp"
 #include "formula/program.hpp"
+#include "geometry/geometry_error.hpp"
 
 namespace footpoint {
 
@@ -40,6 +42,14 @@ struct GeometryDefinition {
   std::string canonical() const;
   std::string id() const;
 };
+
+// A bound of a domain interval written as a constant expression in the formula syntax ("2*_pi",
+// "R+1" with the definition's `constants`), evaluated once, before the id is computed: the
+// definition holds the value, so "2*_pi" and 6.283185307179586 give the same id. Or why it has
+// none: a GeometryError naming `field` ("domain.t[1]") with the code, the character position and
+// a suggestion as for a formula (bad_domain when the value is not finite).
+Expected<double, GeometryError> evaluate_bound(const std::string& field, const std::string& expression,
+                                               const std::map<std::string, double>& constants);
 
 // The inverse of canonical(): the definition whose canonical text is `text`, with the formula
 // names and domain variables a posted definition of its type has (a shared registry stores

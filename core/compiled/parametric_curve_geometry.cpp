@@ -23,20 +23,38 @@ ProjectionResult on_samples(const ParametricCurve& c, Vec3 p, const Options& o) 
   return r;
 }
 
+// What the local iteration reports (solvers/curve/parametric_iteration.hpp and
+// parametric_curve_summary.cpp).
+constexpr std::uint32_t kLocalStatuses =
+    statuses({Status::converged, Status::max_iterations, Status::non_finite, Status::degenerate,
+              Status::outside_domain, Status::beyond_max_distance, Status::deadline_exceeded});
+
 // The method table of parametric curves, planar and spatial alike.
 constexpr Method<ParametricCurve> kMethods[] = {
     {{"auto",
       "global nearest point over [tmin, tmax], ends included: dense adaptive samples seed bracketed "
       "Newton at every candidate minimum",
-      ""},
+      "",
+      {},
+      kGlobalOptions,
+      statuses({Status::converged, Status::non_finite, Status::degenerate, Status::beyond_max_distance,
+                Status::deadline_exceeded})},
      [](const ParametricCurve& c, Vec3 p, const Options& o) {
        return curve::parametric_curve_auto(c.formulas(), c.domain(), c.sample_index(), c.cells(), p, o);
      }},
-    {{"newton", "Newton's method on <c(t) - p, c'(t)> = 0 from options.initial or the nearest sample", ""},
+    {{"newton",
+      "Newton's method on <c(t) - p, c'(t)> = 0 from options.initial or the nearest sample",
+      "",
+      {},
+      kLocalOptions | option_max_distance,
+      kLocalStatuses},
      on_samples<curve::parametric_newton>},
     {{"curvature_circle",
       "curvature circle iteration (Hu-Wallner) from options.initial or the nearest sample",
-      "gsa-parametric-surface (Section 3, eqs. (21)-(22))"},
+      "gsa-parametric-surface (Section 3, eqs. (21)-(22))",
+      {kCitationHuWallner, kCitationGsa},
+      kLocalOptions | option_max_distance,
+      kLocalStatuses},
      on_samples<curve::curvature_circle>},
 };
 
@@ -64,6 +82,21 @@ ProjectionResult ParametricCurve::project_with(std::size_t index, const double* 
 }
 
 const std::vector<MethodInfo>& parametric_curve_methods() { return table().infos(); }
+
+bool ParametricCurve::evaluate(const double* t, Evaluation& out) const {
+  const CurveJet j = formulas_.jet(t[0]);
+  out.point = j.c;
+  out.first = {j.d1, Vec3{}};
+  out.second = {j.d2, Vec3{}, Vec3{}};
+  // The principal normal: c'' less its part along the tangent, normalized.
+  const double speed2 = norm2(j.d1);
+  const Vec3 bend = speed2 > 0.0 ? j.d2 - (dot(j.d2, j.d1) / speed2) * j.d1 : Vec3{};
+  const double length = norm(bend);
+  out.normal_defined = length > 0.0 && std::isfinite(length);
+  out.normal = out.normal_defined ? bend / length : Vec3{};
+  out.inside_domain = domain_.contains(t[0]);
+  return true;
+}
 
 std::size_t ParametricCurve::memory_bytes() const {
   return sizeof(*this) + formulas_.program().memory_bytes() + samples_.memory_bytes() +

@@ -22,6 +22,7 @@ class ParametricCurve final : public CompiledGeometry {
   int num_params() const override { return 1; }
   const std::vector<MethodInfo>& methods() const override;
   std::size_t memory_bytes() const override;
+  bool evaluate(const double* t, Evaluation& out) const override;
 
   const CurveFormulas& formulas() const { return formulas_; }
   const ParamInterval& domain() const { return domain_; }

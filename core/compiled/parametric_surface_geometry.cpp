@@ -26,26 +26,52 @@ ProjectionResult from_start(const ParametricSurface& s, Vec3 p, const Options& o
   return r;
 }
 
+// What the papers' iteration reports (solvers/surface/paper_iteration.hpp): it stops converged, on
+// its budget, on a growing, non-finite or degenerate step, or converged outside the domain.
+constexpr std::uint32_t kPaperStatuses =
+    statuses({Status::converged, Status::max_iterations, Status::diverged, Status::non_finite,
+              Status::degenerate, Status::outside_domain, Status::deadline_exceeded});
+
 // The method table of parametric surfaces.
 constexpr Method<ParametricSurface> kMethods[] = {
     {{"auto",
       "global nearest point over the closed domain (edges and corners included): cached cell bounds, "
-      "bound-constrained Newton from the surviving cells",
-      ""},
+      "bound-constrained Newton from the surviving cells; options.initial is a warm start",
+      "",
+      {},
+      kGlobalOptions | option_initial | option_max_minima,
+      statuses({Status::converged, Status::max_iterations, Status::non_finite, Status::degenerate,
+                Status::beyond_max_distance, Status::deadline_exceeded})},
      [](const ParametricSurface& s, Vec3 p, const Options& o) {
        return surface::project_auto(s.cells(), s.formulas(), s.domain(), s.closure(), p, o);
      }},
-    {{"gsa", "Geometric Strategy Algorithm: normal-curvature sphere step, unclamped from a start",
-      "gsa-parametric-surface (Algorithm 1, eqs. (3)-(20))"},
+    {{"gsa",
+      "Geometric Strategy Algorithm: normal-curvature sphere step, unclamped from a start",
+      "gsa-parametric-surface (Algorithm 1, eqs. (3)-(20))",
+      {kCitationGsa},
+      kLocalOptions,
+      kPaperStatuses},
      from_start<surface::project_gsa>},
-    {{"first_order", "tangent-plane (H-H-H) first-order iteration, unclamped from a start",
-      "gsa-parametric-surface (eq. (2)); hybrid-second-order-surface (eq. (5))"},
+    {{"first_order",
+      "tangent-plane (H-H-H) first-order iteration, unclamped from a start",
+      "gsa-parametric-surface (eq. (2)); hybrid-second-order-surface (eq. (5))",
+      {kCitationGsa, kCitationHybrid},
+      kLocalOptions,
+      kPaperStatuses},
      from_start<surface::project_first_order>},
-    {{"hybrid", "first-order steps until the Newton map contracts, then Newton, unclamped from a start",
-      "hybrid-second-order-surface (Algorithm 1, eqs. (22)-(24))"},
+    {{"hybrid",
+      "first-order steps until the Newton map contracts, then Newton, unclamped from a start",
+      "hybrid-second-order-surface (Algorithm 1, eqs. (22)-(24))",
+      {kCitationHybrid},
+      kLocalOptions,
+      kPaperStatuses},
      from_start<surface::project_hybrid>},
-    {{"newton", "Newton's method on <p - s, s_u> = <p - s, s_v> = 0, unclamped from a start",
-      "hybrid-second-order-surface (eq. (22)); gsa-parametric-surface (Table 9)"},
+    {{"newton",
+      "Newton's method on <p - s, s_u> = <p - s, s_v> = 0, unclamped from a start",
+      "hybrid-second-order-surface (eq. (22)); gsa-parametric-surface (Table 9)",
+      {kCitationHybrid, kCitationGsa},
+      kLocalOptions,
+      kPaperStatuses},
      from_start<surface::project_newton>},
 };
 
@@ -81,6 +107,19 @@ const std::vector<MethodInfo>& ParametricSurface::methods() const { return table
 ProjectionResult ParametricSurface::project_with(std::size_t index, const double* p,
                                                  const Options& options) const {
   return table().project(index, *this, {p[0], p[1], p[2]}, options);
+}
+
+bool ParametricSurface::evaluate(const double* t, Evaluation& out) const {
+  const SurfaceJet j = formulas_.jet(t[0], t[1]);
+  out.point = j.s;
+  out.first = {j.su, j.sv};
+  out.second = {j.suu, j.suv, j.svv};
+  const Vec3 n = cross(j.su, j.sv);
+  const double length = norm(n);
+  out.normal_defined = length > 0.0 && std::isfinite(length);
+  out.normal = out.normal_defined ? n / length : Vec3{};
+  out.inside_domain = box_.contains(t[0], t[1]);
+  return true;
 }
 
 const std::vector<MethodInfo>& parametric_surface_methods() { return table().infos(); }

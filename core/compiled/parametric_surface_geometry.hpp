@@ -24,6 +24,7 @@ class ParametricSurface final : public CompiledGeometry {
   int num_params() const override { return 2; }
   const std::vector<MethodInfo>& methods() const override;
   std::size_t memory_bytes() const override;
+  bool evaluate(const double* t, Evaluation& out) const override;
 
   const SurfaceFormulas& formulas() const { return formulas_; }
   const ParamBox& domain() const { return box_; }

@@ -313,6 +313,14 @@ Program Program::compile(const std::vector<NamedFormula>& formulas, const std::v
   return p;
 }
 
+double Program::constant_value(const NamedFormula& formula, const std::map<std::string, double>& constants,
+                               const CompileLimits& limits) {
+  const Program p = compile({formula}, {}, constants, limits);
+  double value = 0.0;
+  p.values(nullptr, &value);
+  return value;
+}
+
 int Program::num_inputs() const { return tape_->num_inputs; }
 int Program::num_outputs() const { return static_cast<int>(tape_->outputs.size()); }
 std::size_t Program::num_nodes() const { return tape_->nodes.size(); }

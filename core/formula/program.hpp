@@ -20,13 +20,17 @@
 namespace footpoint::formula {
 
 // Why a formula did not compile. `formula` names the formula ("x", "equations[1]", ...),
-// `position` is the 0-based character position muparser reports (-1 when there is none).
+// `position` is the 0-based position, in characters, of the character at fault (-1 when there is
+// none), `suggestion` what to write there instead when something near is known ("sin" for "sinn",
+// "_pi" for "pi", "^" for "**"; empty otherwise). The reader that finds them: formula/syntax.hpp.
 struct FormulaError : std::runtime_error {
-  enum class Kind { syntax, unknown_variable, empty, too_long, too_complex, bad_constant };
-  FormulaError(Kind kind, std::string formula, int position, std::string message);
+  enum class Kind { syntax, unknown_variable, unknown_function, empty, too_long, too_complex, bad_constant };
+  FormulaError(Kind kind, std::string formula, int position, std::string message,
+               std::string suggestion = {});
   Kind kind;
   std::string formula;
   int position;
+  std::string suggestion;
 };
 
 const char* to_string(FormulaError::Kind kind);
@@ -45,6 +49,11 @@ struct CompileLimits {
 
 class Program {
  public:
+  // The value of a formula without variables ("2*_pi", "a/2" with user constants), evaluated
+  // once. Throws FormulaError as compile() does.
+  static double constant_value(const NamedFormula& formula, const std::map<std::string, double>& constants,
+                               const CompileLimits& limits = {});
+
   // Compiles the formulas over the given variable names (in that order: input i of every
   // evaluation is variables[i]). `constants` are user constants (name -> value) usable in the
   // formulas; `_pi` and `_e` are always defined to full double precision. Throws FormulaError.

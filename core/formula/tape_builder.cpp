@@ -1,6 +1,7 @@
-// muparser front end: the only place that knows muparser. Each formula is parsed once by muparser
-// (its syntax, precedence and error positions), with the optimizer off so that the bytecode is plain
-// reverse Polish notation, and that bytecode is read into our own SSA tape. Built-in functions are
+// muparser front end: the only place that knows muparser. Each formula is read by our own reader
+// first (formula/syntax.hpp: the errors, their positions and suggestions), then parsed once by
+// muparser (its precedence), with the optimizer off so that the bytecode is plain reverse Polish
+// notation, and that bytecode is read into our own SSA tape. Built-in functions are
 // registered by us with a user-data pointer naming our Op, so no comparison with muparser's internal
 // function pointers is needed.
 #include <muParser.h>
@@ -12,12 +13,18 @@
 #include <unordered_map>
 
 #include "formula/elementary.hpp"
+#include "formula/syntax.hpp"
 #include "formula/tape.hpp"
 
 namespace footpoint::formula {
 
-FormulaError::FormulaError(Kind kind, std::string formula, int position, std::string message)
-    : std::runtime_error(std::move(message)), kind(kind), formula(std::move(formula)), position(position) {}
+FormulaError::FormulaError(Kind kind, std::string formula, int position, std::string message,
+                           std::string suggestion)
+    : std::runtime_error(std::move(message)),
+      kind(kind),
+      formula(std::move(formula)),
+      position(position),
+      suggestion(std::move(suggestion)) {}
 
 const char* to_string(FormulaError::Kind kind) {
   switch (kind) {
@@ -25,6 +32,8 @@ const char* to_string(FormulaError::Kind kind) {
       return "formula_syntax";
     case FormulaError::Kind::unknown_variable:
       return "unknown_variable";
+    case FormulaError::Kind::unknown_function:
+      return "unknown_function";
     case FormulaError::Kind::empty:
       return "empty_formula";
     case FormulaError::Kind::too_long:
@@ -54,6 +63,19 @@ constexpr FunctionEntry kFunctions[] = {
     {"log10", Op::log10, 1}, {"sqrt", Op::sqrt, 1},   {"abs", Op::abs, 1},     {"sign", Op::sign, 1},
     {"min", Op::min, -1},    {"max", Op::max, -1},
 };
+
+}  // namespace
+
+const std::vector<FunctionSignature>& function_signatures() {
+  static const std::vector<FunctionSignature> signatures = [] {
+    std::vector<FunctionSignature> v;
+    for (const auto& f : kFunctions) v.push_back({f.name, f.arity});
+    return v;
+  }();
+  return signatures;
+}
+
+namespace {
 
 mu::value_type call_unary(void* entry, mu::value_type x) {
   return unary_value(static_cast<const FunctionEntry*>(entry)->op, x, 0.0);
@@ -192,12 +214,6 @@ bool is_identifier(const std::string& s) {
                      [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; });
 }
 
-std::string join(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
-
 Op binary_op_of(mu::ECmdCode code) {
   switch (code) {
     case mu::cmLE:
@@ -263,6 +279,8 @@ Program::Tape build_tape(const std::vector<NamedFormula>& formulas, const std::v
       throw FormulaError(FormulaError::Kind::empty, formula.name, -1,
                          "formula " + formula.name + " is empty");
 
+    // Our reader first: every fault it finds is reported in our words at its character position.
+    const std::string parsed_text = check_syntax(formula, variables, constants);
     mu::Parser parser;
     try {
       parser.ClearFun();
@@ -283,18 +301,15 @@ Program::Tape build_tape(const std::vector<NamedFormula>& formulas, const std::v
       parser.DefineConst("_e", std::numbers::e);
       for (const auto& [name, value] : constants) parser.DefineConst(name, value);
       for (std::size_t i = 0; i < variables.size(); ++i) parser.DefineVar(variables[i], &var_storage[i]);
-      parser.SetExpr(text);
+      parser.SetExpr(parsed_text);
       parser.Eval();  // muparser builds the bytecode on the first evaluation
     } catch (const mu::ParserError& e) {
-      const std::string token = e.GetToken();
-      const int pos = static_cast<int>(e.GetPos());
-      if (e.GetCode() == mu::ecUNASSIGNABLE_TOKEN && is_identifier(token))
-        throw FormulaError(FormulaError::Kind::unknown_variable, formula.name, pos,
-                           "formula " + formula.name + ": unknown name '" + token + "' at position " +
-                               std::to_string(pos) + " (variables: " + join(variables) +
-                               "; functions and constants are listed in the API documentation)");
+      // The grammars agree (tests/formula_syntax.cpp), so this is not expected; muparser's own
+      // words are not passed on, its position is kept within the formula.
+      const int last = std::max(0, static_cast<int>(parsed_text.size()) - 1);
+      const int pos = std::clamp(static_cast<int>(e.GetPos()), 0, last);
       throw FormulaError(FormulaError::Kind::syntax, formula.name, pos,
-                         "formula " + formula.name + ": " + e.GetMsg());
+                         "formula " + formula.name + " does not parse near position " + std::to_string(pos));
     }
 
     const mu::ParserByteCode& bytecode = parser.GetByteCode();

@@ -8,17 +8,21 @@
 namespace footpoint {
 
 // A definition that cannot be compiled: `code` is a stable machine-readable code
-// (formula_syntax, unknown_variable, empty_formula, formula_too_long, bad_domain, ...), `field`
-// names the offending field ("x", "equations[1]", "domain.u"), `position` the character (or -1).
+// (formula_syntax, unknown_variable, unknown_function, empty_formula, formula_too_long,
+// bad_domain, ...), `field` names the offending field ("x", "equations[1]", "domain.u"),
+// `position` the character (or -1), `suggestion` what to write there instead (or empty).
 struct GeometryError : std::runtime_error {
-  GeometryError(std::string code, std::string field, int position, std::string message)
+  GeometryError(std::string code, std::string field, int position, std::string message,
+                std::string suggestion = {})
       : std::runtime_error(std::move(message)),
         code(std::move(code)),
         field(std::move(field)),
-        position(position) {}
+        position(position),
+        suggestion(std::move(suggestion)) {}
   std::string code;
   std::string field;
   int position;
+  std::string suggestion;
 };
 
 }  // namespace footpoint

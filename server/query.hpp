@@ -1,0 +1,21 @@
+// The query of a GET (the target after '?', application/x-www-form-urlencoded): its parameters
+// decoded, each allowed name at most once, and integers read with their bounds. Problems are 400
+// ApiErrors naming the parameter: unknown_field, duplicate_field, wrong_type, number_out_of_range.
+#pragma once
+#include <initializer_list>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace footpoint::server {
+
+// The name=value pairs of `query`, in order; a name not in `allowed` is unknown_field, a name
+// given twice duplicate_field.
+std::vector<std::pair<std::string, std::string>> query_parameters(
+    std::string_view query, std::initializer_list<std::string_view> allowed);
+
+// The integer `value` of parameter `name`, in [min, max].
+long long query_integer(const std::string& name, const std::string& value, long long min, long long max);
+
+}  // namespace footpoint::server
