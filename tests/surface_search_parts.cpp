@@ -3,7 +3,7 @@
 //    SSE2 lanes at a time), against the scalar formula, with empty slots and unbounded boxes;
 //  - the search tree: every cell is a leaf of it exactly once, and every node's child boxes hold
 //    the boxes below them; trees of one cell (no node) and of a few cells answer as the full one;
-//  - every cell lies within ρ of the rectangle in its tangent plane (rule 2's bound).
+//  - every cell lies within ρ of the rectangle in its tangent plane (the tangent-plane rule's bound).
 #include <doctest/doctest.h>
 
 #include <algorithm>

@@ -80,7 +80,7 @@ struct alignas(64) SurfaceCell {
   SurfaceJet centre;                              // s and its partials at ((u0+u1)/2, (v0+v1)/2)
   double u0 = 0.0, u1 = 0.0, v0 = 0.0, v1 = 0.0;  // the parameter rectangle
   // The tangent plane's metric at the centre (first fundamental form E, F, G), for the Newton
-  // model of every visit past rule 2.
+  // model of every visit past the tangent-plane rule (solvers/surface/surface_auto.cpp).
   double E = 0.0, F = 0.0, G = 0.0;
   double rho2 = 0.0;    // the same as ρ for the quadratic (Taylor) model
   double extent = 0.0;  // largest chord of the cell on the surface

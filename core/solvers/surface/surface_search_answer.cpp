@@ -1,0 +1,181 @@
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "solvers/surface/surface_certificate.hpp"
+#include "solvers/surface/surface_result.hpp"
+#include "solvers/surface/surface_search.hpp"
+
+namespace footpoint::surface {
+
+ProjectionResult SurfaceSearch::result() {
+  ProjectionResult r;
+  const bool within = has_best_ && best_.sol.distance <= options_.max_distance;
+  if (within) {
+    r = answer(best_.sol);
+    if (options_.trace) solve_across_seams(best_.u_start, best_.v_start, &r.trace);
+  } else {
+    r = no_answer();
+  }
+  r.summary.starts = solves_;
+  if (options_.certify.value_or(true) && (within || r.summary.status == Status::beyond_max_distance))
+    certify(r, within);
+  if (std::isfinite(r.distance)) r.summary.multiplicity = multiplicity(r);
+  if (options_.all_minima) r.minima = minima(r, &r.minima_truncated);
+  return r;
+}
+
+ProjectionResult SurfaceSearch::answer(const LocalSolution& s) const {
+  ProjectionResult r = surface_result("auto", p_, s.u, s.v, s.jet.s, s.jet.su, s.jet.sv, box_, &closure_);
+  r.summary.status = s.status;
+  r.summary.iterations = s.iterations;
+  r.summary.step_norm = s.step_norm;
+  return r;
+}
+
+ProjectionResult SurfaceSearch::no_answer() const {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  ProjectionResult r;
+  r.dim = 3;
+  r.num_params = 2;
+  r.foot = {nan, nan, nan};
+  r.params = {nan, nan};
+  r.summary.method = "auto";
+  r.summary.location = Location::unknown;
+  const bool some_finite = std::any_of(cells_.cells().begin(), cells_.cells().end(),
+                                       [](const SurfaceCell& c) { return c.finite; });
+  r.summary.status =
+      some_finite && std::isfinite(options_.max_distance) ? Status::beyond_max_distance : Status::non_finite;
+  return r;
+}
+
+void SurfaceSearch::certify(ProjectionResult& r, bool within) {
+  // the minimisers at the answer's distance (its copies on a periodic or folded
+  // parametrisation: each needs its own bound) and near it
+  std::vector<std::array<double, 2>> known;
+  LocalSolution target;
+  if (within) {
+    target = best_.sol;
+  } else {  // the point of the surface at max_distance to certify against: none nearer
+    const SurfaceCell& c = cells_.cells()[static_cast<std::size_t>(descend())];
+    target.u = c.uc();
+    target.v = c.vc();
+    target.jet = c.centre;
+    target.distance = options_.max_distance;
+  }
+  const double near_best = target.distance * (1.0 + 1e-6) + 1e-12;
+  for (int i = 0; i < minimisers_count_; ++i)
+    if (minimisers_[i].distance <= near_best) known.push_back({minimisers_[i].u, minimisers_[i].v});
+  for (const Found& f : all_)
+    if (f.sol.distance <= near_best) known.push_back({f.sol.u, f.sol.v});
+  const SurfaceLocalSolve solve = [&](double u, double v) { return solve_across_seams(u, v); };
+  const SurfaceCertification c = certify_surface(cells_, formulas_, box_, p_, target, known, solve, true);
+  if (c.improved && c.better.distance <= options_.max_distance) {
+    const int starts = r.summary.starts;
+    r = answer(c.better);
+    r.summary.starts = starts;
+    record_solution(c.better);
+  }
+  r.summary.certificate = c.certificate;
+}
+
+AnswerMultiplicity SurfaceSearch::multiplicity(const ProjectionResult& r) const {
+  AnswerMultiplicity m;
+  m.computed = true;
+  const double u = r.params[0], v = r.params[1];
+  const SurfaceJet j = formulas_.jet(u, v);
+  const Vec3 d = j.s - p_;
+  const double h[2][2] = {{dot(j.su, j.su) + dot(d, j.suu), dot(j.su, j.sv) + dot(d, j.suv)},
+                          {dot(j.su, j.sv) + dot(d, j.suv), dot(j.sv, j.sv) + dot(d, j.svv)}};
+  // a parameter on a bound that is no seam is held there; at a pole every parameter along the
+  // pole gives the one foot (not a continuum in space)
+  const bool free_u = !((u == box_.umin || u == box_.umax) && !closure_.periodic(0));
+  const bool free_v = !((v == box_.vmin || v == box_.vmax) && !closure_.periodic(1));
+  const bool pole = r.summary.location == Location::pole;
+  const double scale = std::abs(h[0][0]) + std::abs(h[1][1]) + 2.0 * std::abs(h[0][1]) + 1e-300;
+  double smallest = scale;
+  if (free_u && free_v) {
+    const double a = h[0][0], b = h[0][1], c = h[1][1];
+    smallest = 0.5 * (a + c) - std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+  } else if (free_u) {
+    smallest = h[0][0];
+  } else if (free_v) {
+    smallest = h[1][1];
+  }
+  if (!pole && smallest <= 1e-8 * scale && r.distance > 0.0) {
+    m.kind = Multiplicity::continuum;
+    return m;
+  }
+  const double gap = std::fmax(Certificate::kRelativeGap * r.distance, Certificate::absolute_gap_at(p_, j.s));
+  m.feet.push_back(r.foot);
+  auto consider = [&](const Vec3& foot, double distance) {
+    if (!(std::abs(distance - r.distance) <= gap)) return;
+    const double same = kDistinctFoot * (1.0 + norm(foot));
+    for (const auto& f : m.feet)
+      if (norm2(Vec3{f[0], f[1], f[2]} - foot) <= same * same) return;
+    m.feet.push_back({foot.x, foot.y, foot.z});
+  };
+  for (int i = 0; i < minimisers_count_; ++i) {
+    const Minimiser& m = minimisers_[i];
+    if (m.complete) {
+      consider(m.foot, m.distance);
+    } else if (m.distance <= r.distance + gap) {
+      // a basin left early whose lower bound does not exclude a tie: solved to the end
+      const LocalSolution t = solve_across_seams(m.u, m.v);
+      if (t.status == Status::converged) consider(t.jet.s, t.distance);
+    }
+  }
+  for (const Found& f : all_) consider(f.sol.jet.s, f.sol.distance);
+  m.count = static_cast<int>(m.feet.size());
+  if (m.count > 1) {
+    m.kind = Multiplicity::tied;
+  } else {
+    m.feet.clear();
+  }
+  return m;
+}
+
+std::vector<Minimum> SurfaceSearch::minima(const ProjectionResult& r, bool* truncated) const {
+  std::vector<const Found*> order;
+  for (const Found& f : all_)
+    if (f.sol.status == Status::converged && f.sol.distance <= options_.max_distance) order.push_back(&f);
+  std::stable_sort(order.begin(), order.end(),
+                   [](const Found* a, const Found* b) { return a->sol.distance < b->sol.distance; });
+  const bool continuum = r.summary.multiplicity.kind == Multiplicity::continuum;
+  const double gap = std::fmax(Certificate::kRelativeGap * r.distance,
+                               Certificate::absolute_gap_at(p_, Vec3{r.foot[0], r.foot[1], r.foot[2]}));
+  const std::size_t cap =
+      static_cast<std::size_t>(options_.max_minima > 0 ? options_.max_minima : Options::kDefaultMaxMinima);
+  std::vector<Minimum> out;
+  *truncated = false;
+  if (continuum) {
+    Minimum m;
+    m.foot = r.foot;
+    m.params = r.params;
+    m.distance = r.distance;
+    m.location = r.summary.location;
+    out.push_back(m);
+  }
+  for (const Found* f : order) {
+    const Vec3& s = f->sol.jet.s;
+    if (continuum && std::abs(f->sol.distance - r.distance) <= gap) continue;
+    const double tol = kDistinctFoot * (1.0 + norm(s));
+    const bool seen = std::any_of(out.begin(), out.end(), [&](const Minimum& m) {
+      return norm2(Vec3{m.foot[0], m.foot[1], m.foot[2]} - s) <= tol * tol;
+    });
+    if (seen) continue;
+    if (out.size() == cap) {
+      *truncated = true;
+      break;
+    }
+    Minimum m;
+    m.foot = {s.x, s.y, s.z};
+    m.params = {f->sol.u, f->sol.v};
+    m.distance = f->sol.distance;
+    m.location = location_in(box_, f->sol.u, f->sol.v, &closure_);
+    out.push_back(m);
+  }
+  return out;
+}
+
+}  // namespace footpoint::surface
