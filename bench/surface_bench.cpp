@@ -11,10 +11,14 @@
 //  3. the methods of [GSA] and [Hybrid] and `auto` side by side from the papers' starting values;
 //  4. project_batch over the thread pool, 100,000 points, 2 threads against 1 (wall time);
 //  5. `auto` on A1 and S1 with bench/http_bench.sh's point distribution (uniform in
-//     x in [-20,20], y in [-3,3], z in [-1.5,1.5]), with the local solves per point.
+//     x in [-20,20], y in [-3,3], z in [-1.5,1.5]), with the local solves per point;
+//  6. `auto` on a coherent sequence of points (a path sweeping across the surface at 0.2 of its
+//     size off it, as an ICP loop sends them), cold and warm started (options.initial: the
+//     previous point's answer), interleaved; the answers must agree.
+// S1-S3 and A1 are the papers' and Open CASCADE's surfaces; torus and sphere close (seams, poles).
 // The load average (/proc/loadavg) is printed with every section.
 //
-// Usage: surface_bench [points per set, default 2000] [runs, default 5] [--sections 12345]
+// Usage: surface_bench [points per set, default 2000] [runs, default 5] [--sections 123456]
 //        surface_bench --peer [--peer-dir DIR] [--reps R] [NAME ...]
 // --peer: `auto` on the point sets of the Open CASCADE comparison (bench/occt/data/NAME.json, all
 // of bench/occt/surfaces.json by default; --peer-dir another copy of bench/occt), per point the
@@ -59,6 +63,19 @@ const SurfaceSpec kSurfaces[] = {
     {"S2", "u^4*v^3+u*v+u", "u^3+v^3", "u+v", {-2, 2}, {-2, 2}},
     {"S3", kS3x, kS3y, kS3z, {0, 2}, {0, 2}},
     {"A1", "u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-25, 25}, {-25, 25}},
+    // closed: a seam each way; a seam and two poles
+    {"torus",
+     "(3+cos(v))*cos(u)",
+     "(3+cos(v))*sin(u)",
+     "sin(v)",
+     {0, 6.283185307179586},
+     {0, 6.283185307179586}},
+    {"sphere",
+     "cos(u)*cos(v)",
+     "sin(u)*cos(v)",
+     "sin(v)",
+     {0, 6.283185307179586},
+     {-1.5707963267948966, 1.5707963267948966}},
 };
 
 std::shared_ptr<const ParametricSurface> compile(const SurfaceSpec& s) {
@@ -334,6 +351,52 @@ void section_http(const std::vector<std::shared_ptr<const ParametricSurface>>& s
   }
 }
 
+void section_warm_start(const std::vector<std::shared_ptr<const ParametricSurface>>& surfaces,
+                        const std::vector<PointSets>& sets, int n, int runs, double overhead) {
+  std::printf(
+      "6. auto on a coherent sequence, cold vs warm (options.initial = the previous answer), batch mean\n"
+      "   per point, medians of %d interleaved pairs        cold µs   warm µs  warm/cold  solves cold/warm\n",
+      runs);
+  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    const ParametricSurface& g = *surfaces[k];
+    const ParamBox& b = g.domain();
+    // the path: s(u(τ), v(τ)) + 0.2 size (1, 1, 1)/√3, τ over the domain's diagonal band
+    std::vector<Vec3> points;
+    const double off = 0.2 * sets[k].size / std::sqrt(3.0);
+    for (int i = 0; i < n; ++i) {
+      const double tau = static_cast<double>(i) / n;
+      const double u = b.umin + (b.umax - b.umin) * (0.1 + 0.8 * tau);
+      const double v = b.vmin + (b.vmax - b.vmin) * (0.5 + 0.3 * std::sin(6.283185307179586 * tau));
+      points.push_back(g.formulas().point(u, v) + Vec3{off, off, off});
+    }
+    const Timed reference = time_points(g, points, "auto", {}, 1, overhead);
+    std::vector<Options> warm(points.size());
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      const auto& q = reference.results[i - 1].params;
+      warm[i].initial = std::array<double, 3>{q[0], q[1], 0.0};
+    }
+    std::vector<double> cold_ns, warm_ns;
+    Timed c, w;
+    for (int r = 0; r < runs; ++r) {
+      c = time_points(g, points, "auto", {}, 1, overhead);
+      w = time_points(g, points, "auto", warm, 1, overhead);
+      cold_ns.push_back(c.batch_ns);
+      warm_ns.push_back(w.batch_ns);
+    }
+    std::size_t differ = 0;
+    double solves_cold = 0.0, solves_warm = 0.0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      differ +=
+          std::abs(c.results[i].distance - w.results[i].distance) > 1e-12 * (1.0 + c.results[i].distance);
+      solves_cold += c.results[i].summary.starts;
+      solves_warm += w.results[i].summary.starts;
+    }
+    std::printf("   %-44s %8.2f  %8.2f  %9.3f  %6.2f / %4.2f%s\n", kSurfaces[k].name.c_str(),
+                median(cold_ns) / 1e3, median(warm_ns) / 1e3, median(warm_ns) / median(cold_ns),
+                solves_cold / n, solves_warm / n, differ ? "  ANSWERS DIFFER" : "");
+  }
+}
+
 // ---- the point sets of the Open CASCADE comparison (bench/occt/) ----
 
 int comparison_mode(const std::string& dir, int reps, std::vector<std::string> names) {
@@ -370,7 +433,7 @@ int comparison_mode(const std::string& dir, int reps, std::vector<std::string> n
 
 int run(int argc, char** argv) {
   std::vector<std::string> positional;
-  std::string comparison, sections = "12345";
+  std::string comparison, sections = "123456";
   int reps = 5;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--peer")) {
@@ -424,6 +487,10 @@ int run(int argc, char** argv) {
   if (has('5')) {
     std::printf("\n[%s]\n", load_average().c_str());
     section_http(surfaces, n, runs, overhead);
+  }
+  if (has('6')) {
+    std::printf("\n[%s]\n", load_average().c_str());
+    section_warm_start(surfaces, sets, n, runs, overhead);
   }
   std::printf("\n[%s]\n", load_average().c_str());
   return 0;

@@ -644,7 +644,7 @@ TEST_CASE("graceful shutdown: idle connections close at once, in-flight requests
   slow.join();
   s.stop();  // run() has returned
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  CHECK(seconds < 10.0);  // not the keep-alive timeout
+  CHECK(seconds < 40.0);  // the batch's time (longer on a loaded machine), not the 60 s keep-alive timeout
   REQUIRE(in_flight);
   CHECK(in_flight->status == 200);
   CHECK(in_flight->get_header_value("Connection") == "close");

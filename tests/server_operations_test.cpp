@@ -216,7 +216,13 @@ TEST_CASE("the binary's log: start-up line with version and settings, request li
   const std::string garbage = raw_exchange(listening["port"].get<int>(), "GARBAGE\r\n\r\n");
   CHECK(raw_status(garbage) == 400);
 
-  const json missing = server.event("request");
+  // The three request lines, in whatever order the connection threads wrote them.
+  json missing, fine, malformed;
+  for (int i = 0; i < 3; ++i) {
+    const json e = server.event("request");
+    const std::string id = e.value("request_id", "");
+    (id == "ops-404" ? missing : id == "ops-200" ? fine : malformed) = e;
+  }
   CHECK(missing["request_id"] == "ops-404");
   CHECK(missing["status"] == 404);
   CHECK(missing["code"] == "geometry_not_found");
@@ -225,11 +231,9 @@ TEST_CASE("the binary's log: start-up line with version and settings, request li
   REQUIRE(missing["duration_ms"].is_number());
   const double ms = missing["duration_ms"];
   CHECK(std::round(ms * 1e3) / 1e3 == ms);  // microseconds
-  const json fine = server.event("request");
   CHECK(fine["request_id"] == "ops-200");
   CHECK(fine["status"] == 200);
   CHECK_FALSE(fine.contains("code"));
-  const json malformed = server.event("request");
   CHECK(malformed["status"] == 400);
   CHECK(malformed["code"] == "bad_request");
 
@@ -277,7 +281,8 @@ TEST_CASE("SIGTERM: idle keep-alive connections close at once, the request in fl
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   slow.join();
   CHECK(code == 0);
-  CHECK(seconds < 20.0);  // the batch's time, not the idle connection's 60 s keep-alive
+  CHECK(seconds <
+        40.0);  // the batch's time (longer on a loaded machine), not the idle connection's 60 s keep-alive
   REQUIRE(in_flight);
   CHECK(in_flight->status == 200);
   CHECK(json::parse(in_flight->body)["results"].size() == 20000);

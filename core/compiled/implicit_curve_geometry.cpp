@@ -44,7 +44,7 @@ constexpr Method<ImplicitCurve> kMethods[] = {
       "(planar) or faces (spatial) are candidates; a certificate bounds the distance from below",
       "",
       {},
-      kGlobalOptions,
+      kGlobalOptions | option_max_minima,
       statuses({Status::converged, Status::non_finite, Status::degenerate, Status::beyond_max_distance,
                 Status::deadline_exceeded})},
      [](const ImplicitCurve& c, Vec3 p, const Options& o) {

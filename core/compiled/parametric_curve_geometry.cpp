@@ -36,11 +36,12 @@ constexpr Method<ParametricCurve> kMethods[] = {
       "Newton at every candidate minimum",
       "",
       {},
-      kGlobalOptions,
+      kGlobalOptions | option_max_minima,
       statuses({Status::converged, Status::non_finite, Status::degenerate, Status::beyond_max_distance,
                 Status::deadline_exceeded})},
      [](const ParametricCurve& c, Vec3 p, const Options& o) {
-       return curve::parametric_curve_auto(c.formulas(), c.domain(), c.sample_index(), c.cells(), p, o);
+       return curve::parametric_curve_auto(c.formulas(), c.domain(), c.sample_index(), c.cells(), c.closure(),
+                                           p, o);
      }},
     {{"newton",
       "Newton's method on <c(t) - p, c'(t)> = 0 from options.initial or the nearest sample",

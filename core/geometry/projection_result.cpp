@@ -1,6 +1,7 @@
 #include "geometry/projection_result.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace footpoint {
 
@@ -78,6 +79,22 @@ const char* to_string(Multiplicity m) {
       return "continuum";
   }
   return "unique";
+}
+
+void withhold_answer(ProjectionResult& r) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  r.foot = {nan, nan, nan};
+  r.params = {nan, nan};
+  r.distance = nan;
+  r.summary.status = Status::beyond_max_distance;
+  r.summary.location = Location::unknown;
+  r.summary.on_boundary = false;
+}
+
+void cap_minima(ProjectionResult& r, const Options& options) {
+  if (r.minima.size() <= options.minima_cap()) return;
+  r.minima.resize(options.minima_cap());
+  r.minima_truncated = true;
 }
 
 double Summary::residual() const {

@@ -100,6 +100,17 @@ struct Options {
   // certifies, the papers' local methods do not (asked, they get their answer certified or
   // refuted by the same bounds, without a search for a better one).
   std::optional<bool> certify;
+  // The cap on all_minima's list.
+  std::size_t minima_cap() const {
+    return static_cast<std::size_t>(max_minima > 0 ? max_minima : kDefaultMaxMinima);
+  }
 };
+
+// No point of the geometry within options.max_distance: status beyond_max_distance, and no foot
+// point, parameters or distance (NaN; null in JSON), never an intermediate point; location unknown.
+void withhold_answer(ProjectionResult& r);
+
+// Keeps the first options.minima_cap() of r.minima (best first), and says when it cut.
+void cap_minima(ProjectionResult& r, const Options& options);
 
 }  // namespace footpoint

@@ -18,12 +18,14 @@ void finish_auto_result(ProjectionResult& r, bool met, int iterations, double st
   r.summary.step_norm = step;
   r.summary.starts = starts;
   r.summary.status = met ? Status::converged : Status::degenerate;
-  if (r.distance > options.max_distance) r.summary.status = Status::beyond_max_distance;
   if (options.all_minima) {
     std::sort(minima.begin(), minima.end(),
               [](const Minimum& a, const Minimum& b) { return a.distance < b.distance; });
     r.minima = std::move(minima);
+    cap_minima(r, options);
   }
+  // auto's answer is the global one: farther than max_distance, no point is within it
+  if (r.distance > options.max_distance) withhold_answer(r);
   if (options.trace) r.trace = std::move(trace);
 }
 

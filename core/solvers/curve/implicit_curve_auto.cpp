@@ -110,9 +110,9 @@ ProjectionResult search(const ImplicitEquations& eq, const Box3& box, const Curv
   const double d0 = std::sqrt(d0sq);
   const Vec3 s0 = s.points[static_cast<std::size_t>(nearest)];
   if (d0 - 0.5 * h > options.max_distance) {
-    // Every curve point is farther than max_distance (the h/2 bound); report the nearest sample.
+    // Every curve point is farther than max_distance (the h/2 bound).
     r = implicit_result(eq, box, p, s0, "auto");
-    r.summary.status = Status::beyond_max_distance;
+    withhold_answer(r);
     r.summary.starts = 0;
     return r;
   }

@@ -102,7 +102,7 @@ bool at_rounding_level(const CurveFormulas& formulas, Vec3 p, const ProjectionRe
 
 ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const ParamInterval& domain,
                                        const CurveSampleIndex& index, const ParametricCurveCells& cells,
-                                       Vec3 p, const Options& options) {
+                                       const CurveClosure& closure, Vec3 p, const Options& options) {
   const CurveSamples& s = index.samples();
   const double h = s.spacing;
   // The nearest sample and the candidates in one pass; with all_minima every discrete local
@@ -113,9 +113,10 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
       index.nearest_and_local_minima(p, options.all_minima ? kInfinity : 0.5 * h, candidates, d0sq);
   const double d0 = std::sqrt(d0sq);
   if (d0 - 0.5 * h > options.max_distance) {
+    // every curve point is farther than max_distance (the h/2 bound)
     ProjectionResult r =
-        parametric_result(formulas, domain, p, s.params[static_cast<std::size_t>(nearest)], "auto");
-    r.summary.status = Status::beyond_max_distance;
+        parametric_result(formulas, domain, p, s.params[static_cast<std::size_t>(nearest)], "auto", closure);
+    withhold_answer(r);
     r.summary.starts = 0;
     return r;
   }
@@ -138,7 +139,7 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
     solved.push_back(f.t);
     if (options.all_minima) {
       const Vec3 x = formulas.point(f.t);
-      const bool end = f.t <= domain.tmin || f.t >= domain.tmax;
+      const bool end = (f.t <= domain.tmin || f.t >= domain.tmax) && !joins_smoothly(closure);
       add_distinct_minimum(
           minima, x, 1e-8 * std::max(1.0, norm(x)),
           {{x.x, x.y, x.z}, {f.t, 0.0}, f.distance, end ? Location::endpoint : Location::interior});
@@ -161,7 +162,7 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
       best.step = 0.0;
     }
   }
-  ProjectionResult r = parametric_result(formulas, domain, p, best.t, "auto");
+  ProjectionResult r = parametric_result(formulas, domain, p, best.t, "auto", closure);
   finish_auto_result(
       r,
       best.distance < kInfinity && (parametric_residual_met(r, control) || at_rounding_level(formulas, p, r)),

@@ -6,6 +6,7 @@
 // (parametric_newton), an end sample by the first-order condition at tmin / tmax, while its
 // distance minus h/2 can still beat the best found.
 #pragma once
+#include "geometry/curve_closure.hpp"
 #include "geometry/parametric_curve.hpp"
 #include "geometry/projection_result.hpp"
 #include "seeding/curve_sample_index.hpp"
@@ -16,9 +17,10 @@ namespace footpoint::curve {
 // `index` is the k-d tree of the curve's dense samples (seeding/curve_parametric_samples), `cells`
 // what the certificate bounds (seeding/parametric_curve_cells.hpp). The answer carries its certificate
 // (solvers/curve/parametric_curve_certificate.hpp) unless options.certify is false; a nearer minimum the
-// certificate finds is the answer.
+// certificate finds is the answer. On a curve that closes smoothly (geometry/curve_closure.hpp)
+// tmin and tmax are one interior point, no endpoint. Farther than options.max_distance: no answer.
 ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const ParamInterval& domain,
                                        const CurveSampleIndex& index, const ParametricCurveCells& cells,
-                                       Vec3 p, const Options& options);
+                                       const CurveClosure& closure, Vec3 p, const Options& options);
 
 }  // namespace footpoint::curve

@@ -6,7 +6,7 @@
 namespace footpoint::curve {
 
 ProjectionResult parametric_result(const CurveFormulas& formulas, const ParamInterval& domain, Vec3 p,
-                                   double t, const char* method) {
+                                   double t, const char* method, const CurveClosure& closure) {
   const CurveJet j = formulas.jet(t);
   ProjectionResult r;
   r.dim = formulas.dim();
@@ -24,7 +24,7 @@ ProjectionResult parametric_result(const CurveFormulas& formulas, const ParamInt
   }
   const double denominator = std::max(norm(d), 1e-3 * std::max(1.0, norm(j.c))) * speed;
   const double along = dot(d, j.d1);  // <p - c, c'>
-  if (t <= domain.tmin || t >= domain.tmax) {
+  if ((t <= domain.tmin || t >= domain.tmax) && !joins_smoothly(closure)) {
     // At tmin the admissible direction is +c'; a minimum there needs <p - c, c'> <= 0 (moving
     // inwards does not approach p), at tmax <p - c, c'> >= 0. Only a violation is a residual.
     r.summary.orthogonality[0] =

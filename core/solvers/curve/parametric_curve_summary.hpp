@@ -5,6 +5,7 @@
 #include <array>
 #include <vector>
 
+#include "geometry/curve_closure.hpp"
 #include "geometry/parametric_curve.hpp"
 #include "geometry/projection_result.hpp"
 #include "seeding/curve_sample_index.hpp"
@@ -13,10 +14,14 @@
 namespace footpoint::curve {
 
 // A result for c(t) as the foot of p: dim, num_params 1, params[0] = t, foot, distance,
-// orthogonality, location (endpoint when t is tmin or tmax) and on_boundary. When p is (almost) on
-// the curve the orthogonality is measured against max(|p - c|, 1e-3 max(1, |c|)).
+// orthogonality, location (endpoint when t is tmin or tmax, unless the curve closes smoothly there:
+// then the ends are one interior point) and on_boundary. When p is (almost) on the curve the
+// orthogonality is measured against max(|p - c|, 1e-3 max(1, |c|)).
 ProjectionResult parametric_result(const CurveFormulas& formulas, const ParamInterval& domain, Vec3 p,
-                                   double t, const char* method);
+                                   double t, const char* method, const CurveClosure& closure = {});
+
+// The curve's two ends are one point with one tangent: no end is an endpoint.
+inline bool joins_smoothly(const CurveClosure& closure) { return closure.closed && closure.smooth; }
 
 // Whether the result's orthogonality meets the control's residual tolerance.
 bool parametric_residual_met(const ProjectionResult& r, const IterationControl& control);

@@ -144,8 +144,7 @@ std::vector<Minimum> SurfaceSearch::minima(const ProjectionResult& r, bool* trun
   const bool continuum = r.summary.multiplicity.kind == Multiplicity::continuum;
   const double gap = std::fmax(Certificate::kRelativeGap * r.distance,
                                Certificate::absolute_gap_at(p_, Vec3{r.foot[0], r.foot[1], r.foot[2]}));
-  const std::size_t cap =
-      static_cast<std::size_t>(options_.max_minima > 0 ? options_.max_minima : Options::kDefaultMaxMinima);
+  const std::size_t cap = options_.minima_cap();
   std::vector<Minimum> out;
   *truncated = false;
   if (continuum) {
