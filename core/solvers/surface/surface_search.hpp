@@ -25,6 +25,9 @@ namespace footpoint::surface {
 inline constexpr double kMargin = 0.25;
 // Distinct minima (all_minima) have foot points farther apart than this, relative to 1 + |foot|.
 inline constexpr double kDistinctFoot = 1e-8;
+// A minimiser predicted by an early-stopped solve this near (relative to 1 + |foot|) to a foot
+// found is a copy of it (the multiplicity's test).
+inline constexpr double kCopyOfFoot = 1e-6;
 // Solutions remembered for the known-minimum rule when not all minima are wanted.
 inline constexpr int kRemembered = 16;
 inline constexpr int kStack = 128;

@@ -34,18 +34,14 @@ ProjectionResult SurfaceSearch::answer(const LocalSolution& s) const {
 }
 
 ProjectionResult SurfaceSearch::no_answer() const {
-  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   ProjectionResult r;
   r.dim = 3;
   r.num_params = 2;
-  r.foot = {nan, nan, nan};
-  r.params = {nan, nan};
   r.summary.method = "auto";
-  r.summary.location = Location::unknown;
+  withhold_answer(r);
   const bool some_finite = std::any_of(cells_.cells().begin(), cells_.cells().end(),
                                        [](const SurfaceCell& c) { return c.finite; });
-  r.summary.status =
-      some_finite && std::isfinite(options_.max_distance) ? Status::beyond_max_distance : Status::non_finite;
+  if (!(some_finite && std::isfinite(options_.max_distance))) r.summary.status = Status::non_finite;
   return r;
 }
 
@@ -116,12 +112,21 @@ AnswerMultiplicity SurfaceSearch::multiplicity(const ProjectionResult& r) const 
     m.feet.push_back({foot.x, foot.y, foot.z});
   };
   for (int i = 0; i < minimisers_count_; ++i) {
-    const Minimiser& m = minimisers_[i];
-    if (m.complete) {
-      consider(m.foot, m.distance);
-    } else if (m.distance <= r.distance + gap) {
-      // a basin left early whose lower bound does not exclude a tie: solved to the end
-      const LocalSolution t = solve_across_seams(m.u, m.v);
+    const Minimiser& k = minimisers_[i];
+    if (k.complete) {
+      consider(k.foot, k.distance);
+    } else if (k.distance <= r.distance + gap) {
+      // A basin left early whose lower bound does not exclude a tie: solved to the end, unless
+      // its predicted minimiser is a copy of a foot already listed (a periodic or self-covering
+      // parametrisation reaches one foot from many (u, v)): the prediction is Newton's from 1-3
+      // steps, within kCopyOfFoot of its minimiser's foot, where distinct tied feet are far apart.
+      const Vec3 predicted = formulas_.point(k.u, k.v);
+      const double near = kCopyOfFoot * (1.0 + norm(predicted));
+      const bool copy = std::any_of(m.feet.begin(), m.feet.end(), [&](const std::array<double, 3>& f) {
+        return norm2(Vec3{f[0], f[1], f[2]} - predicted) <= near * near;
+      });
+      if (copy) continue;
+      const LocalSolution t = solve_across_seams(k.u, k.v);
       if (t.status == Status::converged) consider(t.jet.s, t.distance);
     }
   }
