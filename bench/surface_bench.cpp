@@ -175,6 +175,14 @@ void print_row(const char* label, const Timed& t) {
               t.batch_ns / 1e3, percentile(t.ns, 0.9) / 1e3, percentile(t.ns, 0.99) / 1e3);
 }
 
+// The share of the answers whose certificate meets the gap (geometry/certificate.hpp).
+void print_certified(const Timed& t) {
+  const auto certified = std::count_if(t.results.begin(), t.results.end(), [](const ProjectionResult& r) {
+    return r.summary.certificate.certified;
+  });
+  std::printf(" %6.1f%%", 100.0 * static_cast<double>(certified) / static_cast<double>(t.results.size()));
+}
+
 // The slowest 5% of the points: how many local solves they started, how far they are (relative
 // to the surface's size) and where their answers lie, against the other 95%.
 void print_tail(const char* label, const Timed& t, double size) {
@@ -228,7 +236,7 @@ void section_auto(const std::vector<std::shared_ptr<const ParametricSurface>>& s
                   double overhead) {
   std::printf(
       "1. auto (global), CPU time per point     median    mean   batch     p90     p99"
-      "    cells  memory  compile\n");
+      "     certified    cells  memory  compile\n");
   std::vector<std::string> tails;
   for (std::size_t k = 0; k < surfaces.size(); ++k) {
     const ParametricSurface& g = *surfaces[k];
@@ -236,9 +244,11 @@ void section_auto(const std::vector<std::shared_ptr<const ParametricSurface>>& s
     const Timed box = time_points(g, sets[k].box, "auto", {}, runs, overhead);
     const Timed near = time_points(g, sets[k].near, "auto", {}, runs, overhead);
     print_row((name + " box  (2x bounding box)").c_str(), box);
+    print_certified(box);
     std::printf("  %6zu %5zu KB %5.1f ms\n", g.cells().cells().size(), g.memory_bytes() / 1024,
                 compile_ms[k]);
     print_row((name + " near (within 1%)").c_str(), near);
+    print_certified(near);
     std::printf("\n");
     print_tail((name + " box").c_str(), box, sets[k].size);
     print_tail((name + " near").c_str(), near, sets[k].size);
@@ -340,14 +350,16 @@ void section_http(const std::vector<std::shared_ptr<const ParametricSurface>>& s
   std::printf(
       "5. auto, http_bench's points (x in [-20,20], y in [-3,3], z in [-1.5,1.5]), CPU time per point\n"
       "                                     median    mean   batch     p90     p99  solves mean median "
-      "max\n");
+      "max  certified\n");
   const std::vector<Vec3> points = http_points(n, 4242);
   for (std::size_t k : {std::size_t{3}, std::size_t{0}}) {  // A1, S1
     const Timed t = time_points(*surfaces[k], points, "auto", {}, runs, overhead);
     std::vector<double> starts;
     for (const ProjectionResult& r : t.results) starts.push_back(r.summary.starts);
     print_row((kSurfaces[k].name + " http points").c_str(), t);
-    std::printf("  %5.2f %6.0f %4.0f\n", mean(starts), median(starts), percentile(starts, 1.0));
+    std::printf("  %5.2f %6.0f %4.0f", mean(starts), median(starts), percentile(starts, 1.0));
+    print_certified(t);
+    std::printf("\n");
   }
 }
 
