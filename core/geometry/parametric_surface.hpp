@@ -14,7 +14,7 @@ inline bool is_finite(const SurfaceJet& j) {
   return (zero.x + zero.y) + zero.z == 0.0;
 }
 // s(t + δ) to second order: s + s_u δu + s_v δv + ½ (s_uu δu^2 + 2 s_uv δu δv + s_vv δv^2) (the
-// quadratic model of a cell, a Newton model's foot point, an expanded last Newton step).
+// quadratic model of a cell, a Newton model's foot point).
 inline Vec3 taylor_point(const SurfaceJet& j, double du, double dv) {
   return j.s + j.su * du + j.sv * dv +
          0.5 * (j.suu * (du * du) + 2.0 * j.suv * (du * dv) + j.svv * (dv * dv));

@@ -25,6 +25,19 @@ class CertificateLedger {
     // a lower bound of f = ½ d^2 at least this gives a distance bound at least the target
     target_f_ = target_ > 0.0 ? 0.5 * target_ * target_ * (1.0 + 16.0 * 0x1p-53) : 0.0;
   }
+  // The gap is measured from the point the answer's parameters name: s within s_rad of the
+  // computed one (a rigorous point enclosure). Where that point is farther from p than the
+  // answer's distance says, its largest distance is the one certified - whatever produced the
+  // answer, `certified` speaks of the point at its parameters.
+  void measure_from(const Vec3& s, const Vec3& s_rad, const Vec3& p) {
+    double far2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double d = std::abs(s[k] - p[k]) + s_rad[k];
+      far2 += d * d;
+    }
+    const double far = std::sqrt(far2) * (1.0 + 4.0 * 0x1p-53);
+    if (far > distance_) retarget(far, absolute_gap_);
+  }
   double gap() const { return std::fmax(Certificate::kRelativeGap * distance_, absolute_gap_); }
   double target() const { return target_; }
   double target_f() const { return target_f_; }

@@ -51,6 +51,7 @@ class Certifier {
         best_(answer),
         ledger_(answer.distance, Certificate::absolute_gap_at(p, formulas.point(answer.t))) {
     known_.emplace_back(answer.t);
+    measure(known_.front());
     for (double t : known)
       if (t != answer.t) known_.emplace_back(t);
   }
@@ -195,6 +196,17 @@ class Certifier {
     best_ = s;
     improved_ = true;
     ledger_.retarget(s.distance, Certificate::absolute_gap_at(p_, formulas_.point(s.t)));
+    measure(known_.back());
+  }
+
+  // The answer's distance measured from its parameters' point, enclosed (CertificateLedger::
+  // measure_from); the enclosure is kept for the bounds from it.
+  void measure(Known& k) {
+    const PointEnclosure<1> e = enclose_point<1>(formulas_.program(), {k.t});
+    if (!e.valid) return;
+    ledger_.measure_from(e.s, e.s_rad, p_);
+    k.at = enclose_gradient(e, p_);
+    k.enclosed = true;
   }
 
   // The minimiser over the cell of the Newton model of f at its centre.

@@ -35,7 +35,6 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
   ConvergenceTest test(criteria);
   double last_step_inf = std::numeric_limits<double>::infinity();
   int stagnant_steps = 0;
-  bool expanded = false;  // the jet is the Taylor expansion of the previous one
   // the previous iterate (first: the caller's reference point) and its H (upper triangle), for
   // the early stop's Lipschitz estimate
   double t_prev[2] = {0.0, 0.0}, H_prev[3] = {0.0, 0.0, 0.0};
@@ -148,8 +147,7 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
 
     // Armijo's backtracking along the projection arc (projection_arc_search.hpp)
     const ArcStep step =
-        search_projection_arc(formulas, p, jet, t, d, lo, hi, g, convex, step_inf, step_scale, !expanded);
-    expanded = step.expanded;
+        search_projection_arc(formulas, p, jet, t, d, lo, hi, g, convex, step_scale);
     const bool accepted = step.accepted, vanishes = step.vanishes;
     const double(&tn)[2] = step.t;
     const SurfaceJet& jn = step.jet;

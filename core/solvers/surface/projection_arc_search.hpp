@@ -14,16 +14,14 @@ struct ArcStep {
   bool accepted = false;
   bool vanishes = false;  // the full step changes no parameter: they are as good as they can be
   double t[2] = {0.0, 0.0};
-  SurfaceJet jet;         // at t, when accepted
-  bool expanded = false;  // jet is the Taylor expansion of the previous one (not evaluated)
+  SurfaceJet jet;  // evaluated at t, when accepted
 };
 
-// From t (jet there, gradient g) along d, inside [lo, hi]. `step_inf` is |d|∞ on the free
-// parameters, `step_scale` the parameters' scale (surface_convergence.hpp); `may_expand`: the jet
-// at the full step may be the previous one's Taylor expansion (not twice in a row).
+// From t (jet there, gradient g) along d, inside [lo, hi]; `step_scale` is the parameters' scale
+// (surface_convergence.hpp).
 ArcStep search_projection_arc(const SurfaceFormulas& formulas, const Vec3& p, const SurfaceJet& jet,
                               const double (&t)[2], const double (&d)[2], const double (&lo)[2],
-                              const double (&hi)[2], const double (&g)[2], bool convex, double step_inf,
-                              double step_scale, bool may_expand);
+                              const double (&hi)[2], const double (&g)[2], bool convex,
+                              double step_scale);
 
 }  // namespace footpoint::surface

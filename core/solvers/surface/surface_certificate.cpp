@@ -43,6 +43,7 @@ struct Known {
   explicit Known(const Params2& at_t) : t(at_t) {}
   Params2 t;
   bool enclosed = false;
+  PointEnclosure<2> point;  // s and J at t (lazily)
   GradientEnclosure<2> at;  // f and ∇f at t, enclosed (lazily)
 };
 
@@ -60,6 +61,8 @@ class Certifier {
         best_(answer),
         ledger_(answer.distance, Certificate::absolute_gap_at(p, answer.jet.s)) {
     known_.emplace_back(Params2{answer.u, answer.v});
+    if (!options.threshold && enclose(known_.front()))
+      ledger_.measure_from(known_.front().point.s, known_.front().point.s_rad, p_);
     for (const Params2& t : known)
       if (t[0] != answer.u || t[1] != answer.v) known_.emplace_back(t);
   }
@@ -179,12 +182,7 @@ class Certifier {
       const Params2 q{std::clamp(k.t[0], b.lo[0], b.hi[0]), std::clamp(k.t[1], b.lo[1], b.hi[1])};
       GradientEnclosure<2> at;
       if (q == k.t) {
-        if (!k.enclosed) {
-          const PointEnclosure<2> e = enclose_point<2>(formulas_.program(), k.t);
-          if (!e.valid) continue;
-          k.at = enclose_gradient(e, p_);
-          k.enclosed = true;
-        }
+        if (!enclose(k)) continue;
         at = k.at;
       } else {
         // the bound from the point jet at q (no rounding radii) first: the rigorous enclosure, a
@@ -205,6 +203,17 @@ class Certifier {
       if (b.lb >= ledger_.target()) return true;
     }
     return false;
+  }
+
+  // s, J, f and ∇f at a known minimiser, enclosed once.
+  bool enclose(Known& k) {
+    if (!k.enclosed) {
+      k.point = enclose_point<2>(formulas_.program(), k.t);
+      if (!k.point.valid) return false;
+      k.at = enclose_gradient(k.point, p_);
+      k.enclosed = true;
+    }
+    return true;
   }
 
   // Where a local solve starts in the box: the minimiser over it of the Newton model at its
@@ -240,6 +249,7 @@ class Certifier {
     best_ = s;
     improved_ = true;
     ledger_.retarget(s.distance, Certificate::absolute_gap_at(p_, s.jet.s));
+    if (enclose(known_.back())) ledger_.measure_from(known_.back().point.s, known_.back().point.s_rad, p_);
   }
 
   void examine(OpenBox b) {

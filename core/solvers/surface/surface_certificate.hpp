@@ -45,6 +45,9 @@ struct SurfaceCertifyOptions {
   int max_boxes = 400;
   // Local solves started per point from boxes that stay open.
   int max_solves = 32;
+  // The answer is a distance to certify against (no point of the surface within max_distance),
+  // not a point: its distance is not measured from its parameters (CertificateLedger::measure_from).
+  bool threshold = false;
 };
 
 struct SurfaceCertification {

@@ -65,7 +65,10 @@ void SurfaceSearch::certify(ProjectionResult& r, bool within) {
   for (const Found& f : all_)
     if (f.sol.distance <= near_best) known.push_back({f.sol.u, f.sol.v});
   const SurfaceLocalSolve solve = [&](double u, double v) { return solve_across_seams(u, v); };
-  const SurfaceCertification c = certify_surface(cells_, formulas_, box_, p_, target, known, solve, true);
+  SurfaceCertifyOptions certify_options;
+  certify_options.threshold = !within;
+  const SurfaceCertification c =
+      certify_surface(cells_, formulas_, box_, p_, target, known, solve, true, certify_options);
   if (c.improved && c.better.distance <= options_.max_distance) {
     const int starts = r.summary.starts;
     r = answer(c.better);
