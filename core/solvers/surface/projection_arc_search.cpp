@@ -18,8 +18,7 @@ constexpr double kLocalStep = 1e-6;
 
 ArcStep search_projection_arc(const SurfaceFormulas& formulas, const Vec3& p, const SurfaceJet& jet,
                               const double (&t)[2], const double (&d)[2], const double (&lo)[2],
-                              const double (&hi)[2], const double (&g)[2], bool convex,
-                              double step_scale) {
+                              const double (&hi)[2], const double (&g)[2], bool convex, double step_scale) {
   ArcStep a;
   double* tn = a.t;
   SurfaceJet& jn = a.jet;

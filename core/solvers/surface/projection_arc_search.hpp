@@ -21,7 +21,6 @@ struct ArcStep {
 // (surface_convergence.hpp).
 ArcStep search_projection_arc(const SurfaceFormulas& formulas, const Vec3& p, const SurfaceJet& jet,
                               const double (&t)[2], const double (&d)[2], const double (&lo)[2],
-                              const double (&hi)[2], const double (&g)[2], bool convex,
-                              double step_scale);
+                              const double (&hi)[2], const double (&g)[2], bool convex, double step_scale);
 
 }  // namespace footpoint::surface
