@@ -146,8 +146,7 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     }
 
     // Armijo's backtracking along the projection arc (projection_arc_search.hpp)
-    const ArcStep step =
-        search_projection_arc(formulas, p, jet, t, d, lo, hi, g, convex, step_scale);
+    const ArcStep step = search_projection_arc(formulas, p, jet, t, d, lo, hi, g, convex, step_scale);
     const bool accepted = step.accepted, vanishes = step.vanishes;
     const double(&tn)[2] = step.t;
     const SurfaceJet& jn = step.jet;
