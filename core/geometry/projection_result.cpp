@@ -45,6 +45,8 @@ const char* to_string(Location l) {
       return "singular_point";
     case Location::pole:
       return "pole";
+    case Location::kink:
+      return "kink";
     case Location::unknown:
       return "unknown";
   }

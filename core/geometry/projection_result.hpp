@@ -30,7 +30,7 @@ const char* to_string(Status s);
 // (a seam of a closed direction is no edge: it is interior), at a pole of a surface (an edge that
 // is one point: every parameter along it gives the foot), at an end of a parametric curve (not of a
 // closed one), on a face of an implicit curve's box, at a singular point.
-enum class Location { interior, edge, corner, endpoint, box_face, singular_point, pole, unknown };
+enum class Location { interior, edge, corner, endpoint, box_face, singular_point, pole, kink, unknown };
 const char* to_string(Location l);
 
 // How many points of the geometry are nearest: one; k distinct feet at the same distance (within

@@ -6,6 +6,7 @@
 #include "geometry/box_enclosure.hpp"
 #include "solvers/curve/auto_result.hpp"
 #include "solvers/curve/iteration_control.hpp"
+#include "solvers/curve/kink_minimum.hpp"
 #include "solvers/curve/parametric_curve_certificate.hpp"
 #include "solvers/curve/parametric_curve_summary.hpp"
 #include "solvers/curve/parametric_newton.hpp"
@@ -163,10 +164,18 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
     }
   }
   ProjectionResult r = parametric_result(formulas, domain, p, best.t, "auto", closure);
-  finish_auto_result(
-      r,
-      best.distance < kInfinity && (parametric_residual_met(r, control) || at_rounding_level(formulas, p, r)),
-      best.iterations, best.step, starts, options, std::move(minima), std::move(best_trace));
+  bool met =
+      best.distance < kInfinity && (parametric_residual_met(r, control) || at_rounding_level(formulas, p, r));
+  double kink = best.t;
+  if (!met && best.distance < kInfinity && r.summary.location == Location::interior &&
+      kink_minimum(formulas, p, domain.tmax - domain.tmin, kink) && domain.contains(kink)) {
+    r = parametric_result(formulas, domain, p, kink, "auto", closure);
+    r.summary.location = Location::kink;
+    r.summary.orthogonality[0] = 0.0;  // zero lies between the one-sided slopes
+    met = true;
+  }
+  finish_auto_result(r, met, best.iterations, best.step, starts, options, std::move(minima),
+                     std::move(best_trace));
   r.summary.certificate = certificate;
   return r;
 }
