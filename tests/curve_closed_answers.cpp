@@ -1,6 +1,7 @@
 // `auto` on curves as a geometer reads the answers: the ends of a curve that closes smoothly are one
 // interior point, no endpoint; beyond max_distance there is no foot point, parameter or distance;
-// all_minima is capped by max_minima and says when it cut. References in closed form: the unit
+// all_minima is capped by max_minima and says when it cut; the multiplicity of the answer (unique,
+// tied, a continuum) is told. References in closed form: the unit
 // circle (cos t, sin t) is at distance ||p| - 1| from p, nearest at t = atan2(p_y, p_x) unless
 // p = 0, where every point is nearest.
 #include <doctest/doctest.h>
@@ -77,15 +78,22 @@ TEST_CASE("curves beyond max_distance: no foot point, parameter or distance") {
 }
 
 TEST_CASE("all_minima on a curve is capped by max_minima, and says when it cut") {
-  // from the centre every point of the circle is nearest: the samples' local minima are many (24)
+  // a six-petal rosette (1 + cos(6t)/5)(cos t, sin t) seen from its centre: six tied minima at
+  // 4/5, at t = π/6 + kπ/3
   Options o;
   o.all_minima = true;
-  const auto g = circle(0, 2 * kPi);
+  GeometryDefinition def;
+  def.type = GeometryType::parametric_curve;
+  def.formulas = {{"x", "(1+cos(6*t)/5)*cos(t)"}, {"y", "(1+cos(6*t)/5)*sin(t)"}};
+  def.domain = {{"t", {0, 2 * kPi}}};
+  const auto g = compile_geometry(def);
   const ProjectionResult all = project(*g, {0, 0, 0}, o);
-  CHECK(all.distance == doctest::Approx(1.0).epsilon(1e-15));
+  CHECK(all.distance == doctest::Approx(0.8).epsilon(1e-15));
+  CHECK(all.summary.multiplicity.kind == Multiplicity::tied);
+  CHECK(all.summary.multiplicity.count == 6);
   o.max_minima = 3;
   const ProjectionResult capped = project(*g, {0, 0, 0}, o);
-  REQUIRE(all.minima.size() > 3);
+  REQUIRE(all.minima.size() >= 6);
   CHECK_FALSE(all.minima_truncated);
   CHECK(capped.minima.size() == 3);
   CHECK(capped.minima_truncated);
@@ -99,4 +107,30 @@ TEST_CASE("all_minima on a curve is capped by max_minima, and says when it cut")
   CHECK(one.minima.size() == 1);
   CHECK(one.minima_truncated);
   CHECK(one.minima[0].distance == doctest::Approx(1.0).epsilon(1e-14));
+}
+
+TEST_CASE("the multiplicity of a curve's answer: unique, tied, or a continuum") {
+  // from the circle's centre every point is nearest: a continuum, one representative in all_minima
+  Options o;
+  o.all_minima = true;
+  const ProjectionResult centre = project(*circle(0, 2 * kPi), {0, 0, 0}, o);
+  CHECK(centre.summary.status == Status::converged);
+  CHECK(centre.summary.multiplicity.kind == Multiplicity::continuum);
+  CHECK(centre.minima.size() == 1);
+  CHECK(centre.distance == doctest::Approx(1.0).epsilon(1e-15));
+  // the ellipse (2 cos t, sin t) from its centre: (0, ±1), tied
+  GeometryDefinition def;
+  def.type = GeometryType::parametric_curve;
+  def.formulas = {{"x", "2*cos(t)"}, {"y", "sin(t)"}};
+  def.domain = {{"t", {0, 2 * kPi}}};
+  const auto ellipse = compile_geometry(def);
+  const ProjectionResult two = project(*ellipse, {0, 0, 0});
+  REQUIRE(two.summary.multiplicity.kind == Multiplicity::tied);
+  CHECK(two.summary.multiplicity.count == 2);
+  CHECK(std::abs(two.summary.multiplicity.feet[0][1] + two.summary.multiplicity.feet[1][1]) <= 1e-15);
+  CHECK(std::abs(std::abs(two.summary.multiplicity.feet[1][1]) - 1.0) <= 1e-15);
+  // off the axes: one nearest point
+  const ProjectionResult one = project(*ellipse, {0.5, 0.3, 0});
+  CHECK(one.summary.multiplicity.kind == Multiplicity::unique);
+  CHECK(one.summary.multiplicity.feet.empty());
 }

@@ -83,6 +83,24 @@ const char* to_string(Multiplicity m) {
   return "unique";
 }
 
+void AnswerMultiplicity::add_distinct(const std::array<double, 3>& foot, double same) {
+  for (const auto& f : feet) {
+    const double dx = f[0] - foot[0], dy = f[1] - foot[1], dz = f[2] - foot[2];
+    if (dx * dx + dy * dy + dz * dz <= same * same) return;
+  }
+  feet.push_back(foot);
+}
+
+void AnswerMultiplicity::settle() {
+  count = static_cast<int>(feet.size());
+  if (count > 1) {
+    kind = Multiplicity::tied;
+  } else {
+    count = 1;
+    feet.clear();
+  }
+}
+
 void withhold_answer(ProjectionResult& r) {
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   r.foot = {nan, nan, nan};

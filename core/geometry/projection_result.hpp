@@ -43,6 +43,11 @@ struct AnswerMultiplicity {
   Multiplicity kind = Multiplicity::unique;
   int count = 1;                            // distinct feet (tied)
   std::vector<std::array<double, 3>> feet;  // tied: the feet, the answer's first
+
+  // Lists `foot` unless a foot listed is within `same` of it.
+  void add_distinct(const std::array<double, 3>& foot, double same);
+  // The kind the list says: tied with more than one foot, else unique (and no list).
+  void settle();
 };
 
 struct Summary {

@@ -5,6 +5,7 @@
 
 #include "geometry/box_enclosure.hpp"
 #include "solvers/curve/auto_result.hpp"
+#include "solvers/curve/curve_multiplicity.hpp"
 #include "solvers/curve/iteration_control.hpp"
 #include "solvers/curve/kink_minimum.hpp"
 #include "solvers/curve/parametric_curve_certificate.hpp"
@@ -126,7 +127,8 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
   const double slack = 1e-12 * std::max(1.0, d0);
 
   Found best;
-  std::vector<double> solved;  // every minimiser found, for the certificate
+  std::vector<double> solved;   // every minimiser found, for the certificate
+  std::vector<FoundFoot> feet;  // and their feet, for the multiplicity
   std::vector<std::array<double, 3>> best_trace;
   std::vector<Minimum> minima;
   int starts = 0;
@@ -138,6 +140,7 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
     const Found f = solve_from(formulas, s, p, c.index, control);
     if (!(f.distance < kInfinity)) continue;
     solved.push_back(f.t);
+    feet.push_back({formulas.point(f.t), f.distance});
     if (options.all_minima) {
       const Vec3 x = formulas.point(f.t);
       const bool end = (f.t <= domain.tmin || f.t >= domain.tmax) && !joins_smoothly(closure);
@@ -157,6 +160,7 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
         certify_parametric_curve(cells, formulas, p, {best.t, best.distance}, solved, descend, true);
     certificate = c.certificate;
     if (c.improved) {
+      feet.push_back({formulas.point(c.better.t), c.better.distance});
       best.t = c.better.t;
       best.distance = c.better.distance;
       best.iterations = 0;
@@ -173,6 +177,12 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
     r.summary.location = Location::kink;
     r.summary.orthogonality[0] = 0.0;  // zero lies between the one-sided slopes
     met = true;
+  }
+  if (best.distance < kInfinity) {
+    r.summary.multiplicity = curve_multiplicity(formulas, p, r, feet);
+    // a continuum of nearest points: the answer stands for all of them, no arbitrary sample
+    if (r.summary.multiplicity.kind == Multiplicity::continuum)
+      minima.assign(1, {r.foot, r.params, r.distance, r.summary.location});
   }
   finish_auto_result(r, met, best.iterations, best.step, starts, options, std::move(minima),
                      std::move(best_trace));

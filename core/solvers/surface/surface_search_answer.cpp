@@ -109,10 +109,7 @@ AnswerMultiplicity SurfaceSearch::multiplicity(const ProjectionResult& r) const 
   m.feet.push_back(r.foot);
   auto consider = [&](const Vec3& foot, double distance) {
     if (!(std::abs(distance - r.distance) <= gap)) return;
-    const double same = kDistinctFoot * (1.0 + norm(foot));
-    for (const auto& f : m.feet)
-      if (norm2(Vec3{f[0], f[1], f[2]} - foot) <= same * same) return;
-    m.feet.push_back({foot.x, foot.y, foot.z});
+    m.add_distinct({foot.x, foot.y, foot.z}, kDistinctFoot * (1.0 + norm(foot)));
   };
   for (int i = 0; i < minimisers_count_; ++i) {
     const Minimiser& k = minimisers_[i];
@@ -134,12 +131,7 @@ AnswerMultiplicity SurfaceSearch::multiplicity(const ProjectionResult& r) const 
     }
   }
   for (const Found& f : all_) consider(f.sol.jet.s, f.sol.distance);
-  m.count = static_cast<int>(m.feet.size());
-  if (m.count > 1) {
-    m.kind = Multiplicity::tied;
-  } else {
-    m.feet.clear();
-  }
+  m.settle();
   return m;
 }
 
