@@ -13,6 +13,7 @@
 #include "batch/batch.hpp"
 #include "batch/thread_pool.hpp"
 #include "compiled/compiled_geometry.hpp"
+#include "sweep_length.hpp"
 
 using namespace footpoint;
 
@@ -41,10 +42,10 @@ TEST_CASE("answers do not depend on the points before them, their order or the b
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> x(-20, 20), y(-3, 3), z(-1.5, 1.5);
   std::vector<double> points;
-  for (int i = 0; i < 40; ++i) points.insert(points.end(), {x(rng), y(rng), z(rng)});
+  for (int i = 0; i < test::sweep_length(40); ++i) points.insert(points.end(), {x(rng), y(rng), z(rng)});
   // and points near the surface, where the certificates bisect most
   const auto reference = self_covering();
-  for (int i = 0; i < 20; ++i) {
+  for (int i = 0; i < test::sweep_length(20); ++i) {
     const double u = x(rng), v = x(rng);
     const double q[3] = {u + v, std::sin(u) + 2 * std::cos(v) + 0.01, std::sin(u + v) - 0.01};
     points.insert(points.end(), q, q + 3);
