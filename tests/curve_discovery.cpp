@@ -289,3 +289,18 @@ TEST_CASE("discovery: singular points of any order are bounded, never refused") 
     CHECK(found);
   }
 }
+
+TEST_CASE("discovery: a curve that is one isolated point is bounded at the finest grid, not refined on") {
+  // x^2 + y^2 = 0 is the origin alone: one cell stays unproved at every level (the request fuzzer's
+  // find: refining on overflowed the grid's int32 cell indices). It is kept as an unproved box, and
+  // a point is answered with the origin.
+  const auto g = planar_curve("x^2+y^2-0", {{-2, -2, 0}, {2, 2, 0}});
+  REQUIRE(g);
+  const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
+  REQUIRE(curve.discovery().stats.unproved_boxes >= 1);
+  for (const UnprovedBox& u : curve.discovery().cells.unproved) CHECK(u.box.contains({0, 0, 0}, 1e-6));
+  const double p[2] = {0.3, 0.4};
+  const ProjectionResult r = g->project(p, "auto", Options{}).value();
+  CHECK(r.distance == doctest::Approx(0.5).epsilon(1e-6));
+  CHECK(r.summary.certificate.lower_bound <= 0.5);
+}

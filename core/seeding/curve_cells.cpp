@@ -78,7 +78,9 @@ void subdivide(const ImplicitEquations& equations, const CurveEnclosure& enclosu
       out.cells.push_back(cell);
       continue;
     }
-    if (proof.verdict == CellVerdict::unproved && item.level >= settings.max_extra_levels) {
+    // unproved after max_extra_levels, or at the finest grid the indices hold (an isolated point
+    // of the curve, x^2 + y^2 = 0, keeps one cell unproved at every level): kept as an unproved box
+    if (item.level >= settings.max_extra_levels || grid.finest()) {
       out.unproved.push_back({box, proof.reason});
       continue;
     }

@@ -13,9 +13,7 @@ Box3 CellGrid::cell(const CellIndex& c) const {
     const double n = std::ldexp(1.0, bits[k]);
     const double w = box.hi[k] - box.lo[k];
     b.lo[k] = std::max(clip.lo[k], box.lo[k] + w * (c[k] / n));
-    b.hi[k] =
-        std::min(clip.hi[k],
-                 (c[k] + 1 == static_cast<std::int32_t>(n)) ? box.hi[k] : box.lo[k] + w * ((c[k] + 1) / n));
+    b.hi[k] = std::min(clip.hi[k], (c[k] + 1.0 == n) ? box.hi[k] : box.lo[k] + w * ((c[k] + 1.0) / n));
   }
   return b;
 }

@@ -7,6 +7,7 @@
 // formula's nice numbers share (so that a circle through (1, 0) or a tangent at y = 1 does not sit
 // on a cell's edge or face at every level); its cells are clipped to the curve's box.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -35,6 +36,9 @@ struct CellGrid {
     return static_cast<std::uint64_t>(c[0]) | (static_cast<std::uint64_t>(c[1]) << 21) |
            (static_cast<std::uint64_t>(c[2]) << 42);
   }
+  // 2^kMaxBits cells per axis at most: a cell index and the one after it are int32.
+  static constexpr int kMaxBits = 30;
+  bool finest() const { return std::max({bits[0], bits[1], bits[2]}) >= kMaxBits; }
   // The grid one bisection finer along the axes that are at least half as long as the longest
   // (so cells stay roughly cubical); planar boxes (zero z extent) are never split along z.
   CellGrid refined() const;
