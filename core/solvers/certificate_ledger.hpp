@@ -30,12 +30,7 @@ class CertificateLedger {
   // answer's distance says, its largest distance is the one certified - whatever produced the
   // answer, `certified` speaks of the point at its parameters.
   void measure_from(const Vec3& s, const Vec3& s_rad, const Vec3& p) {
-    double far2 = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const double d = std::abs(s[k] - p[k]) + s_rad[k];
-      far2 += d * d;
-    }
-    const double far = std::sqrt(far2) * (1.0 + 4.0 * 0x1p-53);
+    const double far = farthest(s, s_rad, p);
     if (far > distance_) retarget(far, absolute_gap_);
   }
   double gap() const { return std::fmax(Certificate::kRelativeGap * distance_, absolute_gap_); }
@@ -57,12 +52,7 @@ class CertificateLedger {
   // A point s of the geometry (each coordinate within s_rad) is nearer to p than the answer by
   // more than the gap.
   bool nearer_than_answer(const Vec3& s, const Vec3& s_rad, const Vec3& p) const {
-    double far2 = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const double d = std::abs(s[k] - p[k]) + s_rad[k];
-      far2 += d * d;
-    }
-    return std::sqrt(far2) * (1.0 + 4.0 * 0x1p-53) < distance_ - gap();
+    return farthest(s, s_rad, p) < distance_ - gap();
   }
 
   Certificate finish(int boxes) const {
@@ -81,6 +71,16 @@ class CertificateLedger {
   }
 
  private:
+  // An upper bound of |s - p| for every point within s_rad of s (per coordinate), rounded up.
+  static double farthest(const Vec3& s, const Vec3& s_rad, const Vec3& p) {
+    double far2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double d = std::abs(s[k] - p[k]) + s_rad[k];
+      far2 += d * d;
+    }
+    return std::sqrt(far2) * (1.0 + 4.0 * 0x1p-53);
+  }
+
   double distance_ = 0.0;
   double absolute_gap_ = 0.0;
   double target_ = 0.0, target_f_ = 0.0;

@@ -12,7 +12,7 @@ constexpr double kFlat = 1e-8;          // φ'' relative to |c'|^2
 }  // namespace
 
 AnswerMultiplicity curve_multiplicity(const CurveFormulas& formulas, Vec3 p, const ProjectionResult& r,
-                                      const std::vector<FoundFoot>& found) {
+                                      const std::vector<CurveMinimum>& found) {
   AnswerMultiplicity m;
   m.computed = true;
   const double t = r.params[0];
@@ -28,9 +28,11 @@ AnswerMultiplicity curve_multiplicity(const CurveFormulas& formulas, Vec3 p, con
   const double gap =
       std::fmax(Certificate::kRelativeGap * r.distance, Certificate::absolute_gap_at(p, answer));
   m.feet.push_back(r.foot);
-  for (const FoundFoot& f : found)
-    if (std::abs(f.distance - r.distance) <= gap)
-      m.add_distinct({f.foot.x, f.foot.y, f.foot.z}, kDistinctFoot * (1.0 + norm(f.foot)));
+  for (const CurveMinimum& f : found) {
+    if (!(std::abs(f.distance - r.distance) <= gap)) continue;
+    const Vec3 foot = formulas.point(f.t);
+    m.add_distinct({foot.x, foot.y, foot.z}, kDistinctFoot * (1.0 + norm(foot)));
+  }
   m.settle();
   return m;
 }

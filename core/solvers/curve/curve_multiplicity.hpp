@@ -7,21 +7,18 @@
 //    distance is within the certificate's gap of the answer's, the answer's first;
 //  - unique otherwise.
 // The minima are the local solves' (every sample that could hold the nearest point starts one)
-// and the certificate's: a tie hidden from both is one its proof would have had to exclude.
+// and the certificate's: a tie hidden from both is one its proof would have had to exclude. Only
+// those within the gap have their foot point evaluated.
 #pragma once
 #include <vector>
 
 #include "geometry/parametric_curve.hpp"
 #include "geometry/projection_result.hpp"
+#include "solvers/curve/parametric_curve_certificate.hpp"
 
 namespace footpoint::curve {
 
-struct FoundFoot {
-  Vec3 foot;
-  double distance;
-};
-
 AnswerMultiplicity curve_multiplicity(const CurveFormulas& formulas, Vec3 p, const ProjectionResult& r,
-                                      const std::vector<FoundFoot>& found);
+                                      const std::vector<CurveMinimum>& found);
 
 }  // namespace footpoint::curve

@@ -127,8 +127,8 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
   const double slack = 1e-12 * std::max(1.0, d0);
 
   Found best;
-  std::vector<double> solved;   // every minimiser found, for the certificate
-  std::vector<FoundFoot> feet;  // and their feet, for the multiplicity
+  std::vector<double> solved;       // every minimiser found, for the certificate
+  std::vector<CurveMinimum> found;  // and their distances, for the multiplicity
   std::vector<std::array<double, 3>> best_trace;
   std::vector<Minimum> minima;
   int starts = 0;
@@ -140,7 +140,7 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
     const Found f = solve_from(formulas, s, p, c.index, control);
     if (!(f.distance < kInfinity)) continue;
     solved.push_back(f.t);
-    feet.push_back({formulas.point(f.t), f.distance});
+    found.push_back({f.t, f.distance});
     if (options.all_minima) {
       const Vec3 x = formulas.point(f.t);
       const bool end = (f.t <= domain.tmin || f.t >= domain.tmax) && !joins_smoothly(closure);
@@ -160,7 +160,7 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
         certify_parametric_curve(cells, formulas, p, {best.t, best.distance}, solved, descend, true);
     certificate = c.certificate;
     if (c.improved) {
-      feet.push_back({formulas.point(c.better.t), c.better.distance});
+      found.push_back(c.better);
       best.t = c.better.t;
       best.distance = c.better.distance;
       best.iterations = 0;
@@ -179,7 +179,7 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
     met = true;
   }
   if (best.distance < kInfinity) {
-    r.summary.multiplicity = curve_multiplicity(formulas, p, r, feet);
+    r.summary.multiplicity = curve_multiplicity(formulas, p, r, found);
     // a continuum of nearest points: the answer stands for all of them, no arbitrary sample
     if (r.summary.multiplicity.kind == Multiplicity::continuum)
       minima.assign(1, {r.foot, r.params, r.distance, r.summary.location});
