@@ -380,6 +380,12 @@ void write_closure(JsonWriter& w, const CompiledGeometry& geometry) {
   w.end_array();
   w.key("tolerance");
   w.number(surface ? surface->closure().tolerance : curve->closure().tolerance);
+  if (surface) {
+    w.key("translations");
+    w.begin_array();
+    for (const auto& d : surface->self_covering().translations) write_point(w, {d[0], d[1], 0.0}, 2);
+    w.end_array();
+  }
   w.end_object();
 }
 

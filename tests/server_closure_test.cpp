@@ -1,10 +1,12 @@
 // Seams, poles and closed curves over HTTP: POST /v1/geometries and GET /v1/geometries/{id} report
 // the closure found at compile time (torus, sphere, cone, Möbius band, plane, circle, helix; none
-// for implicit curves); "periodic" is read, validated (400 for an unknown or repeated name, 422 for
-// a direction whose edges do not coincide), written back in the definition and part of the id only
-// when present, so that the ids of definitions without it stay what they were.
+// for implicit curves) and a surface's translations ([GSA] Ex. 1 over [-25,25]^2); "periodic" is read,
+// validated (400 for an unknown or repeated name, 422 for a direction whose edges do not coincide), written
+// back in the definition and part of the id only when present, so that the ids of definitions without it stay
+// what they were.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -101,6 +103,19 @@ TEST_CASE("the closure of each geometry, in the POST response and in GET /v1/geo
   CHECK(plane["periodic"] == json::array());
   CHECK(plane["seams"] == json::array());
   CHECK(plane["poles"] == json::array());
+  CHECK(plane["translations"] == json::array());
+  CHECK(t["translations"] == json::array());  // one period each way: no translate inside the box
+
+  // [GSA] Ex. 1 over [-25,25]^2 repeats along k (2π, -2π), k = 1..7
+  const json a1 =
+      post(*c, "/v1/geometries", surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", "[-25,25]", "[-25,25]"), 201);
+  const json& moves = a1["closure"]["translations"];
+  REQUIRE(moves.size() == 7);
+  for (int k = 0; k < 7; ++k) {
+    CHECK(moves[k][0].get<double>() == doctest::Approx(2.0 * M_PI * (k + 1)).epsilon(1e-15));
+    CHECK(moves[k][1].get<double>() == doctest::Approx(-2.0 * M_PI * (k + 1)).epsilon(1e-15));
+  }
+  CHECK(get(*c, "/v1/geometries/" + a1["geometry_id"].get<std::string>())["closure"] == a1["closure"]);
 
   const json circle =
       post(*c, "/v1/geometries",

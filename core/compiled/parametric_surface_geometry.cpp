@@ -100,7 +100,8 @@ ParametricSurface::ParametricSurface(GeometryDefinition def, formula::Program pr
       formulas_(std::move(program)),
       box_(box),
       closure_(detect_surface_closure(formulas_, box_, declared_uv(definition()))),
-      cells_(formulas_, box_, seeding) {}
+      self_covering_(detect_self_covering(formulas_, box_)),
+      cells_(formulas_, box_, seeding, self_covering_) {}
 
 const std::vector<MethodInfo>& ParametricSurface::methods() const { return table().infos(); }
 

@@ -31,6 +31,8 @@ class ParametricSurface final : public CompiledGeometry {
   // Where the domain meets itself: seams (closed directions) and poles, found at compile time.
   const SurfaceClosure& closure() const { return closure_; }
   const SurfaceCells& cells() const { return cells_; }
+  // Translations under which the formulas repeat within the box (geometry/self_covering.hpp).
+  const SelfCovering& self_covering() const { return self_covering_; }
 
  private:
   ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
@@ -38,6 +40,7 @@ class ParametricSurface final : public CompiledGeometry {
   SurfaceFormulas formulas_;
   ParamBox box_;
   SurfaceClosure closure_;
+  SelfCovering self_covering_;
   SurfaceCells cells_;
 };
 

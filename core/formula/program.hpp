@@ -91,6 +91,15 @@ class Program {
   template <int N>
   void ball_jets1(const double* x, BallJet1<N>* out) const;
 
+  // The translations δ != 0 of the inputs under which every formula is invariant, f(x + δ) = f(x)
+  // for all x, as far as the formulas' structure proves it (formula/invariant_translations.cpp:
+  // affine arguments of sin, cos and tan moved by whole periods, everything else unmoved): those
+  // with |δ_i| < extent[i], lexicographically positive (of δ and -δ only the one whose first
+  // nonzero entry is positive), shortest first, ties in lexicographic order, at most max_count. One or two
+  // inputs; empty for more, and where the formulas are constant along a direction (no lattice).
+  std::vector<std::vector<double>> invariant_translations(const std::vector<double>& extent,
+                                                          std::size_t max_count = 64) const;
+
   struct Tape;  // opaque
 
  private:

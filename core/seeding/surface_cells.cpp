@@ -127,7 +127,7 @@ SurfaceCellBounds cell_bounds(const SurfaceFormulas& f, const Rect& r, const Sur
 }  // namespace
 
 SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
-                           const SurfaceSeedingOptions& options) {
+                           const SurfaceSeedingOptions& options, const SelfCovering& covering) {
   for (int k = 0; k < 4; ++k) {
     SurfaceCorner& c = corners_[static_cast<std::size_t>(k)];
     c.u = k % 2 == 0 ? box.umin : box.umax;
@@ -139,13 +139,18 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
   std::vector<Rect> rects;
   std::vector<Evaluated> evals;
   std::vector<int> depths;
+  // a rectangle that is a translate of another part of the box (geometry/self_covering.hpp) adds
+  // no point of the surface: it is neither evaluated, refined nor a cell
+  std::vector<bool> covered;
   auto add_node = [&](const Rect& r, int depth) {
     nodes.emplace_back();
     rects.push_back(r);
-    evals.push_back(evaluate(formulas, r));
+    covered.push_back(covering.covered(box, r.u0, r.u1, r.v0, r.v1));
+    evals.push_back(covered.back() ? Evaluated{} : evaluate(formulas, r));
     depths.push_back(depth);
     return static_cast<std::int32_t>(nodes.size() - 1);
   };
+  auto kept = [&](std::int32_t i) { return !covered[static_cast<std::size_t>(i)]; };
   auto split = [&](std::int32_t i) {
     const Rect r = rects[static_cast<std::size_t>(i)];
     const int depth = depths[static_cast<std::size_t>(i)] + 1;
@@ -176,8 +181,8 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     for (std::int32_t i : open) {
       CompileBudget::check();
       const auto [a, b] = split(i);
-      next.push_back(a);
-      next.push_back(b);
+      if (kept(a)) next.push_back(a);
+      if (kept(b)) next.push_back(b);
     }
     open.swap(next);
   }
@@ -198,9 +203,9 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     queue.pop();
     if (depths[static_cast<std::size_t>(i)] >= max_depth) continue;
     const auto [a, b] = split(i);
-    queue.push(a);
-    queue.push(b);
-    ++leaves;
+    leaves += static_cast<int>(kept(a)) + static_cast<int>(kept(b)) - 1;
+    if (kept(a)) queue.push(a);
+    if (kept(b)) queue.push(b);
   }
   // the leaves: cells with their rigorous boxes
   cells_.reserve(static_cast<std::size_t>(leaves));
@@ -208,7 +213,7 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
   std::vector<SpaceLeaf> leaves_in_space;
   leaves_in_space.reserve(static_cast<std::size_t>(leaves));
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (nodes[i].child[0] >= 0) continue;
+    if (nodes[i].child[0] >= 0 || covered[i]) continue;
     const Rect& r = rects[i];
     const Evaluated& e = evals[i];
     SurfaceCell cell;

@@ -42,6 +42,7 @@
 
 #include "geometry/box_enclosure.hpp"
 #include "geometry/parametric_surface.hpp"
+#include "geometry/self_covering.hpp"
 #include "seeding/surface_refinement.hpp"
 
 namespace footpoint {
@@ -124,8 +125,11 @@ struct SurfaceCellNode {
 
 class SurfaceCells {
  public:
+  // The cells cover the box less the rectangles `covering` shows to add no point of the surface
+  // (geometry/self_covering.hpp): the search and the certificates see each point of the surface
+  // from fewer parameter copies.
   SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
-               const SurfaceSeedingOptions& options = {});
+               const SurfaceSeedingOptions& options = {}, const SelfCovering& covering = {});
 
   // nodes()[0] is the root, unless the tree is a single cell (then nodes() is empty).
   const std::vector<SurfaceCellNode>& nodes() const { return nodes_; }
