@@ -1,7 +1,7 @@
 // `auto` on curves as a geometer reads the answers: the ends of a curve that closes smoothly are one
 // interior point, no endpoint; beyond max_distance there is no foot point, parameter or distance;
 // all_minima is capped by max_minima and says when it cut; the multiplicity of the answer (unique,
-// tied, a continuum) is told. References in closed form: the unit
+// tied, a continuum) is told, on parametric and implicit curves. References in closed form: the unit
 // circle (cos t, sin t) is at distance ||p| - 1| from p, nearest at t = atan2(p_y, p_x) unless
 // p = 0, where every point is nearest.
 #include <doctest/doctest.h>
@@ -133,4 +133,43 @@ TEST_CASE("the multiplicity of a curve's answer: unique, tied, or a continuum") 
   const ProjectionResult one = project(*ellipse, {0.5, 0.3, 0});
   CHECK(one.summary.multiplicity.kind == Multiplicity::unique);
   CHECK(one.summary.multiplicity.feet.empty());
+}
+
+TEST_CASE("the multiplicity of an implicit curve's answer: unique, tied, or a continuum") {
+  // x^2/4 + y^2 = 1 from its centre: (0, ±1) at distance 1, tied; off the axes, unique
+  const ProjectionResult two = project(*ellipse_implicit(), {0, 0, 0});
+  CHECK(two.summary.status == Status::converged);
+  CHECK(two.distance == doctest::Approx(1.0).epsilon(1e-14));
+  REQUIRE(two.summary.multiplicity.kind == Multiplicity::tied);
+  CHECK(two.summary.multiplicity.count == 2);
+  for (const auto& foot : two.summary.multiplicity.feet) {
+    CHECK(std::abs(foot[0]) <= 1e-12);
+    CHECK(std::abs(std::abs(foot[1]) - 1.0) <= 1e-12);
+  }
+  CHECK(std::abs(two.summary.multiplicity.feet[0][1] + two.summary.multiplicity.feet[1][1]) <= 1e-12);
+  const ProjectionResult one = project(*ellipse_implicit(), {0.5, 0.3, 0});
+  CHECK(one.summary.multiplicity.kind == Multiplicity::unique);
+  CHECK(one.summary.multiplicity.computed);
+  // the unit circle from its centre: every point nearest, one representative in all_minima
+  GeometryDefinition def;
+  def.type = GeometryType::implicit_curve;
+  def.formulas = {{"equations[0]", "x^2+y^2-1"}};
+  def.domain = {{"x", {-2, 2}}, {"y", {-2, 2}}};
+  Options o;
+  o.all_minima = true;
+  const ProjectionResult centre = project(*compile_geometry(def), {0, 0, 0}, o);
+  CHECK(centre.summary.multiplicity.kind == Multiplicity::continuum);
+  CHECK(centre.minima.size() == 1);
+  CHECK(centre.distance == doctest::Approx(1.0).epsilon(1e-14));
+  // the circle x^2 + y^2 + z^2 = 4, z = 1 (radius √3) from a point of its axis: √(3 + 4^2), a
+  // continuum; off the axis, unique
+  GeometryDefinition spatial;
+  spatial.type = GeometryType::implicit_curve;
+  spatial.formulas = {{"equations[0]", "x^2+y^2+z^2-4"}, {"equations[1]", "z-1"}};
+  spatial.domain = {{"x", {-3, 3}}, {"y", {-3, 3}}, {"z", {-3, 3}}};
+  const auto ring = compile_geometry(spatial);
+  const ProjectionResult axis = project(*ring, {0, 0, 5});
+  CHECK(axis.summary.multiplicity.kind == Multiplicity::continuum);
+  CHECK(axis.distance == doctest::Approx(std::sqrt(19.0)).epsilon(1e-14));
+  CHECK(project(*ring, {0.2, 0, 5}).summary.multiplicity.kind == Multiplicity::unique);
 }

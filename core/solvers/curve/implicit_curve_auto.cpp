@@ -6,6 +6,7 @@
 #include "solvers/curve/auto_result.hpp"
 #include "solvers/curve/curve_descent.hpp"
 #include "solvers/curve/implicit_curve_certificate.hpp"
+#include "solvers/curve/implicit_curve_multiplicity.hpp"
 #include "solvers/curve/implicit_curve_summary.hpp"
 #include "solvers/curve/lagrange_newton.hpp"
 
@@ -126,6 +127,7 @@ ProjectionResult search(const ImplicitEquations& eq, const Box3& box, const Curv
   Found best, best_met;
   std::vector<std::array<double, 3>> trace, best_trace, best_met_trace;
   std::vector<Minimum> minima;
+  std::vector<ImplicitMinimum> found;  // every minimum solved, for the multiplicity
   int starts = 0;
   for (int k = 0; k < candidates.count; ++k) {
     const SampleCandidate& c = candidates.items[static_cast<std::size_t>(k)];
@@ -139,6 +141,7 @@ ProjectionResult search(const ImplicitEquations& eq, const Box3& box, const Curv
     Summary fs;
     fill_residuals(curve, p, f, fs);
     f.met = implicit_residuals_met(fs, f.x, control);
+    found.push_back({f.x, f.distance});
     if (options.all_minima) {
       add_distinct_minimum(minima, f.x, 1e-8 * std::max(1.0, discovery.scale),
                            {{f.x.x, f.x.y, eq.planar() ? 0.0 : f.x.z}, {0.0, 0.0}, f.distance, fs.location});
@@ -165,6 +168,10 @@ ProjectionResult search(const ImplicitEquations& eq, const Box3& box, const Curv
   }
   r = implicit_result(eq, box, p, best.x, "auto");
   fill_residuals(curve, p, best, r.summary);
+  r.summary.multiplicity = implicit_curve_multiplicity(eq, p, r, found);
+  // a continuum of nearest points: the answer stands for all of them, no arbitrary sample
+  if (r.summary.multiplicity.kind == Multiplicity::continuum)
+    minima.assign(1, {r.foot, r.params, r.distance, r.summary.location});
   finish_auto_result(r, best.met, best.iterations, best.step, starts, options, std::move(minima),
                      std::move(best_trace));
   return r;
