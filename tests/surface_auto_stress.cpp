@@ -8,7 +8,7 @@
 // and six more shapes, with points uniform in the box
 // twice the surface's size and points within 2% of its size from a random surface point. Every
 // answer's certificate holds against the reference (its lower bound is never above it), and 99 %
-// of them are certified.
+// of them are certified (95 % on a surface with a kink).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -117,6 +117,8 @@ TEST_CASE("auto is never farther than a brute-force grid search on random points
        "sin(v)"},
       {"saddle", {-2, 2}, {-2, 2}, "u", "v", "u*u*u-3*u*v*v+0.5*sin(4*u*v)"},
       {"enneper", {-2, 2}, {-2, 2}, "u-u^3/3+u*v^2", "v-v^3/3+v*u^2", "u^2-v^2"},
+      // a kink along the circle u^2 + v^2 = 1/2 (solvers/surface/kink_minimum.hpp)
+      {"kinked", {-1, 1}, {-1, 1}, "u", "v", "abs(u^2+v^2-0.5)"},
   };
   const int points = points_per_kind();
   for (const Spec& spec : specs) {
@@ -167,8 +169,11 @@ TEST_CASE("auto is never farther than a brute-force grid search on random points
         }
       CHECK(farther == 0);
       MESSAGE(std::string(spec.name) << ": " << certified << " of " << 2 * points << " answers certified");
-      // The share certified within the default budget (solvers/surface/surface_certificate.hpp)
-      CHECK(certified >= static_cast<int>(0.99 * 2 * points));
+      // The share certified within the default budget (solvers/surface/surface_certificate.hpp);
+      // on the kinked surface 95 %: a box across its kink has no second-order bound (the formulas
+      // are not smooth there), only its interval box, which closes near the kink only when small
+      const double share = std::string(spec.name) == "kinked" ? 0.95 : 0.99;
+      CHECK(certified >= static_cast<int>(share * 2 * points));
     }
   }
 }

@@ -34,6 +34,9 @@ struct LocalSolution {
   // Stopped early (EarlyStop): (u, v) is the basin's predicted minimiser, `distance` the lower
   // bound on its distance, `jet` the one at the last iterate; status is not meaningful.
   bool abandoned = false;
+  // Ended on a kink curve of the formulas, stationary there in Clarke's sense
+  // (solvers/surface/kink_minimum.hpp): converged, with location kink.
+  bool kink = false;
 };
 
 // Default iteration budget of the local solve (Newton from a cell's model minimiser needs 2-4).

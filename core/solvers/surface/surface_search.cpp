@@ -2,6 +2,7 @@
 #include <cmath>
 #include <limits>
 
+#include "solvers/surface/kink_minimum.hpp"
 #include "solvers/surface/surface_search.hpp"
 
 namespace footpoint::surface {
@@ -99,6 +100,9 @@ LocalSolution SurfaceSearch::solve_across_seams(double u, double v, std::vector<
     if (!(t.distance <= s.distance)) break;
     s = t;
   }
+  // a solve that ends short of convergence on a kink curve of the formulas: the kink's minimum
+  if (!s.abandoned && s.status != Status::converged && std::isfinite(s.distance))
+    kink_minimum(formulas_, box_, p_, s);
   return s;
 }
 

@@ -30,6 +30,10 @@ ProjectionResult SurfaceSearch::answer(const LocalSolution& s) const {
   r.summary.status = s.status;
   r.summary.iterations = s.iterations;
   r.summary.step_norm = s.step_norm;
+  if (s.kink) {
+    r.summary.location = Location::kink;
+    r.summary.orthogonality = {0.0, 0.0};  // zero lies in the hull of the one-sided gradients
+  }
   return r;
 }
 

@@ -1,0 +1,175 @@
+#include "solvers/surface/kink_minimum.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace footpoint::surface {
+
+namespace {
+
+using P2 = std::array<double, 2>;
+
+P2 along(const P2& t, double mu, const P2& d) { return {t[0] + mu * d[0], t[1] + mu * d[1]}; }
+double dot2(const P2& a, const P2& b) { return a[0] * b[0] + a[1] * b[1]; }
+double norm2d(const P2& a) { return std::hypot(a[0], a[1]); }
+
+// f, its gradient and Hessian at t (the piece of the formulas that t lies on).
+struct Local {
+  P2 t;
+  SurfaceJet jet;
+  double f = 0.0;
+  P2 g{};
+  double h[3]{};  // H_uu, H_uv, H_vv
+  double h_norm = 0.0;
+  bool finite = false;
+};
+
+Local local_at(const SurfaceFormulas& formulas, const Vec3& p, const P2& t) {
+  Local l;
+  l.t = t;
+  l.jet = formulas.jet(t[0], t[1]);
+  const Vec3 r = l.jet.s - p;
+  l.f = 0.5 * dot(r, r);
+  l.g = {dot(r, l.jet.su), dot(r, l.jet.sv)};
+  l.h[0] = dot(l.jet.su, l.jet.su) + dot(r, l.jet.suu);
+  l.h[1] = dot(l.jet.su, l.jet.sv) + dot(r, l.jet.suv);
+  l.h[2] = dot(l.jet.sv, l.jet.sv) + dot(r, l.jet.svv);
+  l.h_norm = std::abs(l.h[0]) + std::abs(l.h[1]) + std::abs(l.h[2]);
+  l.finite = std::isfinite(l.f) && std::isfinite(l.g[0]) && std::isfinite(l.g[1]) && std::isfinite(l.h_norm);
+  return l;
+}
+
+// A bracket of K: adjacent doubles a, b on the line t + μ d (a first) between which the
+// gradient jumps.
+struct Bracket {
+  Local a, b;
+};
+
+// The slope of f along d at a point, and its rate of change there (<d, H d>).
+double slope(const Local& l, const P2& d) { return dot2(l.g, d); }
+double bend(const Local& l, const P2& d) {
+  return l.h[0] * d[0] * d[0] + 2.0 * l.h[1] * d[0] * d[1] + l.h[2] * d[1] * d[1];
+}
+
+// How far the slope's change over [a, b] is from what a smooth f gives (the trapezoidal rule of its
+// rate): O(|b - a|^3) where f is smooth, the jump's size across a kink.
+double mismatch(const Local& a, const Local& b, const P2& d, double width) {
+  return std::abs(slope(b, d) - slope(a, d) - 0.5 * (bend(a, d) + bend(b, d)) * width);
+}
+
+// Bisects t + μ d, μ in [lo, hi], towards the half whose slope change a smooth f explains least,
+// down to adjacent doubles.
+bool bracket_along(const SurfaceFormulas& formulas, const Vec3& p, const P2& t, const P2& d, double lo,
+                   double hi, Bracket& out) {
+  Local a = local_at(formulas, p, along(t, lo, d)), b = local_at(formulas, p, along(t, hi, d));
+  if (!a.finite || !b.finite) return false;
+  for (int i = 0; i < 160; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    const P2 m = along(t, mid, d);
+    if (m == a.t || m == b.t) break;
+    const Local l = local_at(formulas, p, m);
+    if (!l.finite) return false;
+    if (mismatch(a, l, d, mid - lo) >= mismatch(l, b, d, hi - mid)) {
+      hi = mid, b = l;
+    } else {
+      lo = mid, a = l;
+    }
+  }
+  out = {a, b};
+  return true;
+}
+
+bool inside(const ParamBox& box, const P2& t, double margin) {
+  return t[0] > box.umin + margin && t[0] < box.umax - margin && t[1] > box.vmin + margin &&
+         t[1] < box.vmax - margin;
+}
+
+// The gradient jumps across the bracket by more than a smooth f allows.
+bool jumps(const Bracket& k) {
+  const P2 jump{k.b.g[0] - k.a.g[0], k.b.g[1] - k.a.g[1]};
+  const double width = norm2d({k.b.t[0] - k.a.t[0], k.b.t[1] - k.a.t[1]});
+  const double size = std::max(norm2d(k.a.g), norm2d(k.b.g));
+  return norm2d(jump) > 1e3 * width * std::max(k.a.h_norm, k.b.h_norm) + 1e-12 * size;
+}
+
+}  // namespace
+
+bool kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, LocalSolution& s) {
+  const P2 t0{s.u, s.v};
+  const Local l0 = local_at(formulas, p, t0);
+  if (!l0.finite) return false;
+  const double scale = std::max({box.umax - box.umin, box.vmax - box.vmin, std::abs(s.u), std::abs(s.v)});
+  const double margin = 1e-9 * scale;
+  if (!inside(box, t0, margin)) return false;
+  // 1. across K along the piece's Newton step (its gradient where the Hessian is not definite)
+  const double det = l0.h[0] * l0.h[2] - l0.h[1] * l0.h[1];
+  P2 d = det > 0.0 && l0.h[0] > 0.0 ? P2{-(l0.h[2] * l0.g[0] - l0.h[1] * l0.g[1]) / det,
+                                         -(l0.h[0] * l0.g[1] - l0.h[1] * l0.g[0]) / det}
+                                    : P2{-l0.g[0], -l0.g[1]};
+  const double dn = norm2d(d);
+  if (!(dn > 0.0) || !std::isfinite(dn)) return false;
+  d = {d[0] / dn, d[1] / dn};
+  // the Newton step of t0's piece crosses K (else the solve would have converged on the piece)
+  Bracket k;
+  if (!bracket_along(formulas, p, t0, d, 0.0, dn, k) || !jumps(k)) return false;
+  // 2. along K
+  double f = std::min(k.a.f, k.b.f);
+  // the previous point on K and its derivative along K, for the secant of that derivative
+  P2 last{};
+  double last_D = 0.0;
+  for (int step = 0; step < 32; ++step) {
+    P2 n{k.b.g[0] - k.a.g[0], k.b.g[1] - k.a.g[1]};
+    const double jn = norm2d(n);
+    n = {n[0] / jn, n[1] / jn};
+    const P2 tau{-n[1], n[0]};
+    const P2 g{0.5 * (k.a.g[0] + k.b.g[0]), 0.5 * (k.a.g[1] + k.b.g[1])};
+    const double D = dot2(g, tau);
+    const Vec3 s_tau = k.a.jet.su * tau[0] + k.a.jet.sv * tau[1];
+    if (std::abs(D) <= 1e-12 * std::sqrt(2.0 * f) * norm(s_tau)) {
+      // 3. Clarke stationarity: f falls towards K from both sides
+      if (!(dot2(k.a.g, n) <= 0.0 && dot2(k.b.g, n) >= 0.0)) return false;
+      const Local& best = k.a.f <= k.b.f ? k.a : k.b;
+      if (!inside(box, best.t, margin) || !(best.f <= l0.f)) return false;
+      s.u = best.t[0];
+      s.v = best.t[1];
+      s.jet = best.jet;
+      s.distance = std::sqrt(2.0 * best.f);
+      s.status = Status::converged;
+      s.iterations += step + 1;
+      s.abandoned = false;
+      s.kink = true;
+      return true;
+    }
+    const double curvature =
+        0.5 * (k.a.h[0] * tau[0] * tau[0] + 2.0 * k.a.h[1] * tau[0] * tau[1] + k.a.h[2] * tau[1] * tau[1] +
+               k.b.h[0] * tau[0] * tau[0] + 2.0 * k.b.h[1] * tau[0] * tau[1] + k.b.h[2] * tau[1] * tau[1]);
+    // f along K bends by <τ, H τ> plus K's own curvature times the normal slope, which H does
+    // not see: after the first step the secant of D along K measures the two together
+    const P2 mid{0.5 * (k.a.t[0] + k.b.t[0]), 0.5 * (k.a.t[1] + k.b.t[1])};
+    const double moved_along = dot2({mid[0] - last[0], mid[1] - last[1]}, tau);
+    const double secant = step > 0 && moved_along != 0.0 ? (D - last_D) / moved_along : 0.0;
+    const double rate = secant > 0.0 && std::isfinite(secant) ? secant : curvature;
+    double sigma = rate > 0.0 ? -D / rate : -D;
+    last = mid;
+    last_D = D;
+    bool moved = false;
+    for (int halve = 0; halve < 30 && !moved; ++halve, sigma *= 0.5) {
+      const P2 q = along(mid, sigma, tau);
+      if (!inside(box, q, margin)) continue;
+      // back onto K across it: K bends away from its tangent by O(σ^2)
+      const double w = std::abs(sigma) + 1e-9 * scale;
+      Bracket next;
+      if (!bracket_along(formulas, p, q, n, -w, w, next) || !jumps(next)) continue;
+      const double fn = std::min(next.a.f, next.b.f);
+      if (!(fn <= f)) continue;
+      k = next;
+      f = fn;
+      moved = true;
+    }
+    if (!moved) return false;
+  }
+  return false;
+}
+
+}  // namespace footpoint::surface
