@@ -38,6 +38,10 @@ const char* to_string(Location l);
 // singular along the geometry, as on the axis of a torus or at the centre of a sphere).
 enum class Multiplicity { unique, tied, continuum };
 const char* to_string(Multiplicity m);
+// Foot points farther apart than this, relative to 1 + |foot|, are distinct (the multiplicity's
+// feet and all_minima's entries, on every geometry).
+inline constexpr double kDistinctFoot = 1e-8;
+
 struct AnswerMultiplicity {
   bool computed = false;  // auto only
   Multiplicity kind = Multiplicity::unique;

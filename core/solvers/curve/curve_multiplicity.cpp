@@ -7,8 +7,7 @@
 namespace footpoint::curve {
 
 namespace {
-constexpr double kDistinctFoot = 1e-8;  // relative to 1 + |foot|
-constexpr double kFlat = 1e-8;          // φ'' relative to |c'|^2
+constexpr double kFlat = 1e-8;  // φ'' relative to |c'|^2
 }  // namespace
 
 AnswerMultiplicity curve_multiplicity(const CurveFormulas& formulas, Vec3 p, const ProjectionResult& r,

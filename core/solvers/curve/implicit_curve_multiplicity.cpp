@@ -8,8 +8,7 @@
 namespace footpoint::curve {
 
 namespace {
-constexpr double kDistinctFoot = 1e-8;  // relative to 1 + |foot|
-constexpr double kFlat = 1e-8;          // φ'' (arc length) against its value 1 at a straight curve
+constexpr double kFlat = 1e-8;  // φ'' (arc length) against its value 1 at a straight curve
 }  // namespace
 
 AnswerMultiplicity implicit_curve_multiplicity(const ImplicitEquations& equations, Vec3 p,

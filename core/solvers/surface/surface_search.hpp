@@ -23,8 +23,6 @@ namespace footpoint::surface {
 // The Newton model's minimiser is sought over the cell grown by this fraction of its width on
 // each side, so that a minimum near a cell's border is claimed by the cells on both sides.
 inline constexpr double kMargin = 0.25;
-// Distinct minima (all_minima) have foot points farther apart than this, relative to 1 + |foot|.
-inline constexpr double kDistinctFoot = 1e-8;
 // A minimiser predicted by an early-stopped solve this near (relative to 1 + |foot|) to a foot
 // found is a copy of it (the multiplicity's test).
 inline constexpr double kCopyOfFoot = 1e-6;
