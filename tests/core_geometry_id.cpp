@@ -18,7 +18,8 @@ TEST_CASE("SHA-256 matches the FIPS 180-4 test vectors") {
 }
 
 namespace {
-GeometryDefinition surface(const std::string& x, double umax, std::map<std::string, double> constants = {}) {
+GeometryDefinition id_surface(const std::string& x, double umax,
+                              std::map<std::string, double> constants = {}) {
   GeometryDefinition d;
   d.type = GeometryType::parametric_surface;
   d.formulas = {{"x", x}, {"y", "sin(u)+2*cos(v)"}, {"z", "sin(u+v)"}};
@@ -29,23 +30,23 @@ GeometryDefinition surface(const std::string& x, double umax, std::map<std::stri
 }  // namespace
 
 TEST_CASE("the id ignores formatting and sees every meaningful difference") {
-  const auto id = surface("u+v", 3.0).id();
+  const auto id = id_surface("u+v", 3.0).id();
   CHECK(id.size() == 32);
-  CHECK(surface(" u + v ", 3.0).id() == id);
-  CHECK(surface("u+v", 3.0000000000000004).id() != id);
-  CHECK(surface("u-v", 3.0).id() != id);
-  CHECK(surface("u+v", 3.0, {{"R", 2.0}}).id() != id);
-  CHECK(surface("u+v", 3.0, {{"R", 2.0}}).id() != surface("u+v", 3.0, {{"R", 2.5}}).id());
-  auto curve = surface("u+v", 3.0);
+  CHECK(id_surface(" u + v ", 3.0).id() == id);
+  CHECK(id_surface("u+v", 3.0000000000000004).id() != id);
+  CHECK(id_surface("u-v", 3.0).id() != id);
+  CHECK(id_surface("u+v", 3.0, {{"R", 2.0}}).id() != id);
+  CHECK(id_surface("u+v", 3.0, {{"R", 2.0}}).id() != id_surface("u+v", 3.0, {{"R", 2.5}}).id());
+  auto curve = id_surface("u+v", 3.0);
   curve.type = GeometryType::parametric_curve;
   CHECK(curve.id() != id);
-  CHECK(surface("u+v", 3.0).canonical().find("domain.u=[-3,3]") != std::string::npos);
+  CHECK(id_surface("u+v", 3.0).canonical().find("domain.u=[-3,3]") != std::string::npos);
 }
 
 TEST_CASE("definitions without periodic keep the ids they always had; periodic is part of the id") {
   // Canonical text and id as computed before periodic existed (sha256sum of the text): pinned, so
   // that ids in clients' hands and in shared registries stay valid.
-  const GeometryDefinition s1 = surface("u+v", 3.0);
+  const GeometryDefinition s1 = id_surface("u+v", 3.0);
   CHECK(s1.canonical() ==
         "footpoint/"
         "1;type=parametric_surface;x=u+v;y=sin(u)+2*cos(v);z=sin(u+v);domain.u=[-3,3];domain.v=[-3,3]");

@@ -17,13 +17,13 @@ using namespace footpoint;
 namespace {
 
 // One geometry of each kind of table, with a point generator around it.
-struct Subject {
+struct MethodTableSubject {
   const char* name;
   GeometryDefinition def;
   double radius;  // points are drawn from [-radius, radius]^dim
 };
 
-std::vector<Subject> subjects() {
+std::vector<MethodTableSubject> method_table_subjects() {
   using T = GeometryType;
   return {
       {"surface",
@@ -101,7 +101,7 @@ bool same_answer(const ProjectionResult& a, const ProjectionResult& b) {
 
 TEST_CASE("every status a method reports is one its row lists; an option it does not list changes nothing") {
   std::mt19937 rng(19);
-  for (const auto& subject : subjects()) {
+  for (const auto& subject : method_table_subjects()) {
     CAPTURE(subject.name);
     const auto geometry = compile_geometry(subject.def);
     const int dim = geometry->point_dim();

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -28,7 +29,6 @@ using footpoint::test::sweep_length;
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.141592653589793;
 
 // A piece of the curve: t -> c(t) on [t0, t1] (the part inside the box counts).
 struct Piece {
@@ -44,7 +44,8 @@ struct Reference {
 };
 
 Piece circle(Vec3 c, double r, Vec3 u = {1, 0, 0}, Vec3 v = {0, 1, 0}) {
-  return {[=](double t) { return c + r * std::cos(t) * u + r * std::sin(t) * v; }, 0.0, 2.0 * kPi};
+  return {[=](double t) { return c + r * std::cos(t) * u + r * std::sin(t) * v; }, 0.0,
+          2.0 * std::numbers::pi};
 }
 
 std::vector<Reference> references() {
@@ -91,7 +92,7 @@ std::vector<Reference> references() {
                    const double s = std::sin(t), c = std::cos(t), q = 1.0 + s * s;
                    return Vec3{std::sqrt(2.0) * c / q, std::sqrt(2.0) * s * c / q, 0.0};
                  },
-                 0.0, 2.0 * kPi}}});
+                 0.0, 2.0 * std::numbers::pi}}});
   r.push_back({"ellipse",
                {"x^2/9+y^2/4-1"},
                {{-4, -4, 0}, {4, 4, 0}},
@@ -126,7 +127,7 @@ std::vector<Reference> references() {
                {{[](double t) {
                    return Vec3{1.0 + std::cos(t), std::sin(t), 2.0 * std::sin(0.5 * t)};
                  },
-                 0.0, 4.0 * kPi}}});
+                 0.0, 4.0 * std::numbers::pi}}});
   // [Curve] Example 1: x = ρ cos θ, y = ρ sin θ, z = ρ^2 / 4 with ρ^2 (cos^2/9 + sin^2/16) + ρ^4/144 = 1.
   r.push_back({"paper_example_1",
                {"x^2/9+y^2/16+z^2/9-1", "x^2+y^2-4*z"},
@@ -137,7 +138,7 @@ std::vector<Reference> references() {
                    const double rho = std::sqrt(q);
                    return Vec3{rho * c, rho * s, q / 4.0};
                  },
-                 0.0, 2.0 * kPi}}});
+                 0.0, 2.0 * std::numbers::pi}}});
   return r;
 }
 

@@ -2,7 +2,7 @@
 // interior point, no endpoint; beyond max_distance there is no foot point, parameter or distance;
 // all_minima is capped by max_minima and says when it cut; the multiplicity of the answer (unique,
 // tied, a continuum) is told, on parametric and implicit curves. References in closed form: the unit
-// circle (cos t, sin t) is at distance ||p| - 1| from p, nearest at t = atan2(p_y, p_x) unless
+// closed_circle (cos t, sin t) is at distance ||p| - 1| from p, nearest at t = atan2(p_y, p_x) unless
 // p = 0, where every point is nearest.
 #include <doctest/doctest.h>
 
@@ -17,7 +17,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-std::shared_ptr<const CompiledGeometry> circle(double tmin, double tmax) {
+std::shared_ptr<const CompiledGeometry> closed_circle(double tmin, double tmax) {
   GeometryDefinition def;
   def.type = GeometryType::parametric_curve;
   def.formulas = {{"x", "cos(t)"}, {"y", "sin(t)"}};
@@ -40,7 +40,7 @@ ProjectionResult project(const CompiledGeometry& g, std::array<double, 3> p, con
 }  // namespace
 
 TEST_CASE("a closed curve's ends are one interior point") {
-  const auto closed = circle(0, 2 * kPi);
+  const auto closed = closed_circle(0, 2 * kPi);
   const ProjectionResult r = project(*closed, {2, 0, 0});
   REQUIRE(r.summary.status == Status::converged);
   CHECK(r.distance == doctest::Approx(1.0).epsilon(1e-15));
@@ -48,7 +48,7 @@ TEST_CASE("a closed curve's ends are one interior point") {
   CHECK_FALSE(r.summary.on_boundary);
   CHECK(r.summary.residual() <= 1e-12);
   // the same point of an open arc ending there is its endpoint
-  const auto arc = circle(0, kPi);
+  const auto arc = closed_circle(0, kPi);
   const ProjectionResult e = project(*arc, {2, -1, 0});
   CHECK(e.summary.location == Location::endpoint);
   CHECK(e.summary.on_boundary);
@@ -58,16 +58,16 @@ TEST_CASE("a closed curve's ends are one interior point") {
 TEST_CASE("curves beyond max_distance: no foot point, parameter or distance") {
   Options o;
   o.max_distance = 2.0;
-  const ProjectionResult far = project(*circle(0, 2 * kPi), {10, 0, 0}, o);
+  const ProjectionResult far = project(*closed_circle(0, 2 * kPi), {10, 0, 0}, o);
   CHECK(far.summary.status == Status::beyond_max_distance);
   CHECK(std::isnan(far.distance));
   CHECK(std::isnan(far.foot[0]));
   CHECK(std::isnan(far.params[0]));
   // just beyond: the search solves and the answer (distance 2.5) is withheld all the same
-  const ProjectionResult near_miss = project(*circle(0, 2 * kPi), {3.5, 0, 0}, o);
+  const ProjectionResult near_miss = project(*closed_circle(0, 2 * kPi), {3.5, 0, 0}, o);
   CHECK(near_miss.summary.status == Status::beyond_max_distance);
   CHECK(std::isnan(near_miss.distance));
-  const ProjectionResult within = project(*circle(0, 2 * kPi), {2.5, 0, 0}, o);
+  const ProjectionResult within = project(*closed_circle(0, 2 * kPi), {2.5, 0, 0}, o);
   CHECK(within.summary.status == Status::converged);
   CHECK(within.distance == doctest::Approx(1.5).epsilon(1e-15));
   // implicit curves alike: the ellipse x^2/4 + y^2 = 1 is 9 - 1 = 8 from (0, 9)
@@ -110,10 +110,10 @@ TEST_CASE("all_minima on a curve is capped by max_minima, and says when it cut")
 }
 
 TEST_CASE("the multiplicity of a curve's answer: unique, tied, or a continuum") {
-  // from the circle's centre every point is nearest: a continuum, one representative in all_minima
+  // from the closed_circle's centre every point is nearest: a continuum, one representative in all_minima
   Options o;
   o.all_minima = true;
-  const ProjectionResult centre = project(*circle(0, 2 * kPi), {0, 0, 0}, o);
+  const ProjectionResult centre = project(*closed_circle(0, 2 * kPi), {0, 0, 0}, o);
   CHECK(centre.summary.status == Status::converged);
   CHECK(centre.summary.multiplicity.kind == Multiplicity::continuum);
   CHECK(centre.minima.size() == 1);
@@ -150,7 +150,7 @@ TEST_CASE("the multiplicity of an implicit curve's answer: unique, tied, or a co
   const ProjectionResult one = project(*ellipse_implicit(), {0.5, 0.3, 0});
   CHECK(one.summary.multiplicity.kind == Multiplicity::unique);
   CHECK(one.summary.multiplicity.computed);
-  // the unit circle from its centre: every point nearest, one representative in all_minima
+  // the unit closed_circle from its centre: every point nearest, one representative in all_minima
   GeometryDefinition def;
   def.type = GeometryType::implicit_curve;
   def.formulas = {{"equations[0]", "x^2+y^2-1"}};
@@ -161,7 +161,7 @@ TEST_CASE("the multiplicity of an implicit curve's answer: unique, tied, or a co
   CHECK(centre.summary.multiplicity.kind == Multiplicity::continuum);
   CHECK(centre.minima.size() == 1);
   CHECK(centre.distance == doctest::Approx(1.0).epsilon(1e-14));
-  // the circle x^2 + y^2 + z^2 = 4, z = 1 (radius √3) from a point of its axis: √(3 + 4^2), a
+  // the closed_circle x^2 + y^2 + z^2 = 4, z = 1 (radius √3) from a point of its axis: √(3 + 4^2), a
   // continuum; off the axis, unique
   GeometryDefinition spatial;
   spatial.type = GeometryType::implicit_curve;

@@ -31,7 +31,7 @@ const json& case_of(const std::string& file, const std::string& id) {
   return files[file];
 }
 
-std::shared_ptr<const CompiledGeometry> compile(const json& c) {
+std::shared_ptr<const CompiledGeometry> compile_discovery_case(const json& c) {
   GeometryDefinition def;
   def.type = GeometryType::implicit_curve;
   const json& f = c["formulas"];
@@ -78,7 +78,7 @@ void check_samples(const ImplicitCurve& curve) {
 
 TEST_CASE("discovery: Viviani's curve, one piece through its double point, which is found") {
   const json& c = case_of("curve_spatial_cases.json", "viviani");
-  const auto g = compile(c);
+  const auto g = compile_discovery_case(c);
   const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
   check_special(curve.discovery().samples, SampleKind::singular_point, c["curve_info"]["singular_points"]);
   CHECK(curve.discovery().stats.face_crossings == 0);
@@ -87,7 +87,7 @@ TEST_CASE("discovery: Viviani's curve, one piece through its double point, which
 
 TEST_CASE("discovery: three circles are three pieces") {
   const json& c = case_of("curve_spatial_cases.json", "three_circles");
-  const auto g = compile(c);
+  const auto g = compile_discovery_case(c);
   const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
   CHECK(curve.discovery().stats.pieces == 3);
   CHECK(curve.discovery().stats.closed_pieces == 3);
@@ -99,13 +99,13 @@ TEST_CASE("discovery: curves leaving the box end at the exact face crossings") {
   for (const char* id : {"ex1_clipped", "helix_clipped"}) {
     CAPTURE(id);
     const json& c = case_of("curve_spatial_cases.json", id);
-    const auto g = compile(c);
+    const auto g = compile_discovery_case(c);
     const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
     check_special(curve.discovery().samples, SampleKind::box_face, c["curve_info"]["endpoints"]);
     check_samples(curve);
   }
   const json& c = case_of("curve_planar_implicit_cases.json", "parabola_clipped");
-  const auto g = compile(c);
+  const auto g = compile_discovery_case(c);
   const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
   check_special(curve.discovery().samples, SampleKind::box_face, c["curve_info"]["endpoints"]);
   check_samples(curve);
@@ -115,7 +115,7 @@ TEST_CASE("discovery: planar singular points (a cusp, the lemniscate's crossing)
   for (const char* id : {"cusp", "lemniscate"}) {
     CAPTURE(id);
     const json& c = case_of("curve_planar_implicit_cases.json", id);
-    const auto g = compile(c);
+    const auto g = compile_discovery_case(c);
     const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
     check_special(curve.discovery().samples, SampleKind::singular_point, c["curve_info"]["singular_points"]);
     check_samples(curve);
@@ -176,7 +176,7 @@ TEST_CASE("discovery: a curve too intricate for its box is refused, never answer
   CHECK(small.distance <= bound * (1.0 + 1e-9));
 
   // In the large box, compiling refuses the curve as too intricate (geometry_too_complex, past
-  // SubdivisionSettings::max_cells: ~20 s in Release) or at the compile deadline given here
+  // SubdivisionSettings::max_cells: ~20 s in Release) or at the compile_discovery_case deadline given here
   // (compile_timeout: the server's budget for compiling), whichever comes first.
   def.domain = {{"x", {-300.0, 300.0}}, {"y", {-300.0, 300.0}}};
   formula::CompileLimits limits;

@@ -14,7 +14,7 @@ using namespace footpoint;
 
 namespace {
 
-std::shared_ptr<const CompiledGeometry> curve(const char* x, const char* y, double tmin, double tmax) {
+std::shared_ptr<const CompiledGeometry> plane_curve(const char* x, const char* y, double tmin, double tmax) {
   GeometryDefinition def;
   def.type = GeometryType::parametric_curve;
   def.formulas = {{"x", x}, {"y", y}};
@@ -22,7 +22,7 @@ std::shared_ptr<const CompiledGeometry> curve(const char* x, const char* y, doub
   return compile_geometry(def);
 }
 
-ProjectionResult project(const CompiledGeometry& g, std::array<double, 3> p) {
+ProjectionResult project_point(const CompiledGeometry& g, std::array<double, 3> p) {
   return g.project(p.data(), "auto", Options{}).value();
 }
 
@@ -42,9 +42,9 @@ TEST_CASE("a kink of abs or max that is the nearest point: converged, location k
   };
   for (const Case& c : cases) {
     INFO(c.x << ", " << c.y);
-    const auto g = curve(c.x, c.y, -1, 1);
+    const auto g = plane_curve(c.x, c.y, -1, 1);
     REQUIRE(g);
-    const ProjectionResult r = project(*g, c.p);
+    const ProjectionResult r = project_point(*g, c.p);
     CHECK(r.summary.status == Status::converged);
     CHECK(r.summary.location == Location::kink);
     CHECK(r.summary.residual() == 0.0);
@@ -54,8 +54,8 @@ TEST_CASE("a kink of abs or max that is the nearest point: converged, location k
 }
 
 TEST_CASE("a kink that is a local maximum of the distance is no answer") {
-  const auto g = curve("t", "-abs(t)", -1, 1);
-  const ProjectionResult r = project(*g, {0, -0.5, 0});
+  const auto g = plane_curve("t", "-abs(t)", -1, 1);
+  const ProjectionResult r = project_point(*g, {0, -0.5, 0});
   CHECK(r.summary.status == Status::converged);
   CHECK(r.summary.location == Location::interior);
   CHECK(std::abs(std::abs(r.params[0]) - 0.25) <= 1e-15);
@@ -63,8 +63,8 @@ TEST_CASE("a kink that is a local maximum of the distance is no answer") {
 }
 
 TEST_CASE("a smooth minimum stays interior") {
-  const auto g = curve("t", "t*t", -1, 1);
-  const ProjectionResult r = project(*g, {0, -0.5, 0});
+  const auto g = plane_curve("t", "t*t", -1, 1);
+  const ProjectionResult r = project_point(*g, {0, -0.5, 0});
   CHECK(r.summary.status == Status::converged);
   CHECK(r.summary.location == Location::interior);
   CHECK(std::abs(r.params[0]) <= 1e-15);

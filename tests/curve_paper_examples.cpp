@@ -32,7 +32,7 @@ const json& paper_case(const std::string& id) {
   return cases();
 }
 
-std::shared_ptr<const CompiledGeometry> compile(const json& c) {
+std::shared_ptr<const CompiledGeometry> compile_example(const json& c) {
   GeometryDefinition def;
   def.type = GeometryType::implicit_curve;
   def.formulas = {{"equations[0]", c["formulas"]["f1"]}, {"equations[1]", c["formulas"]["f2"]}};
@@ -42,7 +42,7 @@ std::shared_ptr<const CompiledGeometry> compile(const json& c) {
 
 void check_auto(const std::string& id) {
   const json& c = paper_case(id);
-  const auto g = compile(c);
+  const auto g = compile_example(c);
   REQUIRE(g->point_dim() == 3);
   REQUIRE(g->num_params() == 0);
   REQUIRE(c["points"].size() == 16);
@@ -81,7 +81,7 @@ TEST_CASE("discovery: each example is one closed loop, inside the oracle's bound
   for (const char* id : {"paperC_ex1", "paperC_ex2"}) {
     CAPTURE(id);
     const json& c = paper_case(id);
-    const auto g = compile(c);
+    const auto g = compile_example(c);
     const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
     const CurveDiscovery& d = curve.discovery();
     CHECK(d.stats.pieces == 1);
@@ -120,7 +120,7 @@ TEST_CASE("discovery: each example is one closed loop, inside the oracle's bound
 
 TEST_CASE("auto options: all_minima, trace, max_distance") {
   const json& c = paper_case("paperC_ex1");
-  const auto g = compile(c);
+  const auto g = compile_example(c);
   const json& pt = c["points"][0];
   const double p[3] = {pt["p"][0], pt["p"][1], pt["p"][2]};
   const double ref = pt["oracle"]["distance"];

@@ -18,7 +18,7 @@ using curve::PaperGoal;
 
 namespace {
 
-const Vec3 kP{3.0, 1.0, 2.0};
+const Vec3 kPaperPoint{3.0, 1.0, 2.0};
 const Box3 kBox{{-3, -3, -3}, {3, 3, 3}};
 
 // X_{n+1} = X_n + (target - X_n) / 2.
@@ -47,10 +47,10 @@ TEST_CASE("paper_start: P - (0.1, 0.1, 0.1), in the plane for planar curves, or 
 }
 
 TEST_CASE("iterate_paper_map: a contraction to the foot point converges there, every increment traced") {
-  const Vec3 foot = circle_foot(kP);
-  const Vec3 x0 = circle_point(std::atan2(kP.y, kP.x) + 0.2);
+  const Vec3 foot = circle_foot(kPaperPoint);
+  const Vec3 x0 = circle_point(std::atan2(kPaperPoint.y, kPaperPoint.x) + 0.2);
   std::vector<std::array<double, 3>> trace;
-  const Landing l = curve::iterate_paper_map(circle(), PaperGoal::foot_of(kP), x0, 1e12,
+  const Landing l = curve::iterate_paper_map(circle(), PaperGoal::foot_of(kPaperPoint), x0, 1e12,
                                              control(1000, &trace), halfway_to(foot));
   CHECK(l.status == Status::converged);
   CHECK(norm(l.x - foot) <= 1e-15 * 4);
@@ -68,8 +68,8 @@ TEST_CASE("iterate_paper_map: the goal decides where a settled iteration may sto
   const Landing on = curve::iterate_paper_map(circle(), PaperGoal::on_curve(), circle_point(1.3), 1e12,
                                               control(1000), halfway_to(target));
   CHECK(on.status == Status::converged);
-  const Landing foot = curve::iterate_paper_map(circle(), PaperGoal::foot_of(kP), circle_point(1.3), 1e12,
-                                                control(300), halfway_to(target));
+  const Landing foot = curve::iterate_paper_map(circle(), PaperGoal::foot_of(kPaperPoint), circle_point(1.3),
+                                                1e12, control(300), halfway_to(target));
   CHECK(foot.status == Status::max_iterations);  // it stopped moving, but is no foot point
   CHECK(foot.iterations == 300);
 }
@@ -77,22 +77,22 @@ TEST_CASE("iterate_paper_map: the goal decides where a settled iteration may sto
 TEST_CASE("iterate_paper_map: divergence, NaN, no step, and a test before the step end the loop") {
   const ImplicitEquations eq = circle();
   const Vec3 x0 = circle_point(0.5);
-  const Landing far =
-      curve::iterate_paper_map(eq, PaperGoal::foot_of(kP), x0, 1e3, control(1000), [](Vec3 x, Vec3& x1) {
-        x1 = 2.0 * x;
-        return true;
-      });
+  const Landing far = curve::iterate_paper_map(eq, PaperGoal::foot_of(kPaperPoint), x0, 1e3, control(1000),
+                                               [](Vec3 x, Vec3& x1) {
+                                                 x1 = 2.0 * x;
+                                                 return true;
+                                               });
   CHECK(far.status == Status::diverged);
   CHECK(norm(far.x) > 1e3);
   CHECK(far.iterations == 9);  // |x0| = 2: 2^9 * 2 > 1000 first at the 9th step
-  const Landing nan =
-      curve::iterate_paper_map(eq, PaperGoal::foot_of(kP), x0, 1e12, control(1000), [](Vec3, Vec3& x1) {
-        x1 = Vec3{std::numeric_limits<double>::quiet_NaN(), 0, 0};
-        return true;
-      });
+  const Landing nan = curve::iterate_paper_map(eq, PaperGoal::foot_of(kPaperPoint), x0, 1e12, control(1000),
+                                               [](Vec3, Vec3& x1) {
+                                                 x1 = Vec3{std::numeric_limits<double>::quiet_NaN(), 0, 0};
+                                                 return true;
+                                               });
   CHECK(nan.status == Status::non_finite);
   CHECK(norm(nan.x - x0) == 0.0);  // the non-finite iterate is not taken
-  const Landing none = curve::iterate_paper_map(eq, PaperGoal::foot_of(kP), x0, 1e12, control(1000),
+  const Landing none = curve::iterate_paper_map(eq, PaperGoal::foot_of(kPaperPoint), x0, 1e12, control(1000),
                                                 [](Vec3, Vec3&) { return false; });
   CHECK(none.status == Status::degenerate);
   CHECK(none.iterations == 0);
@@ -109,30 +109,33 @@ TEST_CASE("iterate_paper_map: divergence, NaN, no step, and a test before the st
 TEST_CASE("paper_result: converged only for a foot point in the box; on the curve alone is not_orthogonal") {
   const ImplicitEquations eq = circle();
   const curve::IterationControl c = control(100);
-  const Landing at_foot{circle_foot(kP), 12, 1e-16, Status::converged};
-  const ProjectionResult r =
-      curve::paper_result(eq, kBox, kP, "simplified", at_foot, c, PaperGoal::foot_of(kP), {{1, 2, 3}});
+  const Landing at_foot{circle_foot(kPaperPoint), 12, 1e-16, Status::converged};
+  const ProjectionResult r = curve::paper_result(eq, kBox, kPaperPoint, "simplified", at_foot, c,
+                                                 PaperGoal::foot_of(kPaperPoint), {{1, 2, 3}});
   CHECK(r.summary.status == Status::converged);
   CHECK(r.summary.method == "simplified");
   CHECK(r.summary.iterations == 12);
   CHECK(r.summary.step_norm == 1e-16);
   CHECK(r.trace.size() == 1);
-  CHECK(r.distance == doctest::Approx(norm(kP - circle_foot(kP))).epsilon(1e-15));
+  CHECK(r.distance == doctest::Approx(norm(kPaperPoint - circle_foot(kPaperPoint))).epsilon(1e-15));
 
   const Landing on_curve{circle_point(1.0), 3, 0.0, Status::converged};
-  CHECK(curve::paper_result(eq, kBox, kP, "steepest_descent", on_curve, c, PaperGoal::on_curve(), {})
+  CHECK(curve::paper_result(eq, kBox, kPaperPoint, "steepest_descent", on_curve, c, PaperGoal::on_curve(), {})
             .summary.status == Status::not_orthogonal);
-  CHECK(curve::paper_result(eq, kBox, kP, "simplified", on_curve, c, PaperGoal::foot_of(kP), {})
+  CHECK(curve::paper_result(eq, kBox, kPaperPoint, "simplified", on_curve, c, PaperGoal::foot_of(kPaperPoint),
+                            {})
             .summary.status == Status::degenerate);
   const Box3 small{{-1, -1, -3}, {1, 1, 3}};  // the foot point (x = 1.64) lies outside it
-  CHECK(curve::paper_result(eq, small, kP, "simplified", at_foot, c, PaperGoal::foot_of(kP), {})
+  CHECK(curve::paper_result(eq, small, kPaperPoint, "simplified", at_foot, c, PaperGoal::foot_of(kPaperPoint),
+                            {})
             .summary.status == Status::outside_domain);
   curve::IterationControl near = c;
   near.max_distance = 0.5;
-  CHECK(curve::paper_result(eq, kBox, kP, "simplified", at_foot, near, PaperGoal::foot_of(kP), {})
+  CHECK(curve::paper_result(eq, kBox, kPaperPoint, "simplified", at_foot, near,
+                            PaperGoal::foot_of(kPaperPoint), {})
             .summary.status == Status::beyond_max_distance);
-  const Landing spent{circle_foot(kP), 100, 1e-3, Status::max_iterations};
+  const Landing spent{circle_foot(kPaperPoint), 100, 1e-3, Status::max_iterations};
   CHECK(
-      curve::paper_result(eq, kBox, kP, "simplified", spent, c, PaperGoal::foot_of(kP), {}).summary.status ==
-      Status::max_iterations);
+      curve::paper_result(eq, kBox, kPaperPoint, "simplified", spent, c, PaperGoal::foot_of(kPaperPoint), {})
+          .summary.status == Status::max_iterations);
 }

@@ -16,8 +16,8 @@ using nlohmann::json;
 
 namespace {
 
-std::shared_ptr<const CompiledGeometry> curve(const char* x, const char* y, const char* z, double t0,
-                                              double t1) {
+std::shared_ptr<const CompiledGeometry> parametric_curve(const char* x, const char* y, const char* z,
+                                                         double t0, double t1) {
   GeometryDefinition def;
   def.type = GeometryType::parametric_curve;
   def.formulas = {{"x", x}, {"y", y}};
@@ -35,7 +35,8 @@ TEST_CASE("newton and curvature_circle reach the oracle's interior nearest point
   for (const json& c : data["cases"]) {
     const json& f = c["formulas"];
     const std::string z = f.contains("z") ? f["z"].get<std::string>() : "";
-    const auto g = curve(f["x"].get<std::string>().c_str(), f["y"].get<std::string>().c_str(),
+    const auto g =
+        parametric_curve(f["x"].get<std::string>().c_str(), f["y"].get<std::string>().c_str(),
                          z.empty() ? nullptr : z.c_str(), c["domain"]["t"][0], c["domain"]["t"][1]);
     int k = 0;
     for (const json& pt : c["points"]) {
@@ -60,7 +61,7 @@ TEST_CASE("newton and curvature_circle from a given start") {
   // The planar ellipse (3 cos t, 2 sin t): from p = (0.5, 0.3) the distance has minima near
   // t = 1.30 (the nearest, d = 1.655) and t = -1.84 + 2 pi; starting at t = 4.5 both methods go to
   // the far one, an orthogonal point that is not the nearest.
-  const auto g = curve("3*cos(t)", "2*sin(t)", nullptr, 0.0, 6.283185307179586);
+  const auto g = parametric_curve("3*cos(t)", "2*sin(t)", nullptr, 0.0, 6.283185307179586);
   const double p[2] = {0.5, 0.3};
   Options o;
   o.initial = std::array<double, 3>{4.5, 0.0, 0.0};
@@ -76,7 +77,7 @@ TEST_CASE("newton and curvature_circle from a given start") {
     CHECK(r.num_params == 1);
   }
   // Newton from a start beyond the end of an arc converges outside [tmin, tmax] and says so.
-  const auto arc = curve("t", "t^2", nullptr, -1.0, 2.0);
+  const auto arc = parametric_curve("t", "t^2", nullptr, -1.0, 2.0);
   const double q[2] = {3.0, 9.5};  // nearest on the full parabola near t = 3.06, beyond tmax = 2
   o.initial = std::array<double, 3>{3.0, 0.0, 0.0};
   const ProjectionResult r = arc->project(q, "newton", o).value();
@@ -93,7 +94,7 @@ TEST_CASE("newton and curvature_circle from a given start") {
 TEST_CASE("curvature_circle and newton agree on the helix and trace their increments") {
   // [GSA] Remark 2 expects order 1 when p is off the curve; on the helix the osculating
   // circle fits so well that the increments still fall fast (4.0e-1, 4.6e-3, 7.7e-7, 2.2e-14).
-  const auto g = curve("cos(t)", "sin(t)", "0.2*t", 0.0, 12.566370614359172);
+  const auto g = parametric_curve("cos(t)", "sin(t)", "0.2*t", 0.0, 12.566370614359172);
   const double p[3] = {1.5, 0.3, 0.7};
   Options o;
   o.initial = std::array<double, 3>{6.0, 0.0, 0.0};

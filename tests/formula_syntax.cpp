@@ -19,8 +19,8 @@ using footpoint::formula::Program;
 
 namespace {
 
-FormulaError error_of(const std::string& text, const std::vector<std::string>& variables = {"u", "v"},
-                      const std::map<std::string, double>& constants = {}) {
+FormulaError syntax_error_of(const std::string& text, const std::vector<std::string>& variables = {"u", "v"},
+                             const std::map<std::string, double>& constants = {}) {
   try {
     Program::compile({{"x", text}}, variables, constants);
   } catch (const FormulaError& e) {
@@ -110,7 +110,7 @@ TEST_CASE("each fault: its kind, its character position, its suggestion, in our 
   };
   for (const auto& c : cases) {
     CAPTURE(c.text);
-    const FormulaError e = error_of(c.text);
+    const FormulaError e = syntax_error_of(c.text);
     CHECK(e.kind == c.kind);
     CHECK(e.formula == "x");
     CHECK(e.position == c.position);
@@ -153,7 +153,7 @@ TEST_CASE("what the reader accepts compiles to what the formula says") {
 TEST_CASE("nesting beyond the reader's bound is too_complex, below it compiles") {
   std::string deep = std::string(footpoint::formula::kMaxNesting + 5, '(') + "u" +
                      std::string(footpoint::formula::kMaxNesting + 5, ')');
-  const FormulaError e = error_of(deep);
+  const FormulaError e = syntax_error_of(deep);
   CHECK(e.kind == FormulaError::Kind::too_complex);
   const std::string ok = std::string(500, '(') + "u" + std::string(500, ')');
   CHECK_NOTHROW(Program::compile({{"x", ok}}, {"u", "v"}, {}));

@@ -23,7 +23,7 @@ IntervalMatrix<2> circle_line_jacobian(const IntervalVector<2>& b) {
   return {
       {{iv::mul(iv::point(2.0), b[0]), iv::mul(iv::point(2.0), b[1])}, {iv::point(1.0), iv::point(-1.0)}}};
 }
-bool holds(const Interval& a, double v) { return a.lo <= v && v <= a.hi; }
+bool encloses(const Interval& a, double v) { return a.lo <= v && v <= a.hi; }
 
 }  // namespace
 
@@ -33,8 +33,8 @@ TEST_CASE("krawczyk: a unique zero is proved and enclosed") {
   const Vector<2> m{0.7, 0.7};
   const KrawczykResult<2> k = krawczyk<2>(box, m, circle_line(m), circle_line_jacobian(box));
   REQUIRE(k.verdict == KrawczykVerdict::unique_zero);
-  CHECK(holds(k.image[0], r));
-  CHECK(holds(k.image[1], r));
+  CHECK(encloses(k.image[0], r));
+  CHECK(encloses(k.image[1], r));
   CHECK(k.contraction < 1.0);
   // About a good approximation the radius bound is a few ulps: the zero is within it.
   const Vector<2> near{r, r};
@@ -65,7 +65,7 @@ TEST_CASE("krawczyk: a box a few ulps wide along a coordinate the system fixes e
       {{iv::point(1.0), iv::point(0.0)}, {iv::point(0.0), iv::mul(iv::point(2.0), box[1])}}};
   const KrawczykResult<2> k = krawczyk<2>(box, m, g, jac);
   CHECK(k.verdict == KrawczykVerdict::unique_zero);
-  CHECK(holds(k.image[1], 0.5));
+  CHECK(encloses(k.image[1], 0.5));
   CHECK(k.contraction <= 0.21);
 }
 

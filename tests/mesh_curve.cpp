@@ -57,7 +57,7 @@ std::size_t segments(const Mesh& m) {
 }
 
 // Indices in range, at least two vertices a polyline, tangents unit (0 only at singular points).
-void check_well_formed(const Mesh& m) {
+void check_well_formed_polylines(const Mesh& m) {
   REQUIRE(m.tangents.size() == m.vertices.size());
   REQUIRE(m.triangles.empty());
   REQUIRE(!m.polylines.empty());
@@ -85,7 +85,7 @@ TEST_CASE("helix: c(t_i) at its parameters, exact tangents, uniform lines (const
   const auto g = parametric({{"x", "cos(t)"}, {"y", "sin(t)"}, {"z", "t/4"}}, {0, 4 * kPi});
   const int n = 200;
   const Mesh m = mesh_geometry(*g, MeshOptions{n});
-  check_well_formed(m);
+  check_well_formed_polylines(m);
   REQUIRE(m.polylines.size() == 1);
   CHECK_FALSE(m.polylines[0].closed);
   REQUIRE(m.vertices.size() == static_cast<std::size_t>(n + 1));
@@ -120,7 +120,7 @@ TEST_CASE("closed parametric curves give closed polylines without a second verte
     REQUIRE(dynamic_cast<const ParametricCurve&>(*g).closure().closed);
     const int n = 120;
     const Mesh m = mesh_geometry(*g, MeshOptions{n});
-    check_well_formed(m);
+    check_well_formed_polylines(m);
     REQUIRE(m.polylines.size() == 1);
     // No two vertices at one point: c(2 pi) is not repeated.
     for (std::size_t a = 0; a < m.vertices.size(); ++a)
@@ -146,7 +146,7 @@ TEST_CASE("closed parametric curves give closed polylines without a second verte
 TEST_CASE("planar parametric curve: z = 0, the part where the formula is not finite left out") {
   const auto g = parametric({{"x", "t"}, {"y", "sqrt(t)"}}, {-1, 1});
   const Mesh m = mesh_geometry(*g, MeshOptions{64});
-  check_well_formed(m);
+  check_well_formed_polylines(m);
   REQUIRE(m.polylines.size() == 1);
   for (std::size_t k = 0; k < m.vertices.size(); ++k) {
     const double t = m.parameters[k];
@@ -160,7 +160,7 @@ TEST_CASE("planar parametric curve: z = 0, the part where the formula is not fin
 TEST_CASE("planar implicit ellipse: one closed polyline on the curve, tangents orthogonal to the gradient") {
   const auto g = implicit({"x^2/4+y^2-1"}, {{-3, 3}, {-2, 2}});
   const Mesh m = mesh_geometry(*g, MeshOptions{4096});
-  check_well_formed(m);
+  check_well_formed_polylines(m);
   REQUIRE(m.polylines.size() == 1);
   CHECK(m.polylines[0].closed);
   CHECK(m.singular_points.empty());
@@ -177,7 +177,7 @@ TEST_CASE("planar implicit ellipse: one closed polyline on the curve, tangents o
   CHECK(std::abs(length(m) - perimeter) <= 1e-3 * perimeter);
   // The resolution bounds the segments; coarser meshes keep the vertices on the curve.
   const Mesh coarse = mesh_geometry(*g, MeshOptions{24});
-  check_well_formed(coarse);
+  check_well_formed_polylines(coarse);
   CHECK(segments(coarse) <= 24 + 2);
   CHECK(std::abs(length(coarse) - perimeter) <= 0.02 * perimeter);
 }
@@ -185,7 +185,7 @@ TEST_CASE("planar implicit ellipse: one closed polyline on the curve, tangents o
 TEST_CASE("implicit circle cut by the box: an open piece ending on the face") {
   const auto g = implicit({"x^2+y^2-1"}, {{-0.5, 2}, {-2, 2}});
   const Mesh m = mesh_geometry(*g, MeshOptions{512});
-  check_well_formed(m);
+  check_well_formed_polylines(m);
   REQUIRE(m.polylines.size() == 1);
   const Polyline& l = m.polylines[0];
   CHECK_FALSE(l.closed);
@@ -209,7 +209,7 @@ int passes(const Mesh& m, std::int32_t v) {
 TEST_CASE("lemniscate of Bernoulli: one loop through the crossing twice, the crossing one vertex") {
   const auto g = implicit({"(x^2+y^2)^2-2*(x^2-y^2)"}, {{-2, 2}, {-1.5, 1.5}});
   const Mesh m = mesh_geometry(*g, MeshOptions{2048});
-  check_well_formed(m);
+  check_well_formed_polylines(m);
   REQUIRE(m.singular_points.size() == 1);
   const std::int32_t origin = m.singular_points[0];
   CHECK(norm(m.vertices[static_cast<std::size_t>(origin)]) <= 1e-6);
@@ -228,7 +228,7 @@ TEST_CASE("lemniscate of Bernoulli: one loop through the crossing twice, the cro
 TEST_CASE("two crossing lines: both pieces pass the singular point") {
   const auto g = implicit({"x*y"}, {{-1, 1.2}, {-1, 1.1}});
   const Mesh m = mesh_geometry(*g, MeshOptions{2048});
-  check_well_formed(m);
+  check_well_formed_polylines(m);
   REQUIRE(m.singular_points.size() == 1);
   const std::int32_t origin = m.singular_points[0];
   CHECK(norm(m.vertices[static_cast<std::size_t>(origin)]) <= 1e-9);
@@ -245,7 +245,7 @@ TEST_CASE("two crossing lines: both pieces pass the singular point") {
 TEST_CASE("Viviani's curve: every vertex on the sphere and the cylinder, the crossing passed twice") {
   const auto g = implicit({"x^2+y^2+z^2-4", "(x-1)^2+y^2-1"}, {{-2.5, 2.5}, {-2.5, 2.5}, {-2.5, 2.5}});
   const Mesh m = mesh_geometry(*g, MeshOptions{1024});
-  check_well_formed(m);
+  check_well_formed_polylines(m);
   for (const Vec3& x : m.vertices) {
     CHECK(std::abs(norm2(x) - 4) / (2 * norm(x)) <= 1e-12);
     const double r = std::hypot(x.x - 1, x.y);

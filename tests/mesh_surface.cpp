@@ -20,7 +20,7 @@ using namespace footpoint;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+constexpr double kSurfacePi = std::numbers::pi;
 
 std::shared_ptr<const CompiledGeometry> surface(const char* x, const char* y, const char* z,
                                                 std::array<double, 2> u, std::array<double, 2> v,
@@ -51,7 +51,7 @@ double area(const Mesh& m) {
 
 // Every triangle: three distinct vertices, area above 1e-9 of its longest edge squared, its
 // winding turning about the vertices' normals; every vertex and normal finite, every normal unit.
-void check_well_formed(const Mesh& m) {
+void check_well_formed_triangles(const Mesh& m) {
   REQUIRE(m.normals.size() == m.vertices.size());
   REQUIRE(m.parameters.size() == 2 * m.vertices.size());
   REQUIRE(!m.triangles.empty());
@@ -93,10 +93,10 @@ std::map<std::pair<std::int32_t, std::int32_t>, int> edge_counts(const Mesh& m) 
 
 TEST_CASE("sphere mesh: vertices on the sphere, analytic normals, the sphere's area within 1 %") {
   const double R = 2.0;
-  const auto g =
-      surface("R*sin(u)*cos(v)", "R*sin(u)*sin(v)", "R*cos(u)", {0, kPi}, {0, 2 * kPi}, {{"R", R}});
+  const auto g = surface("R*sin(u)*cos(v)", "R*sin(u)*sin(v)", "R*cos(u)", {0, kSurfacePi},
+                         {0, 2 * kSurfacePi}, {{"R", R}});
   const Mesh m = mesh_geometry(*g, MeshOptions{64});
-  check_well_formed(m);
+  check_well_formed_triangles(m);
   for (std::size_t k = 0; k < m.vertices.size(); ++k) {
     const double u = m.parameters[2 * k], v = m.parameters[2 * k + 1];
     const Vec3 expected{R * std::sin(u) * std::cos(v), R * std::sin(u) * std::sin(v), R * std::cos(u)};
@@ -107,7 +107,7 @@ TEST_CASE("sphere mesh: vertices on the sphere, analytic normals, the sphere's a
     const bool pole = std::hypot(m.vertices[k].x, m.vertices[k].y) < 1e-9;
     CHECK(radial >= (pole ? 0.99 : 1.0 - 1e-14));
   }
-  const double exact = 4.0 * kPi * R * R;
+  const double exact = 4.0 * kSurfacePi * R * R;
   INFO("mesh area " << area(m) << ", sphere " << exact);
   CHECK(std::abs(area(m) - exact) <= 0.01 * exact);
   // An inscribed polyhedron lies inside: its area is below the sphere's.
@@ -115,24 +115,24 @@ TEST_CASE("sphere mesh: vertices on the sphere, analytic normals, the sphere's a
 }
 
 TEST_CASE("the resolution bounds the cells along each direction") {
-  const auto g =
-      surface("R*sin(u)*cos(v)", "R*sin(u)*sin(v)", "R*cos(u)", {0, kPi}, {0, 2 * kPi}, {{"R", 1}});
+  const auto g = surface("R*sin(u)*cos(v)", "R*sin(u)*sin(v)", "R*cos(u)", {0, kSurfacePi},
+                         {0, 2 * kSurfacePi}, {{"R", 1}});
   for (int n : {2, 3, 17, 100}) {
     const Mesh m = mesh_geometry(*g, MeshOptions{n});
     CHECK(m.vertices.size() <= static_cast<std::size_t>((n + 1) * (n + 1)));
     CHECK(m.triangles.size() <= static_cast<std::size_t>(2 * n * n));
     // At 2 cells a direction the grid lines v = 0, pi, 2 pi put every vertex in the plane y = 0:
     // a flat mesh whose triangles stand edge-on to the sphere's normals.
-    if (n > 2) check_well_formed(m);
+    if (n > 2) check_well_formed_triangles(m);
   }
   CHECK_THROWS_AS(mesh_geometry(*g, MeshOptions{1}), std::invalid_argument);
 }
 
 TEST_CASE("the detected closure stitches seams and poles: the sphere and the torus give closed meshes") {
   SUBCASE("sphere: one vertex per pole, every edge in two triangles, V - E + F = 2") {
-    const auto g = surface("sin(u)*cos(v)", "sin(u)*sin(v)", "cos(u)", {0, kPi}, {0, 2 * kPi});
+    const auto g = surface("sin(u)*cos(v)", "sin(u)*sin(v)", "cos(u)", {0, kSurfacePi}, {0, 2 * kSurfacePi});
     const Mesh m = mesh_parametric_surface(as_surface(g), 40);
-    check_well_formed(m);
+    check_well_formed_triangles(m);
     int poles = 0;
     for (const Vec3& x : m.vertices) poles += std::hypot(x.x, x.y) < 1e-9;
     CHECK(poles == 2);
@@ -143,28 +143,30 @@ TEST_CASE("the detected closure stitches seams and poles: the sphere and the tor
           2);
     for (std::size_t k = 0; k < m.vertices.size(); ++k)
       CHECK(dot(m.normals[k], m.vertices[k]) >= 1.0 - 1e-12);  // the pole's fan averages to the axis
-    CHECK(std::abs(area(m) - 4 * kPi) <= 0.01 * 4 * kPi);
+    CHECK(std::abs(area(m) - 4 * kSurfacePi) <= 0.01 * 4 * kSurfacePi);
   }
   SUBCASE("torus: both directions closed, V - E + F = 0") {
-    const auto g = surface("(2+cos(v))*cos(u)", "(2+cos(v))*sin(u)", "sin(v)", {0, 2 * kPi}, {0, 2 * kPi});
+    const auto g =
+        surface("(2+cos(v))*cos(u)", "(2+cos(v))*sin(u)", "sin(v)", {0, 2 * kSurfacePi}, {0, 2 * kSurfacePi});
     const Mesh m = mesh_parametric_surface(as_surface(g), 48);
-    check_well_formed(m);
+    check_well_formed_triangles(m);
     const auto edges = edge_counts(m);
     for (const auto& [edge, count] : edges) CHECK(count == 2);
     CHECK(static_cast<long>(m.vertices.size()) - static_cast<long>(edges.size()) +
               static_cast<long>(m.triangles.size()) ==
           0);
-    const double exact = 4 * kPi * kPi * 2 * 1;  // 4 pi^2 R r
+    const double exact = 4 * kSurfacePi * kSurfacePi * 2 * 1;  // 4 pi^2 R r
     CHECK(std::abs(area(m) - exact) <= 0.01 * exact);
   }
   SUBCASE("without a closure the torus mesh is a grid with open seams of the same area") {
-    const auto g = surface("(2+cos(v))*cos(u)", "(2+cos(v))*sin(u)", "sin(v)", {0, 2 * kPi}, {0, 2 * kPi});
+    const auto g =
+        surface("(2+cos(v))*cos(u)", "(2+cos(v))*sin(u)", "sin(v)", {0, 2 * kSurfacePi}, {0, 2 * kSurfacePi});
     const Mesh m = mesh_parametric_surface(as_surface(g), 48, SurfaceClosure{});
-    check_well_formed(m);
+    check_well_formed_triangles(m);
     int boundary = 0;
     for (const auto& [edge, count] : edge_counts(m)) boundary += count == 1;
     CHECK(boundary > 0);
-    CHECK(std::abs(area(m) - 8 * kPi * kPi) <= 0.01 * 8 * kPi * kPi);
+    CHECK(std::abs(area(m) - 8 * kSurfacePi * kSurfacePi) <= 0.01 * 8 * kSurfacePi * kSurfacePi);
   }
 }
 
@@ -200,26 +202,27 @@ void check_no_duplicates(const Mesh& m, double size) {
 
 TEST_CASE("closed meshes from the API's path (mesh_geometry): Euler characteristics, no duplicate vertices") {
   SUBCASE("torus: V - E + F = 0, every edge in two triangles") {
-    const auto g =
-        surface("(2+0.5*cos(v))*cos(u)", "(2+0.5*cos(v))*sin(u)", "0.5*sin(v)", {0, 2 * kPi}, {0, 2 * kPi});
+    const auto g = surface("(2+0.5*cos(v))*cos(u)", "(2+0.5*cos(v))*sin(u)", "0.5*sin(v)",
+                           {0, 2 * kSurfacePi}, {0, 2 * kSurfacePi});
     const Mesh m = mesh_geometry(*g, MeshOptions{40});
-    check_well_formed(m);
+    check_well_formed_triangles(m);
     CHECK(euler_characteristic(m) == 0);
     CHECK(boundary_edges(m) == 0);
     check_no_duplicates(m, 5.0);
   }
   SUBCASE("sphere over longitude x latitude (tests/data/surface_sphere.json): V - E + F = 2") {
-    const auto g = surface("cos(u)*cos(v)", "sin(u)*cos(v)", "sin(v)", {0, 2 * kPi}, {-kPi / 2, kPi / 2});
+    const auto g = surface("cos(u)*cos(v)", "sin(u)*cos(v)", "sin(v)", {0, 2 * kSurfacePi},
+                           {-kSurfacePi / 2, kSurfacePi / 2});
     const Mesh m = mesh_geometry(*g, MeshOptions{40});
-    check_well_formed(m);
+    check_well_formed_triangles(m);
     CHECK(euler_characteristic(m) == 2);
     CHECK(boundary_edges(m) == 0);
     check_no_duplicates(m, 2.0);
   }
   SUBCASE("cylinder: one seam, two boundary circles, V - E + F = 0") {
-    const auto g = surface("cos(u)", "sin(u)", "v", {0, 2 * kPi}, {-1, 1});
+    const auto g = surface("cos(u)", "sin(u)", "v", {0, 2 * kSurfacePi}, {-1, 1});
     const Mesh m = mesh_geometry(*g, MeshOptions{40});
-    check_well_formed(m);
+    check_well_formed_triangles(m);
     CHECK(euler_characteristic(m) == 0);
     // The two circles: as many boundary edges as cells around, each circle closed.
     const auto& closure = as_surface(g).closure();
@@ -230,9 +233,9 @@ TEST_CASE("closed meshes from the API's path (mesh_geometry): Euler characterist
     check_no_duplicates(m, 3.0);
   }
   SUBCASE("cone: the apex one vertex, a disc, V - E + F = 1") {
-    const auto g = surface("v*cos(u)", "v*sin(u)", "v", {0, 2 * kPi}, {0, 1});
+    const auto g = surface("v*cos(u)", "v*sin(u)", "v", {0, 2 * kSurfacePi}, {0, 1});
     const Mesh m = mesh_geometry(*g, MeshOptions{40});
-    check_well_formed(m);
+    check_well_formed_triangles(m);
     CHECK(euler_characteristic(m) == 1);
     int apex = 0;
     for (const Vec3& x : m.vertices) apex += norm(x) == 0.0;
@@ -240,11 +243,11 @@ TEST_CASE("closed meshes from the API's path (mesh_geometry): Euler characterist
     check_no_duplicates(m, 2.0);
   }
   SUBCASE("Möbius band: its reversed seam is left open, the grid well formed") {
-    const auto g =
-        surface("(1+v*cos(u/2))*cos(u)", "(1+v*cos(u/2))*sin(u)", "v*sin(u/2)", {0, 2 * kPi}, {-0.5, 0.5});
+    const auto g = surface("(1+v*cos(u/2))*cos(u)", "(1+v*cos(u/2))*sin(u)", "v*sin(u/2)",
+                           {0, 2 * kSurfacePi}, {-0.5, 0.5});
     CHECK(as_surface(g).closure().seams[0].reversed);
     const Mesh m = mesh_geometry(*g, MeshOptions{40});
-    check_well_formed(m);
+    check_well_formed_triangles(m);
     CHECK(euler_characteristic(m) == 1);  // a disc: the grid, unstitched
   }
   SUBCASE("a plane stays a grid") {
@@ -259,7 +262,7 @@ TEST_CASE("grid lines crowd where the surface bends and stay uniform where it do
   const auto g = surface("u", "v", "exp(-20*u^2)", {-1, 1}, {-1, 1});
   const int n = 24;
   const Mesh m = mesh_geometry(*g, MeshOptions{n});
-  check_well_formed(m);
+  check_well_formed_triangles(m);
   std::vector<double> us, vs;
   for (std::size_t k = 0; k < m.vertices.size(); ++k) {
     us.push_back(m.parameters[2 * k]);
@@ -298,12 +301,12 @@ TEST_CASE("where the formulas are not finite the mesh leaves the part out") {
   // The upper unit hemisphere over [-1, 1]^2: sqrt of a negative number outside the disc.
   const auto g = surface("u", "v", "sqrt(1-u^2-v^2)", {-1, 1}, {-1, 1});
   const Mesh m = mesh_geometry(*g, MeshOptions{48});
-  check_well_formed(m);
+  check_well_formed_triangles(m);
   for (std::size_t k = 0; k < m.vertices.size(); ++k) {
     const double u = m.parameters[2 * k], v = m.parameters[2 * k + 1];
     CHECK(u * u + v * v <= 1.0);
     CHECK(std::abs(norm(m.vertices[k]) - 1.0) <= 1e-15);
   }
-  CHECK(area(m) > 0.75 * 2 * kPi);  // most of the hemisphere: the steep cells at the rim are cut
-  CHECK(area(m) < 2 * kPi);
+  CHECK(area(m) > 0.75 * 2 * kSurfacePi);  // most of the hemisphere: the steep cells at the rim are cut
+  CHECK(area(m) < 2 * kSurfacePi);
 }

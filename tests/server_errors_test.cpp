@@ -17,7 +17,7 @@ using json = nlohmann::json;
 
 namespace {
 
-const json kSurface = json::parse(
+const json kErrorsSurface = json::parse(
     R"J({"type":"parametric_surface","x":"u+v","y":"sin(u)+2*cos(v)","z":"sin(u+v)","domain":{"u":[-3,3],"v":[-3,3]}})J");
 
 // The error of a request that must fail with `status`.
@@ -56,7 +56,7 @@ TEST_CASE("formula errors: code, field, character position, suggestion, no mupar
   };
   for (const auto& k : cases) {
     CAPTURE(k.formula);
-    const json e = error_of(*c, "POST", "/v1/geometries", with(kSurface, "y", k.formula).dump(), 422);
+    const json e = error_of(*c, "POST", "/v1/geometries", with(kErrorsSurface, "y", k.formula).dump(), 422);
     CHECK(e["code"] == k.code);
     CHECK(e["field"] == "y");
     CHECK(e["position"] == k.position);
@@ -74,7 +74,7 @@ TEST_CASE("formula errors: code, field, character position, suggestion, no mupar
   // Inline, the field carries the geometry's prefix.
   const json inline_error =
       error_of(*c, "POST", "/v1/project",
-               json{{"geometry", with(kSurface, "x", "u+sinn(v)")}, {"point", {1, 2, 2}}}.dump(), 422);
+               json{{"geometry", with(kErrorsSurface, "x", "u+sinn(v)")}, {"point", {1, 2, 2}}}.dump(), 422);
   CHECK(inline_error["code"] == "unknown_function");
   CHECK(inline_error["field"] == "geometry.x");
   CHECK(inline_error["position"] == 2);
@@ -161,7 +161,7 @@ TEST_CASE("limits say the limit and what to do; a body for another endpoint name
   config.max_body_bytes = 2048;
   TestServer s(config);
   auto c = s.client();
-  const std::string id = create(*c, kSurface.dump());
+  const std::string id = create(*c, kErrorsSurface.dump());
   const json many = error_of(*c, "POST", "/v1/geometries/" + id + "/project",
                              R"J({"points":[[1,2,2],[1,2,2],[1,2,2],[1,2,2]]})J", 413);
   CHECK(many["code"] == "too_many_points");
@@ -178,8 +178,8 @@ TEST_CASE("limits say the limit and what to do; a body for another endpoint name
   CHECK(std::string(large["message"]).find("split the batch") != std::string::npos);
 
   c = s.client();  // the server closed the connection after the body it did not read
-  const json to_geometries =
-      error_of(*c, "POST", "/v1/geometries", json{{"geometry", kSurface}, {"point", {1, 2, 2}}}.dump(), 400);
+  const json to_geometries = error_of(*c, "POST", "/v1/geometries",
+                                      json{{"geometry", kErrorsSurface}, {"point", {1, 2, 2}}}.dump(), 400);
   CHECK(to_geometries["code"] == "unknown_field");
   CHECK(to_geometries["field"] == "geometry");
   CHECK(std::string(to_geometries["message"]).find("POST /v1/project") != std::string::npos);

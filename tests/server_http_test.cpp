@@ -58,8 +58,8 @@ json post_json(httplib::Client& c, const std::string& path, const std::string& b
   return r->body.empty() ? json() : json::parse(r->body);
 }
 
-std::string points_body(const std::vector<std::array<double, 3>>& pts, int dim = 3,
-                        const std::string& extra = "") {
+std::string http_points_body(const std::vector<std::array<double, 3>>& pts, int dim = 3,
+                             const std::string& extra = "") {
   JsonWriter w;
   w.begin_object();
   w.key("points");
@@ -252,7 +252,7 @@ TEST_CASE("HTTP answers equal the core's answers to the last bit") {
   const auto geometry = s.server().cache().find(id);
   REQUIRE(geometry);
   const auto pts = random_points(200, 7, -6, 6);
-  const json batch = post_json(*c, "/v1/geometries/" + id + "/project", points_body(pts), 200);
+  const json batch = post_json(*c, "/v1/geometries/" + id + "/project", http_points_body(pts), 200);
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const ProjectionResult direct = geometry->project(pts[i].data(), "auto", Options{}).value();
     const json& r = batch["results"][i];
@@ -269,7 +269,7 @@ TEST_CASE("a batch of 10,000 points equals the same points sent one by one") {
   auto c = s.client();
   const std::string id = create(*c, kParaboloid);
   const auto pts = random_points(10000, 11, -3, 3);
-  const json batch = post_json(*c, "/v1/geometries/" + id + "/project", points_body(pts), 200);
+  const json batch = post_json(*c, "/v1/geometries/" + id + "/project", http_points_body(pts), 200);
   REQUIRE(batch["results"].size() == pts.size());
   CHECK(batch["stats"]["points"] == 10000);
   std::size_t differ = 0;
@@ -291,9 +291,9 @@ TEST_CASE("a batch of 10,000 points equals the same points sent one by one") {
 
 TEST_CASE("results do not depend on the number of worker threads") {
   const auto pts = random_points(1000, 5, -8, 8);
-  const std::string body = points_body(pts);
+  const std::string body = http_points_body(pts);
   const std::string minima_body =
-      points_body(random_points(40, 6, -8, 8), 3, R"J("options":{"all_minima":true})J");
+      http_points_body(random_points(40, 6, -8, 8), 3, R"J("options":{"all_minima":true})J");
   std::vector<json> answers, minima;
   for (unsigned threads : {1u, 2u, 4u}) {
     ServerConfig config;
@@ -473,7 +473,7 @@ TEST_CASE("responses are never compressed and X-Request-Id is honoured") {
   TestServer s;
   auto c = s.client();
   const std::string id = create(*c, kParaboloid);
-  const std::string body = points_body(random_points(500, 3, -2, 2));
+  const std::string body = http_points_body(random_points(500, 3, -2, 2));
   const std::string response = raw_exchange(
       s.port(), "POST /v1/geometries/" + id +
                     "/project HTTP/1.1\r\nHost: x\r\nConnection: close\r\n"
@@ -548,8 +548,8 @@ TEST_CASE("points not done by the deadline get deadline_exceeded, with null answ
   TestServer s(config);
   auto c = s.client();
   const std::string id = create(*c, kSurfaceA1);
-  const json r =
-      post_json(*c, "/v1/geometries/" + id + "/project", points_body(random_points(50000, 9, -9, 9)), 200);
+  const json r = post_json(*c, "/v1/geometries/" + id + "/project",
+                           http_points_body(random_points(50000, 9, -9, 9)), 200);
   std::size_t late = 0;
   for (const auto& x : r["results"]) {
     if (x["diagnostics"]["status"] != "deadline_exceeded") continue;
@@ -571,7 +571,7 @@ TEST_CASE("beyond --max-inflight, compute requests are shed with 503 overloaded"
   auto c = s.client();
   const std::string id = create(*c, kSurfaceA1);
   const std::string heavy =
-      points_body(random_points(100000, 13, -9, 9), 3, R"J("options":{"all_minima":true})J");
+      http_points_body(random_points(100000, 13, -9, 9), 3, R"J("options":{"all_minima":true})J");
   std::thread slow([&] {
     auto c2 = s.client();
     post_json(*c2, "/v1/geometries/" + id + "/project", heavy, 200);
@@ -601,7 +601,8 @@ TEST_CASE("beyond --max-inflight-points, a second batch is shed; a lone oversize
   const std::string project = "/v1/geometries/" + id + "/project";
   // 40,000 points: more than the budget, admitted because nothing else is in flight (without their
   // certificates: the search alone keeps them in flight long enough, also under a sanitizer)
-  const std::string big = points_body(random_points(40000, 21, -9, 9), 3, R"J("options":{"certify":false})J");
+  const std::string big =
+      http_points_body(random_points(40000, 21, -9, 9), 3, R"J("options":{"certify":false})J");
   std::thread slow([&] {
     auto c2 = s.client();
     CHECK(post_json(*c2, project, big, 200)["stats"]["points"] == 40000);
@@ -630,7 +631,7 @@ TEST_CASE("graceful shutdown: idle connections close at once, in-flight requests
     auto c2 = s.client();
     // without certificates: a batch that takes a while, not minutes under a sanitizer
     in_flight = c2->Post("/v1/geometries/" + id + "/project",
-                         points_body(pts, 3, R"J("options":{"certify":false})J"), "application/json");
+                         http_points_body(pts, 3, R"J("options":{"certify":false})J"), "application/json");
   });
   // A kept-alive connection that has already been served once, and `c`, idle since it saw the
   // batch in flight.

@@ -15,7 +15,7 @@ using json = nlohmann::json;
 
 namespace {
 
-json get(httplib::Client& c, const std::string& path, int status = 200) {
+json get_list(httplib::Client& c, const std::string& path, int status = 200) {
   auto r = c.Get(path);
   REQUIRE(r);
   INFO(r->body);
@@ -28,7 +28,8 @@ json get(httplib::Client& c, const std::string& path, int status = 200) {
 TEST_CASE("the list pages through every held geometry in id order, with its statistics") {
   TestServer s;
   auto c = s.client();
-  CHECK(get(*c, "/v1/geometries") == json{{"geometries", json::array()}, {"held", 0}, {"next", nullptr}});
+  CHECK(get_list(*c, "/v1/geometries") ==
+        json{{"geometries", json::array()}, {"held", 0}, {"next", nullptr}});
   std::vector<std::string> ids;
   for (int k = 1; k <= 7; ++k)
     ids.push_back(create(*c, R"J({"type":"parametric_curve","x":"cos(t)","y":")J" + std::to_string(k) +
@@ -42,7 +43,7 @@ TEST_CASE("the list pages through every held geometry in id order, with its stat
   std::string after;
   int pages = 0;
   for (;;) {
-    const json page = get(*c, "/v1/geometries?limit=3" + (after.empty() ? "" : "&after=" + after));
+    const json page = get_list(*c, "/v1/geometries?limit=3" + (after.empty() ? "" : "&after=" + after));
     ++pages;
     CHECK(page["held"] == 7);
     CHECK(page["geometries"].size() <= 3);
@@ -59,11 +60,11 @@ TEST_CASE("the list pages through every held geometry in id order, with its stat
   }
   CHECK(pages == 3);
   CHECK(seen == ids);
-  const json first = get(*c, "/v1/geometries?limit=1");
+  const json first = get_list(*c, "/v1/geometries?limit=1");
   CHECK(first["geometries"][0]["hits"] == 2);
   // Listing is no use: it neither counts as a hit nor changes what the cache evicts first.
-  CHECK(get(*c, "/v1/geometries?limit=1")["geometries"][0]["hits"] == 2);
-  CHECK(get(*c, "/v1/geometries")["geometries"].size() == 7);  // the default limit, 100
+  CHECK(get_list(*c, "/v1/geometries?limit=1")["geometries"][0]["hits"] == 2);
+  CHECK(get_list(*c, "/v1/geometries")["geometries"].size() == 7);  // the default limit, 100
 }
 
 TEST_CASE("the list's query: every bad parameter its 400") {
@@ -79,7 +80,7 @@ TEST_CASE("the list's query: every bad parameter its 400") {
         Case{"limit=ten", "wrong_type", "limit"}, Case{"after=xyz", "invalid_geometry_id", "after"},
         Case{"limit=1&limit=2", "duplicate_field", "limit"}, Case{"page=2", "unknown_field", "page"}}) {
     CAPTURE(k.query);
-    const json e = get(*c, std::string("/v1/geometries?") + k.query, 400);
+    const json e = get_list(*c, std::string("/v1/geometries?") + k.query, 400);
     CHECK(e["error"]["code"] == k.code);
     CHECK(e["error"]["field"] == k.field);
   }

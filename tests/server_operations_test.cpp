@@ -116,8 +116,8 @@ std::string run_output(const std::string& command) {
   return out;
 }
 
-// The value of a metric line "name value" (or "name{labels} value"); NaN when absent.
-double metric(const std::string& text, const std::string& name) {
+// The value of a metric_value line "name value" (or "name{labels} value"); NaN when absent.
+double metric_value(const std::string& text, const std::string& name) {
   const std::regex line("^" + name + " ([0-9.e+-]+)$", std::regex::multiline);
   std::smatch m;
   return std::regex_search(text, m, line) ? std::stod(m[1]) : std::nan("");
@@ -168,14 +168,14 @@ TEST_CASE("process metrics as Prometheus' clients name them") {
     CAPTURE(name);
     CHECK(m.find(std::string("# TYPE ") + name + " ") != std::string::npos);
   }
-  CHECK(metric(m, "process_cpu_seconds_total") > 0.0);
-  CHECK(metric(m, "process_resident_memory_bytes") > 1e6);
-  CHECK(metric(m, "process_virtual_memory_bytes") >= metric(m, "process_resident_memory_bytes"));
-  CHECK(metric(m, "process_open_fds") >= 3.0);  // stdin, stdout, stderr, the sockets
-  CHECK(metric(m, "process_max_fds") >= metric(m, "process_open_fds"));
+  CHECK(metric_value(m, "process_cpu_seconds_total") > 0.0);
+  CHECK(metric_value(m, "process_resident_memory_bytes") > 1e6);
+  CHECK(metric_value(m, "process_virtual_memory_bytes") >= metric_value(m, "process_resident_memory_bytes"));
+  CHECK(metric_value(m, "process_open_fds") >= 3.0);  // stdin, stdout, stderr, the sockets
+  CHECK(metric_value(m, "process_max_fds") >= metric_value(m, "process_open_fds"));
   const double now =
       std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-  const double start = metric(m, "process_start_time_seconds");
+  const double start = metric_value(m, "process_start_time_seconds");
   CHECK(start <= now + 1.0);
   CHECK(start > now - 3600.0);  // this test process started within the hour
 }

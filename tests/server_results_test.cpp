@@ -16,10 +16,10 @@ using json = nlohmann::json;
 
 namespace {
 
-const std::string kSurface =
+const std::string kResultsSurface =
     R"J({"type":"parametric_surface","x":"u+v","y":"sin(u)+2*cos(v)","z":"sin(u+v)","domain":{"u":[-3,3],"v":[-3,3]}})J";
 
-json post(httplib::Client& c, const std::string& path, const json& body, int status = 200) {
+json post_results(httplib::Client& c, const std::string& path, const json& body, int status = 200) {
   auto r = c.Post(path, body.dump(), "application/json");
   REQUIRE(r);
   INFO(r->body);
@@ -44,11 +44,12 @@ json batch(int n) {
 TEST_CASE("fields: each result has the members named, in the result's order, with the full answer's values") {
   TestServer s;
   auto c = s.client();
-  const std::string project = "/v1/geometries/" + create(*c, kSurface) + "/project";
+  const std::string project = "/v1/geometries/" + create(*c, kResultsSurface) + "/project";
   const json points = batch(50);
-  const json full = post(*c, project, {{"points", points}});
+  const json full = post_results(*c, project, {{"points", points}});
 
-  const json trimmed = post(*c, project, {{"points", points}, {"fields", {"distance", "foot_point"}}});
+  const json trimmed =
+      post_results(*c, project, {{"points", points}, {"fields", {"distance", "foot_point"}}});
   REQUIRE(trimmed["results"].size() == 50);
   for (std::size_t i = 0; i < 50; ++i) {
     const json& t = trimmed["results"][i];
@@ -62,7 +63,7 @@ TEST_CASE("fields: each result has the members named, in the result's order, wit
   CHECK(raw->body.find(R"("result":{"foot_point":[)") != std::string::npos);  // the result's order
 
   const json status_only =
-      post(*c, project, {{"points", points}, {"fields", {"diagnostics.status", "parameters"}}});
+      post_results(*c, project, {{"points", points}, {"fields", {"diagnostics.status", "parameters"}}});
   for (std::size_t i = 0; i < 50; ++i) {
     const json& t = status_only["results"][i];
     CHECK(keys(t) == std::set<std::string>{"parameters", "diagnostics"});
@@ -70,17 +71,17 @@ TEST_CASE("fields: each result has the members named, in the result's order, wit
     CHECK(t["diagnostics"]["status"] == full["results"][i]["diagnostics"]["status"]);
     CHECK(t["parameters"] == full["results"][i]["parameters"]);
   }
-  const json diagnostics = post(*c, project, {{"point", {1, 2, 2}}, {"fields", {"diagnostics"}}});
+  const json diagnostics = post_results(*c, project, {{"point", {1, 2, 2}}, {"fields", {"diagnostics"}}});
   CHECK(keys(diagnostics["result"]) == std::set<std::string>{"diagnostics"});
   CHECK(diagnostics["result"]["diagnostics"] ==
-        post(*c, project, {{"point", {1, 2, 2}}})["result"]["diagnostics"]);
+        post_results(*c, project, {{"point", {1, 2, 2}}})["result"]["diagnostics"]);
   CHECK(keys(diagnostics["result"]["diagnostics"]) ==
         std::set<std::string>{"method", "status", "converged", "iterations", "residual", "step_norm",
                               "starts", "location", "certificate", "multiplicity"});
 
   // minima and trace: named and asked for
-  const json minima =
-      post(*c, project, {{"point", {1, 2, 2}}, {"options", {{"all_minima", true}}}, {"fields", {"minima"}}});
+  const json minima = post_results(
+      *c, project, {{"point", {1, 2, 2}}, {"options", {{"all_minima", true}}}, {"fields", {"minima"}}});
   CHECK(keys(minima["result"]) == std::set<std::string>{"minima", "minima_truncated"});
   CHECK(minima["result"]["minima"].size() >= 1);
 
@@ -92,7 +93,7 @@ TEST_CASE("fields: each result has the members named, in the result's order, wit
 TEST_CASE("fields: the bytes of a big answer shrink to what was asked") {
   TestServer s;
   auto c = s.client();
-  const std::string project = "/v1/geometries/" + create(*c, kSurface) + "/project";
+  const std::string project = "/v1/geometries/" + create(*c, kResultsSurface) + "/project";
   const json points = batch(2000);
   auto full = c->Post(project, json{{"points", points}}.dump(), "application/json");
   auto trimmed = c->Post(project, json{{"points", points}, {"fields", {"foot_point", "distance"}}}.dump(),
@@ -108,7 +109,7 @@ TEST_CASE("fields: the bytes of a big answer shrink to what was asked") {
 TEST_CASE("fields: every bad value its 400, naming the field") {
   TestServer s;
   auto c = s.client();
-  const std::string project = "/v1/geometries/" + create(*c, kSurface) + "/project";
+  const std::string project = "/v1/geometries/" + create(*c, kResultsSurface) + "/project";
   struct Case {
     json fields;
     json options;
@@ -131,7 +132,7 @@ TEST_CASE("fields: every bad value its 400, naming the field") {
   for (const auto& k : cases) {
     CAPTURE(k.fields.dump());
     const json e =
-        post(*c, project, {{"point", {1, 2, 2}}, {"fields", k.fields}, {"options", k.options}}, 400);
+        post_results(*c, project, {{"point", {1, 2, 2}}, {"fields", k.fields}, {"options", k.options}}, 400);
     CHECK(e["error"]["code"] == k.code);
     CHECK(e["error"]["field"] == k.field);
     CHECK(std::string(e["error"]["message"]).find(k.in_message) != std::string::npos);
@@ -144,15 +145,15 @@ TEST_CASE("stats count each status that occurs; the counts add up to the points"
   config.compile_deadline = std::chrono::milliseconds(60000);  // compile fully, project against 1 ms
   TestServer s(config);
   auto c = s.client();
-  const std::string project = "/v1/geometries/" + create(*c, kSurface) + "/project";
+  const std::string project = "/v1/geometries/" + create(*c, kResultsSurface) + "/project";
   // Two points near the surface, one far beyond max_distance.
-  const json near_far =
-      post(*c, project,
-           {{"points", {{1, 2, 2}, {0.5, 1.5, 0.2}, {100, 100, 100}}}, {"options", {{"max_distance", 5}}}});
+  const json near_far = post_results(
+      *c, project,
+      {{"points", {{1, 2, 2}, {0.5, 1.5, 0.2}, {100, 100, 100}}}, {"options", {{"max_distance", 5}}}});
   CHECK(near_far["stats"]["statuses"] == json{{"converged", 2}, {"beyond_max_distance", 1}});
   CHECK(near_far["stats"]["converged"] == 2);
   // Under a 1 ms deadline, a big batch leaves points unsolved: they are counted too.
-  const json late = post(*c, project, {{"points", batch(20000)}});
+  const json late = post_results(*c, project, {{"points", batch(20000)}});
   long total = 0;
   for (const auto& [status, count] : late["stats"]["statuses"].items()) {
     CHECK(count.get<long>() > 0);
