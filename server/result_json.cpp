@@ -171,6 +171,14 @@ Status write_result(JsonAppender& o, const ProjectionResult& r, ResultFields f) 
       o.number(mn.distance);
       o.literal(",\"location\":");
       name(o, to_string(mn.location));
+      if (!mn.copies.empty()) {
+        o.literal(",\"parameter_copies\":[");
+        for (std::size_t k = 0; k < mn.copies.size(); ++k) {
+          if (k) o.literal(",");
+          o.numbers(mn.copies[k].data(), 2);
+        }
+        o.literal(mn.copies_truncated ? "],\"copies_truncated\":true" : "],\"copies_truncated\":false");
+      }
       o.literal("}");
     }
     o.literal(r.minima_truncated ? "],\"minima_truncated\":true" : "],\"minima_truncated\":false");

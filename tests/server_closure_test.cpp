@@ -116,6 +116,19 @@ TEST_CASE("the closure of each geometry, in the POST response and in GET /v1/geo
     CHECK(moves[k][1].get<double>() == doctest::Approx(-2.0 * M_PI * (k + 1)).epsilon(1e-15));
   }
   CHECK(get(*c, "/v1/geometries/" + a1["geometry_id"].get<std::string>())["closure"] == a1["closure"]);
+  // all_minima names every parameter copy of a foot point: at least the answer's translates
+  // (u + 2πk, v - 2πk) in the box, each giving the foot point.
+  const json answer = post(*c, "/v1/geometries/" + a1["geometry_id"].get<std::string>() + "/project",
+                           R"J({"point":[0.3,1.1,-0.4],"options":{"all_minima":true}})J", 200);
+  const json& nearest = answer["result"]["minima"][0];
+  REQUIRE(nearest["parameter_copies"].size() >= 7);
+  CHECK(nearest["copies_truncated"] == false);
+  for (const json& t : nearest["parameter_copies"]) {
+    const double u = t[0], v = t[1];
+    CHECK(u + v == doctest::Approx(nearest["foot_point"][0].get<double>()).epsilon(1e-12));
+    CHECK(std::sin(u) + 2 * std::cos(v) ==
+          doctest::Approx(nearest["foot_point"][1].get<double>()).epsilon(1e-12));
+  }
 
   const json circle =
       post(*c, "/v1/geometries",

@@ -79,6 +79,12 @@ struct Minimum {
   std::array<double, 2> params{};
   double distance = 0.0;
   Location location = Location::unknown;
+  // Surfaces: every parameter pair of the domain known to give this foot point, `params` among
+  // them, in increasing u, then v: the copies the search solved (a fold, a seam's two sides) and
+  // their translates by the geometry's closure.translations that lie in the domain. At most
+  // Options::minima_cap() (copies_truncated when more were found).
+  std::vector<std::array<double, 2>> copies{};
+  bool copies_truncated = false;
 };
 
 struct ProjectionResult {

@@ -26,6 +26,16 @@ struct SelfCovering {
   // The rectangle [u0, u1] x [v0, v1] lies in box + δ for one of the translations, by a margin
   // of 1e-12 (|δ| + the box's largest coordinate) for the rounding of δ's double value.
   bool covered(const ParamBox& box, double u0, double u1, double v0, double v1) const;
+
+  // The parameter copies of the points `seeds` in the box: every t ± δ_1 ± δ_2 ... reached from a
+  // seed by steps along the translations that stay in the box (within the margin above; such a
+  // copy is moved onto the box's edge), the seeds included, in increasing u, then v. Points within
+  // 1e-9 (1 + |t|) of each other are one. At most `cap` (*truncated when more were reached).
+  // Complete when `translations` holds every translation that fits in the box (at most 64 do,
+  // detect_self_covering): two copies in the box differ by one of them, one step.
+  std::vector<std::array<double, 2>> copies(const ParamBox& box,
+                                            const std::vector<std::array<double, 2>>& seeds, std::size_t cap,
+                                            bool* truncated) const;
 };
 
 // At most 64 translations, the shortest (any subset serves the argument above).

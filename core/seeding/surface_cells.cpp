@@ -127,7 +127,8 @@ SurfaceCellBounds cell_bounds(const SurfaceFormulas& f, const Rect& r, const Sur
 }  // namespace
 
 SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
-                           const SurfaceSeedingOptions& options, const SelfCovering& covering) {
+                           const SurfaceSeedingOptions& options, const SelfCovering& covering)
+    : covering_(covering) {
   for (int k = 0; k < 4; ++k) {
     SurfaceCorner& c = corners_[static_cast<std::size_t>(k)];
     c.u = k % 2 == 0 ? box.umin : box.umax;
@@ -359,7 +360,8 @@ double SurfaceCells::root_distance2(const Vec3& p) const {
 
 std::size_t SurfaceCells::memory_bytes() const {
   return sizeof(*this) + nodes_.capacity() * sizeof(SurfaceCellNode) +
-         cells_.capacity() * sizeof(SurfaceCell) + bounds_bytes();
+         cells_.capacity() * sizeof(SurfaceCell) + bounds_bytes() +
+         covering_.translations.capacity() * sizeof(covering_.translations[0]);
 }
 
 }  // namespace footpoint

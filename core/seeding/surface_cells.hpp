@@ -136,6 +136,9 @@ class SurfaceCells {
   const std::vector<SurfaceCell>& cells() const { return cells_; }
   // Parallel to cells(): their rigorous bounds.
   const std::vector<SurfaceCellBounds>& bounds() const { return bounds_; }
+  // The translations the cells were built with: every parameter point of the box has its copies
+  // t + Σ k_i δ_i in the box, which the cells do not search.
+  const SelfCovering& covering() const { return covering_; }
   // The cells' sub-boxes, bisected on demand by the certificates and kept (thread-safe).
   const SurfaceRefinement& refinement() const { return *refinement_; }
   // The box containing the whole surface (the root's).
@@ -193,6 +196,7 @@ class SurfaceCells {
   std::unique_ptr<SurfaceRefinement> refinement_;
   std::array<SurfaceCorner, 4> corners_;
   Vec3 lo_, hi_;
+  SelfCovering covering_;
 };
 
 }  // namespace footpoint

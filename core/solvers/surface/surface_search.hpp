@@ -174,6 +174,10 @@ class SurfaceSearch {
   // (*truncated when more were found); a continuum at the answer's distance is its one
   // representative, the answer.
   std::vector<Minimum> minima(const ProjectionResult& r, bool* truncated) const;
+  // The parameter copies of one foot point from the parameters solved for it (Minimum::copies):
+  // their images across the closure's seams, then their translates (SelfCovering::copies).
+  std::vector<std::array<double, 2>> parameter_copies(std::vector<std::array<double, 2>> seeds,
+                                                      bool* truncated) const;
 
   const SurfaceCells& cells_;
   const SurfaceFormulas& formulas_;

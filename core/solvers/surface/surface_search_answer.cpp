@@ -139,6 +139,34 @@ AnswerMultiplicity SurfaceSearch::multiplicity(const ProjectionResult& r) const 
   return m;
 }
 
+std::vector<std::array<double, 2>> SurfaceSearch::parameter_copies(std::vector<std::array<double, 2>> seeds,
+                                                                   bool* truncated) const {
+  // A seam's two edges are one curve: (umin, v) is (umax, v), or (umax, vmin + vmax - v) reversed.
+  const std::size_t solved = seeds.size();
+  for (std::size_t i = 0; i < solved; ++i) {
+    for (int d = 0; d < 2; ++d) {
+      const SurfaceSeam& seam = closure_.seams[static_cast<std::size_t>(d)];
+      if (!seam.closed) continue;
+      const double lo = d == 0 ? box_.umin : box_.vmin, hi = d == 0 ? box_.umax : box_.vmax;
+      const double olo = d == 0 ? box_.vmin : box_.umin, ohi = d == 0 ? box_.vmax : box_.umax;
+      const double tol = 1e-9 * (1.0 + std::abs(lo) + std::abs(hi));
+      std::array<double, 2> t = seeds[i];
+      double& x = t[static_cast<std::size_t>(d)];
+      double& y = t[static_cast<std::size_t>(1 - d)];
+      if (std::abs(x - lo) <= tol) {
+        x = hi;
+      } else if (std::abs(x - hi) <= tol) {
+        x = lo;
+      } else {
+        continue;
+      }
+      if (seam.reversed) y = olo + ohi - y;
+      seeds.push_back(t);
+    }
+  }
+  return cells_.covering().copies(box_, seeds, options_.minima_cap(), truncated);
+}
+
 std::vector<Minimum> SurfaceSearch::minima(const ProjectionResult& r, bool* truncated) const {
   std::vector<const Found*> order;
   for (const Found& f : all_)
@@ -150,6 +178,8 @@ std::vector<Minimum> SurfaceSearch::minima(const ProjectionResult& r, bool* trun
                                Certificate::absolute_gap_at(p_, Vec3{r.foot[0], r.foot[1], r.foot[2]}));
   const std::size_t cap = options_.minima_cap();
   std::vector<Minimum> out;
+  // the parameters solved for each entry of out: its copies' seeds
+  std::vector<std::vector<std::array<double, 2>>> solved;
   *truncated = false;
   if (continuum) {
     Minimum m;
@@ -158,18 +188,22 @@ std::vector<Minimum> SurfaceSearch::minima(const ProjectionResult& r, bool* trun
     m.distance = r.distance;
     m.location = r.summary.location;
     out.push_back(m);
+    solved.push_back({r.params});
   }
   for (const Found* f : order) {
     const Vec3& s = f->sol.jet.s;
     if (continuum && std::abs(f->sol.distance - r.distance) <= gap) continue;
     const double tol = kDistinctFoot * (1.0 + norm(s));
-    const bool seen = std::any_of(out.begin(), out.end(), [&](const Minimum& m) {
+    const auto same = std::find_if(out.begin(), out.end(), [&](const Minimum& m) {
       return norm2(Vec3{m.foot[0], m.foot[1], m.foot[2]} - s) <= tol * tol;
     });
-    if (seen) continue;
+    if (same != out.end()) {
+      solved[static_cast<std::size_t>(same - out.begin())].push_back({f->sol.u, f->sol.v});
+      continue;
+    }
     if (out.size() == cap) {
       *truncated = true;
-      break;
+      continue;  // the listed minima may still gain copies
     }
     Minimum m;
     m.foot = {s.x, s.y, s.z};
@@ -177,7 +211,12 @@ std::vector<Minimum> SurfaceSearch::minima(const ProjectionResult& r, bool* trun
     m.distance = f->sol.distance;
     m.location = location_in(box_, f->sol.u, f->sol.v, &closure_);
     out.push_back(m);
+    solved.push_back({m.params});
   }
+  // A pole's parameters are the whole edge: its entry names one.
+  for (std::size_t i = 0; i < out.size(); ++i)
+    if (out[i].location != Location::pole)
+      out[i].copies = parameter_copies(solved[i], &out[i].copies_truncated);
   return out;
 }
 
