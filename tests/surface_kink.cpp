@@ -54,3 +54,43 @@ TEST_CASE("a kink that is no minimum is not claimed: z = -|u| from (0, 0.2, -0.5
   CHECK(r.distance == doctest::Approx(std::sqrt(0.125)).epsilon(1e-14));
   CHECK(std::abs(std::abs(r.params[0]) - 0.25) <= 1e-12);
 }
+
+TEST_CASE("a kink meeting an edge: z = |u| over [-1, 1] x [0, 1] from (0, -0.5, -0.3)") {
+  // f = u^2 + (v + 0.5)^2 + (|u| + 0.3)^2: the v term is least on the edge v = 0, the u term at
+  // the kink u = 0; the nearest point is (0, 0, 0) at √0.34, where the kink meets the edge
+  const auto g = make_surface("u", "v", "abs(u)", {-1, 1}, {0, 1});
+  const ProjectionResult r = project(*g, {0, -0.5, -0.3}, "auto");
+  CHECK(r.summary.status == Status::converged);
+  CHECK(r.summary.location == Location::edge);
+  CHECK(r.summary.orthogonality[0] == 0.0);
+  CHECK(r.summary.orthogonality[1] == 0.0);
+  CHECK(r.distance == doctest::Approx(std::sqrt(0.34)).epsilon(1e-15));
+  CHECK(std::abs(r.params[0]) <= 1e-15);
+  CHECK(r.params[1] == 0.0);
+  CHECK(r.summary.certificate.certified);
+}
+
+TEST_CASE("a kink meeting a corner: z = |u - v^2| over [-1, 1]^2 near (1, ±1)") {
+  // From (1.5, ±1.5, -0.5): along the kink u = v^2 the distance falls towards the corner (1, ±1);
+  // off it |u - v^2| grows, and into the box from the corner every one-sided slope is positive
+  // (-u: 2 on the side u < v^2; -v: 3 on the side u > v^2). Nearest: (1, ±1, 0) at √0.75.
+  const auto g = make_surface("u", "v", "abs(u-v^2)", {-1, 1}, {-1, 1});
+  for (const double side : {1.0, -1.0}) {
+    CAPTURE(side);
+    const ProjectionResult r = project(*g, {1.5, 1.5 * side, -0.5}, "auto");
+    CHECK(r.summary.status == Status::converged);
+    CHECK(r.summary.location == Location::corner);
+    CHECK(r.summary.residual() == 0.0);
+    CHECK(r.distance == doctest::Approx(std::sqrt(0.75)).epsilon(1e-15));
+    CHECK(r.params[0] == 1.0);
+    CHECK(r.params[1] == side);
+    CHECK(r.summary.certificate.certified);
+  }
+  // And the points the first look at this met: from (1, ±1, -1) over the corner.
+  for (const double side : {1.0, -1.0}) {
+    const ProjectionResult r = project(*g, {1, side, -1}, "auto");
+    CAPTURE(side);
+    CHECK(r.summary.status == Status::converged);
+    CHECK(r.distance == doctest::Approx(1.0).epsilon(1e-15));
+  }
+}

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 namespace footpoint::surface {
 
@@ -93,6 +94,107 @@ bool jumps(const Bracket& k) {
   return norm2d(jump) > 1e3 * width * std::max(k.a.h_norm, k.b.h_norm) + 1e-12 * size;
 }
 
+// Where K meets the box's boundary: t0 on an edge or at a corner (within `margin`). The point is
+// the corner itself, or on an edge the minimum of f along the edge, bracketed where the slope along
+// the edge changes sign and bisected to adjacent doubles. It is stationary when no feasible
+// direction r (into the box) descends: the one-sided derivative f'(t; r) >= 0. f' is linear in r
+// on each side of K, and the feasible cone (a half-plane, a quadrant) is at most two cones on
+// which it is linear, so a fan of directions across the feasible cone tells; f'(t; r) is read as
+// <g(t + h r), r>, the gradient of the piece r points into, off by at most |H| h.
+bool boundary_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, double scale,
+                           double margin, LocalSolution& s) {
+  P2 t{s.u, s.v};
+  bool u_lo = std::abs(t[0] - box.umin) <= margin, u_hi = std::abs(t[0] - box.umax) <= margin;
+  bool v_lo = std::abs(t[1] - box.vmin) <= margin, v_hi = std::abs(t[1] - box.vmax) <= margin;
+  bool at_u = u_lo || u_hi, at_v = v_lo || v_hi;
+  if (!at_u && !at_v) return false;
+  if (at_u) t[0] = u_lo ? box.umin : box.umax;
+  if (at_v) t[1] = v_lo ? box.vmin : box.vmax;
+  Local best = local_at(formulas, p, t);
+  if (!best.finite) return false;
+  if (at_u != at_v) {  // along the edge: direction k of the parameters, between lo and hi
+    const std::size_t k = at_u ? 1 : 0;
+    const double lo = k == 0 ? box.umin : box.vmin, hi = k == 0 ? box.umax : box.vmax;
+    const auto point = [&](double x) {
+      P2 q = t;
+      q[k] = x;
+      return local_at(formulas, p, q);
+    };
+    const double x0 = t[k];
+    // the slope along the edge just inside its ends: f falls towards a corner there
+    const Local near_lo = point(lo + margin), near_hi = point(hi - margin);
+    double h = margin;
+    Local a = best, b = best;
+    bool bracketed = false, corner = false;
+    for (int grow = 0; grow < 64 && !bracketed && !corner; ++grow, h *= 2.0) {
+      a = point(std::max(lo, x0 - h));
+      b = point(std::min(hi, x0 + h));
+      if (!a.finite || !b.finite) return false;
+      bracketed = a.g[k] < 0.0 && b.g[k] > 0.0;
+      if (bracketed) break;
+      // the edge's least value at its end: the corner
+      if (b.t[k] == hi && near_hi.g[k] < 0.0) {
+        corner = true, t[k] = hi;
+      } else if (a.t[k] == lo && near_lo.g[k] > 0.0) {
+        corner = true, t[k] = lo;
+      }
+    }
+    if (corner) {
+      at_u = at_v = true;
+      (k == 0 ? u_lo : v_lo) = t[k] == lo;
+      (k == 0 ? u_hi : v_hi) = t[k] == hi;
+      best = local_at(formulas, p, t);
+      if (!best.finite) return false;
+    } else {
+      if (!bracketed) return false;
+      for (int i = 0; i < 160; ++i) {
+        const double mid = 0.5 * (a.t[k] + b.t[k]);
+        if (mid == a.t[k] || mid == b.t[k]) break;
+        const Local m = point(mid);
+        if (!m.finite) return false;
+        (m.g[k] < 0.0 ? a : b) = m;
+      }
+      best = a.f <= b.f ? a : b;
+    }
+  }
+  // the feasible cone: directions at angles [first, first + width]
+  double first = 0.0, width = 0.0;
+  if (at_u && at_v) {
+    first =
+        u_lo ? (v_lo ? 0.0 : -0.5 * std::numbers::pi) : (v_lo ? 0.5 * std::numbers::pi : std::numbers::pi);
+    width = 0.5 * std::numbers::pi;
+  } else if (at_u) {
+    first = u_lo ? -0.5 * std::numbers::pi : 0.5 * std::numbers::pi;
+    width = std::numbers::pi;
+  } else {
+    first = v_lo ? 0.0 : std::numbers::pi;
+    width = std::numbers::pi;
+  }
+  const double step = 1e-7 * scale;
+  const Vec3 r = best.jet.s - p;
+  constexpr int kFan = 64;
+  for (int i = 0; i <= kFan; ++i) {
+    const double angle = first + width * i / kFan;
+    const P2 dir{std::cos(angle), std::sin(angle)};
+    P2 q = along(best.t, step, dir);
+    q = {std::clamp(q[0], box.umin, box.umax), std::clamp(q[1], box.vmin, box.vmax)};
+    const Local l = local_at(formulas, p, q);
+    if (!l.finite) return false;
+    const Vec3 s_dir = l.jet.su * dir[0] + l.jet.sv * dir[1];
+    const double tolerance = 2.0 * l.h_norm * step + 1e-12 * norm(r) * norm(s_dir);
+    if (dot2(l.g, dir) < -tolerance) return false;
+  }
+  if (!(best.f <= 0.5 * s.distance * s.distance)) return false;
+  s.u = best.t[0];
+  s.v = best.t[1];
+  s.jet = best.jet;
+  s.distance = std::sqrt(2.0 * best.f);
+  s.status = Status::converged;
+  s.abandoned = false;
+  s.kink = true;
+  return true;
+}
+
 }  // namespace
 
 bool kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, LocalSolution& s) {
@@ -101,7 +203,7 @@ bool kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Ve
   if (!l0.finite) return false;
   const double scale = std::max({box.umax - box.umin, box.vmax - box.vmin, std::abs(s.u), std::abs(s.v)});
   const double margin = 1e-9 * scale;
-  if (!inside(box, t0, margin)) return false;
+  if (!inside(box, t0, margin)) return boundary_kink_minimum(formulas, box, p, scale, margin, s);
   // 1. across K along the piece's Newton step (its gradient where the Hessian is not definite)
   const double det = l0.h[0] * l0.h[2] - l0.h[1] * l0.h[1];
   P2 d = det > 0.0 && l0.h[0] > 0.0 ? P2{-(l0.h[2] * l0.g[0] - l0.h[1] * l0.g[1]) / det,

@@ -25,9 +25,14 @@
 //     |D| <= 1e-12 |s - p| |s_τ| (the cosine residual of the orthogonality, at rounding level), at
 //     most 32 steps.
 //  3. The answer is the end of the last bracket with the smaller f, if <g-, n> <= 0 <= <g+, n>.
-// The kink must lie inside the parameter box by a margin of 1e-9 of its size: where a kink meets
-// an edge or a corner (z = |u - v^2| at (1, ±1) over [-1,1]^2) the solve is left as it ended,
-// max_iterations at the right point, uncertified.
+// Where the solve ended within 1e-9 of the box's size of an edge or a corner (a kink meeting the
+// boundary: z = |u - v^2| at (1, ±1) over [-1,1]^2), the candidate is the corner, or on an edge the
+// minimum of f along it (bisected to adjacent doubles where the slope along the edge changes sign;
+// the corner where f falls along the edge all the way to its end), and it is stationary when no direction
+// into the box descends: the one-sided derivative f'(t; r) = <g±, r> of the side r points into is >= 0 over
+// the feasible cone (Clarke's condition with the box's normal cone: 0 in the hull of g-, g+ plus that cone).
+// f' is linear on each side of K, so a fan of 65 directions across the cone tells, each read from the
+// gradient a step 1e-7 of the box's size along it (off by |H| times that step, which the test allows).
 #pragma once
 #include "geometry/parametric_surface.hpp"
 #include "solvers/surface/projected_newton.hpp"

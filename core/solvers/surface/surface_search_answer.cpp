@@ -31,8 +31,10 @@ ProjectionResult SurfaceSearch::answer(const LocalSolution& s) const {
   r.summary.iterations = s.iterations;
   r.summary.step_norm = s.step_norm;
   if (s.kink) {
-    r.summary.location = Location::kink;
-    r.summary.orthogonality = {0.0, 0.0};  // zero lies in the hull of the one-sided gradients
+    // on an edge or at a corner the location stays that
+    if (!r.summary.on_boundary) r.summary.location = Location::kink;
+    // zero lies in the hull of the one-sided gradients (plus the box's normal cone)
+    r.summary.orthogonality = {0.0, 0.0};
   }
   return r;
 }
