@@ -71,7 +71,7 @@ TEST_CASE("krawczyk: a box a few ulps wide along a coordinate the system fixes e
 
 TEST_CASE("krawczyk: a singular midpoint Jacobian decides nothing") {
   const IntervalVector<1> box{{{-1.0, 1.0}}};
-  const IntervalMatrix<1> jac{{{{0.0, 0.0}}}};
+  const IntervalMatrix<1> jac{{{{{0.0, 0.0}}}}};
   const KrawczykResult<1> k = krawczyk<1>(box, {0.0}, {{{-1.0, -1.0}}}, jac);
   CHECK(k.verdict == KrawczykVerdict::undecided);
   CHECK(std::isinf(k.contraction));

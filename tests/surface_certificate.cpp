@@ -50,10 +50,12 @@ TEST_CASE("a local minimum given as the answer is never certified, the global on
   const auto wavy = make_surface("u", "v", "0.2*sin(7*u)*sin(5*v)", {-2, 2}, {-2, 2});
   const auto gsa = make_surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-3, 3}, {-3, 3});
   int refuted = 0, worse = 0, global_certified = 0;
-  for (const auto& [g, p] : {std::pair{wavy, Vec3{0.05, 0.1, -0.28}}, std::pair{wavy, Vec3{0.4, -0.3, 0.27}},
-                             std::pair{wavy, Vec3{-0.8, 0.9, -0.3}}, std::pair{gsa, Vec3{1.0, 2.0, 2.0}},
-                             std::pair{gsa, Vec3{-1.5, 0.5, 1.0}}, std::pair{gsa, Vec3{2.0, -1.0, 3.0}},
-                             std::pair{gsa, Vec3{0.5, 0.5, -2.0}}}) {
+  for (const auto& [g, point] :
+       {std::pair{wavy, Vec3{0.05, 0.1, -0.28}}, std::pair{wavy, Vec3{0.4, -0.3, 0.27}},
+        std::pair{wavy, Vec3{-0.8, 0.9, -0.3}}, std::pair{gsa, Vec3{1.0, 2.0, 2.0}},
+        std::pair{gsa, Vec3{-1.5, 0.5, 1.0}}, std::pair{gsa, Vec3{2.0, -1.0, 3.0}},
+        std::pair{gsa, Vec3{0.5, 0.5, -2.0}}}) {
+    const Vec3 p = point;  // (clang 14 lambdas, as INFO's, cannot capture a structured binding)
     const std::vector<LocalMinimum> minima = local_minima(*g, p);
     INFO("p = (" << p.x << ", " << p.y << ", " << p.z << "): " << minima.size() << " local minima");
     REQUIRE(!minima.empty());

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <queue>
 
 #include "geometry/distance_bound.hpp"
@@ -13,7 +12,6 @@ namespace footpoint::curve {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kU = 0x1p-53;
 
 struct OpenInterval {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <queue>
 
@@ -16,7 +15,6 @@ namespace footpoint::surface {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kU = 0x1p-53;
 
 using Params2 = std::array<double, 2>;
