@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geometry/dense_solve.hpp"
 
@@ -122,11 +123,17 @@ CellProof prove_cell(const ImplicitEquations& equations, const Box3& cell, doubl
   const IVec3 t = ivec::intersect(j.tangent(), mean);
 
   // The coordinate the curve runs along most: the largest |T_k| bounded away from 0, against |T|.
+  // In space, claim (a) needs more than T_k ≠ 0 at every point: the mean value theorem takes each
+  // row of the slice's Jacobian at a point of its own, and the determinants of such mixed matrices
+  // range over the natural cross product ∇f1(B) × ∇f2(B) (each entry once in the 2x2 determinant:
+  // its range), so T_k must be bounded away from 0 there too. In the plane the slice is a segment
+  // and one row, taken at one point.
+  const IVec3 mixed = j.tangent();
   int axis = -1;
   double best = 0.0;
   for (int k = 0; k < dims; ++k) {
     const double m = iv::mig(t[k]);
-    if (m > best) best = m, axis = k;
+    if (m > best && (dims == 2 || mixed[k].excludes_zero())) best = m, axis = k;
   }
   if (axis < 0) {
     proof.reason = UnprovedReason::tangent_may_vanish;
@@ -178,7 +185,40 @@ CellProof prove_cell(const ImplicitEquations& equations, const Box3& cell, doubl
     }
   proof.verdict = CellVerdict::arcs;
   proof.axis = axis;
+  for (std::size_t i = 0; i + 1 < proof.crossings.size(); i += 2)
+    proof.capsules.push_back(arc_capsule(proof.bounds, axis, proof.crossings[i], proof.crossings[i + 1]));
   return proof;
+}
+
+ArcCapsule arc_capsule(const CellBounds& bounds, int axis, const FaceCrossing& start,
+                       const FaceCrossing& end) {
+  const Interval tk = bounds.tangent[axis];
+  const IMat3& dt = bounds.tangent_derivatives;  // row m: ∂T/∂x_m
+  const double length = formula::next_up(end.enclosure.hi[axis] - start.enclosure.lo[axis]);
+  double deviation2 = 0.0;
+  for (int j = 0; j < 3; ++j) {
+    if (j == axis) continue;
+    const Interval slope = iv::div(bounds.tangent[j], tk);
+    Interval second{0.0, 0.0};
+    for (int m = 0; m < 3; ++m) {
+      const Interval d_slope =
+          iv::div(iv::sub(iv::mul(dt[m][j], tk), iv::mul(bounds.tangent[j], dt[m][axis])), iv::sqr(tk));
+      second = iv::add(second, iv::mul(d_slope, iv::div(bounds.tangent[m], tk)));
+    }
+    const double by_slope = formula::next_up(slope.hi - slope.lo) * length * 0.5;
+    const double by_curvature = iv::mag(second) * length * length * 0.125;
+    const double deviation = std::fmin(by_slope, by_curvature);
+    deviation2 += deviation * deviation;
+  }
+  double diameter = 0.0;
+  for (const FaceCrossing* e : {&start, &end}) {
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k) sum += e->enclosure.hi[k] - e->enclosure.lo[k];
+    diameter = std::fmax(diameter, sum);
+  }
+  // A few roundings on upper bounds of non-negative quantities: covered by the factor.
+  const double radius = (std::sqrt(deviation2) + diameter) * (1.0 + 0x1p-40);
+  return {start.point, end.point, std::isfinite(radius) ? radius : std::numeric_limits<double>::infinity()};
 }
 
 }  // namespace footpoint

@@ -7,8 +7,11 @@
 //  - monotone arcs when a component T_k of T = ∇f1 × ∇f2 ([Curve] eq. (7)) is bounded away from 0
 //    over B (its enclosure is T(B) ∩ (T(c) + Σ_j ∂_j T(B) (B_j - c_j)), both rigorous). Then
 //    (a) each slice x_k = t of B meets the curve at most once: the Jacobian of (f1, f2) in the
-//        other two coordinates has determinant ±T_k, and every matrix of its interval enclosure
-//        is nonsingular, so (f1, f2) is one-to-one on the slice (mean value theorem row by row);
+//        other two coordinates has determinant ±T_k, and in space T_k is also bounded away from
+//        0 over the natural enclosure ∇f1(B) × ∇f2(B), the range of the determinants of the
+//        matrices whose rows are gradients at different points, so every matrix of the slice's
+//        interval Jacobian is nonsingular and (f1, f2) is one-to-one on the slice (mean value
+//        theorem row by row; in the plane the slice's one row is taken at one point);
 //    (b) so the curve in B is a union of arcs, each the graph of a smooth function of x_k over an
 //        interval (implicit function theorem), with pairwise disjoint x_k-ranges: no closed loop,
 //        no end inside B, no singular point (T ≠ 0);
@@ -67,11 +70,30 @@ enum class UnprovedReason {
   loose,               // the enclosures are wider than asked for (CellBounds): a smaller cell is wanted
 };
 
+// A capsule around one arc of a proved cell: every point of the arc lies within `radius` of the
+// segment [a, b] between the located points of its two ends (a before b along x_axis).
+// With the arc the graph x_j = φ_j(t) of t = x_axis over [a*_k, b*_k] (a*, b* its true ends, in
+// the ends' enclosures) and the chord c(t) through a*, b*, g = φ_j - c_j vanishes at both ends and
+//  - φ_j' = T_j / T_k ∈ R_j = T_j(B) / T_k(B), the chord's slope too (mean value theorem), so
+//    |g(t)| <= w(R_j) min(t - a*_k, b*_k - t) <= w(R_j) L / 2;
+//  - |g(t)| <= max |φ_j''| (t - a*_k)(b*_k - t) / 2 <= max |φ_j''| L² / 8 (the interpolation
+//    error of the chord), with φ_j'' = Σ_m ∂_m(T_j / T_k) T_m / T_k enclosed from T(B), ∂T(B);
+// where L >= b*_k - a*_k. The arc and the chord agree in x_k, so their distance at t is at most
+// the root of the sum of squares of the per-coordinate bounds; the segment [a, b] between the
+// computed end points lies within the larger diameter of the two enclosures of the true chord.
+struct ArcCapsule {
+  Vec3 a, b;
+  double radius = 0.0;
+};
+ArcCapsule arc_capsule(const CellBounds& bounds, int axis, const FaceCrossing& start,
+                       const FaceCrossing& end);
+
 struct CellProof {
   CellVerdict verdict = CellVerdict::unproved;
   UnprovedReason reason = UnprovedReason::none;
   int axis = -1;                        // arcs: the coordinate x_k they are monotone in
   std::vector<FaceCrossing> crossings;  // arcs: sorted by x_k; arc i joins 2i and 2i + 1
+  std::vector<ArcCapsule> capsules;     // arcs: arc i's capsule
   CellBounds bounds;                    // arcs: the enclosures above
   std::size_t evaluations = 0;          // interval evaluations made
 };

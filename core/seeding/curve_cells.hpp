@@ -20,6 +20,7 @@ struct ProvedCell {
   int axis = 0;                     // the arcs are monotone in x_axis
   std::int32_t first_crossing = 0;  // its ends: CurveCells::crossings[first, first + count)
   std::int32_t crossing_count = 0;  // sorted by x_axis; arc i joins ends 2i and 2i + 1
+  std::int32_t first_capsule = 0;   // arc i's capsule: CurveCells::capsules[first_capsule + i]
   CellBounds bounds;
   EnlargedBounds around;
 };
@@ -32,6 +33,7 @@ struct UnprovedBox {
 struct CurveCells {
   std::vector<ProvedCell> cells;
   std::vector<FaceCrossing> crossings;
+  std::vector<ArcCapsule> capsules;
   std::vector<UnprovedBox> unproved;
   std::size_t examined = 0;     // cells examined (prove_cell calls)
   std::size_t evaluations = 0;  // interval evaluations

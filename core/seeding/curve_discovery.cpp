@@ -99,8 +99,9 @@ void sample_unproved(const ImplicitEquations& eq, const Box3& box, CurveDiscover
 
 std::size_t CurveDiscovery::memory_bytes() const {
   return samples.memory_bytes() + cells.cells.capacity() * sizeof(ProvedCell) +
-         cells.crossings.capacity() * sizeof(FaceCrossing) + cells.unproved.capacity() * sizeof(UnprovedBox) +
-         tree.memory_bytes() + singular_enclosures.capacity() * sizeof(Box3);
+         cells.crossings.capacity() * sizeof(FaceCrossing) + cells.capsules.capacity() * sizeof(ArcCapsule) +
+         cells.unproved.capacity() * sizeof(UnprovedBox) + tree.memory_bytes() +
+         singular_enclosures.capacity() * sizeof(Box3);
 }
 
 CurveDiscovery discover_implicit_curve(const ImplicitEquations& equations, const Box3& box) {

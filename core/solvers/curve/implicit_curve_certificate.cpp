@@ -9,6 +9,7 @@
 #include "geometry/implicit_curve_differentials.hpp"
 #include "geometry/interval_vec3.hpp"
 #include "geometry/krawczyk.hpp"
+#include "geometry/segment_distance.hpp"
 
 namespace footpoint::curve {
 namespace {
@@ -85,6 +86,7 @@ class Certifier {
     }
     if (far2_ < std::numeric_limits<double>::infinity())
       contribute(formula::next_down(std::sqrt(far2_)), CertificateReason::gap_met);
+    contribute(far_arcs_, CertificateReason::gap_met);
     // Every part was bounded, so lower_ is finite unless nothing is left at all; below the
     // answer's own distance it stays a lower bound.
     c.lower_bound = std::fmin(lower_, distance_);
@@ -110,6 +112,19 @@ class Certifier {
     return true;
   }
 
+  // True when every arc of the cell is at least the threshold away by its capsule (the least such
+  // bound is kept for the end).
+  bool arcs_far_enough(const ProvedCell& cell) {
+    double lower = std::numeric_limits<double>::infinity();
+    for (std::int32_t i = 0; i < cell.crossing_count / 2; ++i) {
+      const ArcCapsule& c = d_.cells.capsules[static_cast<std::size_t>(cell.first_capsule + i)];
+      lower = std::fmin(lower, segment_distance_lower_bound(p_, c.a, c.b) - c.radius);
+      if (!(lower >= threshold_)) return false;
+    }
+    far_arcs_ = std::fmin(far_arcs_, formula::next_down(lower));
+    return true;
+  }
+
   void item(const CellItem& it) {
     if (far_enough(it.box)) return;
     const double dl = distance_lower_bound(p_, it.box);
@@ -123,9 +138,11 @@ class Certifier {
                                                                : CertificateReason::singular);
         return;
       }
-      case CellItemKind::proved_cell:
-        proved(d_.cells.cells[static_cast<std::size_t>(it.index)]);
+      case CellItemKind::proved_cell: {
+        const ProvedCell& cell = d_.cells.cells[static_cast<std::size_t>(it.index)];
+        if (!arcs_far_enough(cell)) proved(cell);
         return;
+      }
     }
   }
 
@@ -489,7 +506,8 @@ class Certifier {
   Vec3 p_, foot_;
   double distance_;
   double threshold_ = 0.0, threshold2_ = 0.0;
-  double far2_ = std::numeric_limits<double>::infinity();  // the least squared bound of far boxes
+  double far2_ = std::numeric_limits<double>::infinity();      // the least squared bound of far boxes
+  double far_arcs_ = std::numeric_limits<double>::infinity();  // the least bound of far capsules
   double lower_ = std::numeric_limits<double>::infinity();
   CertificateReason reason_ = CertificateReason::gap_met;
   int boxes_ = 0;

@@ -10,7 +10,9 @@
 //   G(X) = (f1(X), f2(X), F(X)) = 0,   F(X) = ⟨T(X), p - X⟩          ([Curve] eqs. (5), (7)).
 // So L = the least of: the distances to the box-face enclosures; bounds over the unproved boxes;
 // and, over each proved cell B, a bound of |p - X| over the zeros of G in B. A part of D farther
-// than d - gap (d the answer's distance) needs no more than its box distance.
+// than d - gap (d the answer's distance) needs no more than its box distance, and a proved cell
+// whose arcs are that far no more than their capsules' distance (the distance to a segment less
+// a radius, seeding/curve_cell_proof: ArcCapsule), far closer to the arcs' own than its box's.
 //
 // Over a proved cell B (enclosures kept at compile time, seeding/curve_cell_proof: ∇f1, ∇f2, T
 // and ∂T/∂x_j over B, f and T at the centre c):
