@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "geometry/segment_distance.hpp"
@@ -39,21 +40,19 @@ long double segment_distance_long(Vec3 p, Vec3 a, Vec3 b) {
 double check_capsules_hold(const CurveDiscovery& d, const std::vector<Vec3>& curve) {
   std::vector<double> ratios;
   int checked_cells = 0;
-  for (const ProvedCell& cell : d.cells.cells) {
-    const int arcs = cell.crossing_count / 2;
-    REQUIRE(arcs >= 1);
-    for (int i = 0; i < arcs; ++i)
-      ratios.push_back(d.cells.capsules[static_cast<std::size_t>(cell.first_capsule + i)].radius /
-                       cell.box.max_edge());
+  for (std::size_t c = 0; c < d.cells.cells.size(); ++c) {
+    const ProvedCell& cell = d.cells.cells[c];
+    const std::span<const ArcCapsule> capsules = d.cells.arc_capsules(c);
+    REQUIRE(static_cast<int>(capsules.size()) * 2 == cell.crossing_count);
+    for (const ArcCapsule& capsule : capsules) ratios.push_back(capsule.radius / cell.box.max_edge());
     int inside = 0;
     for (const Vec3& x : curve) {
       if (!cell.box.contains(x)) continue;
       ++inside;
       long double nearest = INFINITY, radius = 0;
-      for (int i = 0; i < arcs; ++i) {
-        const ArcCapsule& c = d.cells.capsules[static_cast<std::size_t>(cell.first_capsule + i)];
-        const long double gap = segment_distance_long(x, c.a, c.b) - c.radius;
-        if (gap < nearest) nearest = gap, radius = c.radius;
+      for (const ArcCapsule& capsule : capsules) {
+        const long double gap = segment_distance_long(x, capsule.a, capsule.b) - capsule.radius;
+        if (gap < nearest) nearest = gap, radius = capsule.radius;
       }
       // The samples are the curve's points to a few ulps of their coordinates.
       INFO("cell [" << cell.box.lo.x << ", " << cell.box.hi.x << "] x [" << cell.box.lo.y << ", "
@@ -120,6 +119,7 @@ TEST_CASE("arc capsules hold their arcs: Viviani's curve, every proved cell") {
   const CurveDiscovery d = discover_implicit_curve(eq, {{-3.0, -3.0, -3.0}, {3.0, 3.0, 3.0}});
   REQUIRE(d.cells.cells.size() > 100);
   REQUIRE(d.cells.capsules.size() * 2 == d.cells.crossings.size());
+  REQUIRE(d.cells.capsule_begin.size() == d.cells.cells.size() + 1);
   std::vector<Vec3> curve;
   const int n = 200000;
   for (int i = 0; i < n; ++i) {

@@ -71,12 +71,12 @@ void subdivide(const ImplicitEquations& equations, const CurveEnclosure& enclosu
       cell.axis = proof.axis;
       cell.first_crossing = static_cast<std::int32_t>(out.crossings.size());
       cell.crossing_count = static_cast<std::int32_t>(proof.crossings.size());
-      cell.first_capsule = static_cast<std::int32_t>(out.capsules.size());
       cell.bounds = proof.bounds;
       cell.around = enlarged_bounds(equations, box, enclosure.grid.clip);
       ++out.evaluations;
       out.crossings.insert(out.crossings.end(), proof.crossings.begin(), proof.crossings.end());
       out.capsules.insert(out.capsules.end(), proof.capsules.begin(), proof.capsules.end());
+      out.capsule_begin.push_back(static_cast<std::int32_t>(out.capsules.size()));
       out.cells.push_back(cell);
       continue;
     }

@@ -8,6 +8,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "seeding/curve_cell_proof.hpp"
@@ -20,7 +21,6 @@ struct ProvedCell {
   int axis = 0;                     // the arcs are monotone in x_axis
   std::int32_t first_crossing = 0;  // its ends: CurveCells::crossings[first, first + count)
   std::int32_t crossing_count = 0;  // sorted by x_axis; arc i joins ends 2i and 2i + 1
-  std::int32_t first_capsule = 0;   // arc i's capsule: CurveCells::capsules[first_capsule + i]
   CellBounds bounds;
   EnlargedBounds around;
 };
@@ -33,11 +33,19 @@ struct UnprovedBox {
 struct CurveCells {
   std::vector<ProvedCell> cells;
   std::vector<FaceCrossing> crossings;
+  // The capsules of the arcs (seeding/curve_cell_proof), cell c's in capsule_begin[c] up to
+  // capsule_begin[c + 1]: apart from the cells' bulky enclosures, which a certificate reads only
+  // for the few cells its capsules do not rule out.
   std::vector<ArcCapsule> capsules;
+  std::vector<std::int32_t> capsule_begin{0};
   std::vector<UnprovedBox> unproved;
   std::size_t examined = 0;     // cells examined (prove_cell calls)
   std::size_t evaluations = 0;  // interval evaluations
   int deepest = 0;              // bisections below the enclosure's cells reached
+
+  std::span<const ArcCapsule> arc_capsules(std::size_t cell) const {
+    return {capsules.data() + capsule_begin[cell], capsules.data() + capsule_begin[cell + 1]};
+  }
 };
 
 struct SubdivisionSettings {

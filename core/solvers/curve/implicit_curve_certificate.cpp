@@ -114,10 +114,9 @@ class Certifier {
 
   // True when every arc of the cell is at least the threshold away by its capsule (the least such
   // bound is kept for the end).
-  bool arcs_far_enough(const ProvedCell& cell) {
+  bool arcs_far_enough(std::size_t cell) {
     double lower = std::numeric_limits<double>::infinity();
-    for (std::int32_t i = 0; i < cell.crossing_count / 2; ++i) {
-      const ArcCapsule& c = d_.cells.capsules[static_cast<std::size_t>(cell.first_capsule + i)];
+    for (const ArcCapsule& c : d_.cells.arc_capsules(cell)) {
       lower = std::fmin(lower, segment_distance_lower_bound(p_, c.a, c.b) - c.radius);
       if (!(lower >= threshold_)) return false;
     }
@@ -138,11 +137,10 @@ class Certifier {
                                                                : CertificateReason::singular);
         return;
       }
-      case CellItemKind::proved_cell: {
-        const ProvedCell& cell = d_.cells.cells[static_cast<std::size_t>(it.index)];
-        if (!arcs_far_enough(cell)) proved(cell);
+      case CellItemKind::proved_cell:
+        if (!arcs_far_enough(static_cast<std::size_t>(it.index)))
+          proved(d_.cells.cells[static_cast<std::size_t>(it.index)]);
         return;
-      }
     }
   }
 
