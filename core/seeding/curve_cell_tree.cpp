@@ -27,26 +27,18 @@ CurveCellTree::CurveCellTree(const CurveCells& cells, const Box3& domain) {
   for (std::size_t i = 0; i < cells.crossings.size(); ++i)
     if (on_box_face(cells.crossings[i], domain))
       items_.push_back({cells.crossings[i].enclosure, CellItemKind::box_face, static_cast<std::int32_t>(i)});
-  if (!items_.empty()) build(cells, 0, static_cast<std::int32_t>(items_.size()));
+  if (!items_.empty()) build(0, static_cast<std::int32_t>(items_.size()));
 }
 
-std::int32_t CurveCellTree::build(const CurveCells& cells, std::int32_t first, std::int32_t count) {
+std::int32_t CurveCellTree::build(std::int32_t first, std::int32_t count) {
   Node node;
   node.box = items_[static_cast<std::size_t>(first)].box;
-  node.only_proved_cells = true;
   for (std::int32_t i = first; i < first + count; ++i) {
     const CellItem& item = items_[static_cast<std::size_t>(i)];
     for (int k = 0; k < 3; ++k) {
       node.box.lo[k] = std::min(node.box.lo[k], item.box.lo[k]);
       node.box.hi[k] = std::max(node.box.hi[k], item.box.hi[k]);
     }
-    if (item.kind != CellItemKind::proved_cell) {
-      node.only_proved_cells = false;
-      continue;
-    }
-    const IVec3& t = cells.cells[static_cast<std::size_t>(item.index)].bounds.tangent;
-    for (int k = 0; k < 3; ++k)
-      node.tangent[k] = i == first ? t[k] : formula::interval::hull(node.tangent[k], t[k]);
   }
   const auto at = static_cast<std::int32_t>(nodes_.size());
   nodes_.push_back(node);
@@ -63,8 +55,8 @@ std::int32_t CurveCellTree::build(const CurveCells& cells, std::int32_t first, s
   std::nth_element(begin, middle, begin + count, [axis](const CellItem& a, const CellItem& b) {
     return a.box.lo[axis] + a.box.hi[axis] < b.box.lo[axis] + b.box.hi[axis];
   });
-  const std::int32_t left = build(cells, first, count / 2);
-  const std::int32_t right = build(cells, first + count / 2, count - count / 2);
+  const std::int32_t left = build(first, count / 2);
+  const std::int32_t right = build(first + count / 2, count - count / 2);
   nodes_[static_cast<std::size_t>(at)].left = left;
   nodes_[static_cast<std::size_t>(at)].right = right;
   return at;

@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "geometry/box3.hpp"
-#include "geometry/interval_vec3.hpp"
 
 namespace footpoint {
 
@@ -35,10 +34,6 @@ class CurveCellTree {
     Box3 box;
     std::int32_t first = 0, count = 0;  // leaf: items [first, first + count)
     std::int32_t left = -1, right = -1;
-    // Only proved cells below, their tangents T enclosed in `tangent`: when ⟨tangent, p - box⟩
-    // excludes 0, no cell below holds a critical point of the distance from p.
-    bool only_proved_cells = false;
-    IVec3 tangent{};
   };
   const std::vector<Node>& nodes() const { return nodes_; }
   const std::vector<CellItem>& items() const { return items_; }
@@ -47,7 +42,7 @@ class CurveCellTree {
   }
 
  private:
-  std::int32_t build(const CurveCells& cells, std::int32_t first, std::int32_t count);
+  std::int32_t build(std::int32_t first, std::int32_t count);
   std::vector<Node> nodes_;
   std::vector<CellItem> items_;
 };

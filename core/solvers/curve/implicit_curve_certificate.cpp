@@ -74,7 +74,6 @@ class Certifier {
         const CurveCellTree::Node& node = nodes[static_cast<std::size_t>(stack.back())];
         stack.pop_back();
         if (far_enough(node.box)) continue;
-        if (node.only_proved_cells && ivec::dot(node.tangent, from_p(node.box)).excludes_zero()) continue;
         if (node.left >= 0) {
           stack.push_back(node.left);
           stack.push_back(node.right);
