@@ -13,6 +13,10 @@ LocalMinimum curve_descent(const ImplicitEquations& equations, Vec3 p, Vec3 x0, 
   out.x = x0;
   double distance2 = norm2(p - x0);
   double previous = kInfinity;
+  // The trust region: max_step, or four times the last accepted step when that step had to be
+  // halved from its prediction and still decreased the distance beyond rounding (the prediction
+  // was wrong, not the rounding too coarse to tell a decrease near the minimum).
+  double reach = max_step;
   for (int n = 0; n < control.max_iterations; ++n) {
     const ImplicitJet j = equations.jet(out.x);
     const Vec3 t = unit_tangent(j);
@@ -21,8 +25,8 @@ LocalMinimum curve_descent(const ImplicitEquations& equations, Vec3 p, Vec3 x0, 
     const Vec3 d = out.x - p;
     const double d1 = dot(d, t);
     const double d2 = 1.0 + dot(d, c);
-    double ds = d2 > 0.0 ? -d1 / d2 : (d1 > 0.0 ? -max_step : max_step);
-    if (std::fabs(ds) > max_step) ds = std::copysign(max_step, ds);
+    double ds = d2 > 0.0 ? -d1 / d2 : (d1 > 0.0 ? -reach : reach);
+    if (std::fabs(ds) > reach) ds = std::copysign(reach, ds);
     bool moved = false;
     for (int halving = 0; halving < 40; ++halving, ds *= 0.5) {
       Vec3 z;
@@ -33,6 +37,8 @@ LocalMinimum curve_descent(const ImplicitEquations& equations, Vec3 p, Vec3 x0, 
       if (z2 <= distance2) {
         const Vec3 dx = z - out.x;
         out.step = norm(dx);
+        reach = halving > 0 && distance2 - z2 > 1e-14 * distance2 ? std::fmin(max_step, 4.0 * std::fabs(ds))
+                                                                  : max_step;
         out.x = z;
         distance2 = z2;
         control.record(dx.x, dx.y, dx.z);

@@ -3,9 +3,12 @@
 // minimum). With s the arc length, phi(s) = |X(s) - p|^2 / 2 has
 //   phi'  = <X - p, T>,    phi'' = 1 + <X - p, c>
 // (T the unit tangent, c the curvature vector of [Curve] eq. (16)). A Newton
-// step ds = -phi' / phi'' (or a descent step of length max_step where phi'' <= 0) is predicted to
-// X + ds T + ds^2 / 2 c, corrected back onto the curve in the normal plane, and halved until the
-// distance decreases.
+// step ds = -phi' / phi'' (or a descent step where phi'' <= 0), at most max_step, and at most four
+// times the last accepted step when that one had to be halved and decreased the distance beyond
+// rounding (a trust region: toward a cusp phi' does not vanish, the Newton step stays long while
+// the arc left shrinks, and each iteration would halve its way down from it again), is predicted
+// to X + ds T + ds^2 / 2 c, corrected back onto the curve in the normal plane, and halved until
+// the distance decreases.
 #pragma once
 #include "geometry/implicit_curve.hpp"
 #include "solvers/curve/iteration_control.hpp"
