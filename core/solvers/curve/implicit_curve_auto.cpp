@@ -55,7 +55,10 @@ Found solve_from(const Curve& curve, Vec3 p, std::int32_t i, const IterationCont
     f.distance = start_distance;
     f.valid = true;
     f.singular = kind == SampleKind::singular_point;
-    return f;
+    // A singular point is its own answer. A box-face crossing is one too, but the distance may
+    // still fall along the curve into the box, to a minimum nearer than the next sample inside
+    // (which then is no candidate of its own): a local solve from the crossing finds it.
+    if (kind == SampleKind::singular_point) return f;
   }
   const Box3& box = curve.box;
   const double h = s.spacing;
@@ -73,6 +76,10 @@ Found solve_from(const Curve& curve, Vec3 p, std::int32_t i, const IterationCont
     if (trace) trace->clear();
     m = curve_descent(curve.equations, p, start, h, c);
     if (!acceptable(m)) return f;
+  }
+  if (f.valid && !(norm(p - m.x) < f.distance - slack)) {
+    if (trace) trace->clear();
+    return f;  // the crossing stays the answer
   }
   f.x = m.x;
   f.distance = norm(p - m.x);
