@@ -87,11 +87,13 @@ BoxEnclosure<2> derive_enclosure(const BoxEnclosure<2>& ancestor, const std::arr
   BoxEnclosure<2> e;
   e.lo = lo;
   e.hi = hi;
-  e.bounded = ancestor.bounded && centre.valid;
-  e.smooth = ancestor.smooth && e.bounded;
+  // Taylor's theorem needs the ancestor's second derivatives: without them nothing is derived,
+  // and the enclosure holds nothing (not bounded, so that intersect keeps the other one whole).
+  e.bounded = ancestor.bounded && ancestor.smooth && centre.valid;
+  e.smooth = e.bounded;
+  if (!e.smooth) return e;
   e.d2_mid = ancestor.d2_mid;
   e.d2_rad = ancestor.d2_rad;
-  if (!e.smooth) return e;
   // radii computed in round to nearest: a few dozen operations, covered by 2^-44 relative
   constexpr double up = 1.0 + 0x1p-44;
   const double h[2] = {(0.5 * (hi[0] - lo[0])) * up, (0.5 * (hi[1] - lo[1])) * up};

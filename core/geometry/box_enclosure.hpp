@@ -53,7 +53,8 @@ PointEnclosure<N> enclose_point(const formula::Program& program, const std::arra
 // (centred forms, Taylor's theorem with the ancestor's second derivatives on the segment from c):
 //   s(t)  ∈ s(c) + J(c) δ + ½ δᵀ [∂²s] δ,   J(t) ∈ J(c) + [∂²s] δ,   δ = t - c, |δ_i| <= h_i,
 // the metric as interval products of those J, the second derivatives the ancestor's. Costs one ball
-// jet instead of an interval jet, and tightens with B (the ancestor's [∂²s] times h).
+// jet instead of an interval jet, and tightens with B (the ancestor's [∂²s] times h). Nothing
+// (not bounded) where the ancestor is not smooth or the centre's evaluation not valid.
 BoxEnclosure<2> derive_enclosure(const BoxEnclosure<2>& ancestor, const std::array<double, 2>& lo,
                                  const std::array<double, 2>& hi, const PointEnclosure<2>& centre);
 
