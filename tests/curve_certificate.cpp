@@ -12,7 +12,9 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <functional>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -200,6 +202,19 @@ double brute_force(const Reference& ref, Vec3 p) {
   return best;
 }
 
+// Points per reference curve: `standard`, or FOOTPOINT_STRESS_POINTS for a longer sweep, with the
+// seed FOOTPOINT_STRESS_SEED added to the standard one for other points (e.g.
+// FOOTPOINT_STRESS_POINTS=3000 build/tests/test_curve -tc='certificate: L <= *': ~3 min).
+int stress_points(int standard) {
+  const char* env = std::getenv("FOOTPOINT_STRESS_POINTS");
+  const int n = env ? std::atoi(env) : 0;
+  return n > 0 ? n : standard;
+}
+unsigned stress_seed(unsigned standard) {
+  const char* env = std::getenv("FOOTPOINT_STRESS_SEED");
+  return standard + (env ? static_cast<unsigned>(std::strtoul(env, nullptr, 10)) : 0u);
+}
+
 // Random points: half uniform in the box grown by a fifth, half next to the curve.
 std::vector<Vec3> random_points(const Reference& ref, int n, unsigned seed) {
   std::mt19937_64 rng(seed);
@@ -240,10 +255,8 @@ TEST_CASE("certificate: L <= brute-force minimum <= d on every reference curve; 
       if (s.kind[i] == SampleKind::singular_point) singular.push_back(s.points[i]);
     const double near = 1e-3 * curve.discovery().scale;
     int away = 0, away_certified = 0;
-    for (const Vec3& p : random_points(ref, sweep_length(360), 61)) {
-      CAPTURE(p.x);
-      CAPTURE(p.y);
-      CAPTURE(p.z);
+    for (const Vec3& p : random_points(ref, stress_points(sweep_length(360)), stress_seed(61))) {
+      INFO("p = (" << std::setprecision(17) << p.x << ", " << p.y << ", " << p.z << ")");
       const double q[3] = {p.x, p.y, p.z};
       const ProjectionResult r = g->project(q, "auto", {}).value();
       const Certificate& c = r.summary.certificate;
@@ -252,16 +265,19 @@ TEST_CASE("certificate: L <= brute-force minimum <= d on every reference curve; 
       CAPTURE(bf);
       CAPTURE(r.distance);
       CAPTURE(c.lower_bound);
+      const Vec3 foot{r.foot[0], r.foot[1], r.foot[2]};
+      bool near_singular = false;
+      for (const Vec3& x : singular) near_singular = near_singular || norm(foot - x) <= near;
       CHECK(c.lower_bound <= bf * (1.0 + 1e-12) + 1e-14);
-      CHECK(bf <= r.distance * (1.0 + 1e-12) + 1e-14);
+      // The foot is on the curve to the rounding of its equations, which near a singular point
+      // (gradients nearly dependent) moves it by that rounding over the angle between them: a
+      // Viviani point 5e-4 from the double point had its distance 3.5e-11 below the true minimum.
+      CHECK(bf <= r.distance * (1.0 + (near_singular ? 1e-9 : 1e-12)) + 1e-14);
       CHECK(r.distance <= bf * (1.0 + 1e-9) + 1e-12);  // the global minimum
       if (c.certified) {
         CHECK(Certificate::meets_gap(r.distance, c.lower_bound, c.absolute_gap));
         CHECK(c.reason == CertificateReason::gap_met);
       }
-      const Vec3 foot{r.foot[0], r.foot[1], r.foot[2]};
-      bool near_singular = false;
-      for (const Vec3& x : singular) near_singular = near_singular || norm(foot - x) <= near;
       if (!near_singular) {
         ++away;
         away_certified += c.certified ? 1 : 0;
@@ -305,7 +321,7 @@ TEST_CASE("certificate: a farther local minimum swapped in for the answer is not
     CAPTURE(ref.id);
     const auto g = compile(ref);
     const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
-    for (const Vec3& p : random_points(ref, 60, 62)) {
+    for (const Vec3& p : random_points(ref, stress_points(60), stress_seed(62))) {
       const double q[3] = {p.x, p.y, p.z};
       const ProjectionResult r = g->project(q, "auto", all).value();
       if (r.minima.size() < 2) continue;
