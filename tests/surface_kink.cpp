@@ -3,6 +3,7 @@
 // out by hand; a kink that is no minimum of the distance is not claimed.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "surface_fixtures.hpp"
@@ -108,4 +109,49 @@ TEST_CASE("a nearest point on a kink circle, the certificate's sub-boxes across 
   CHECK(r.summary.certificate.lower_bound <= reference * (1.0 + 1e-12));
   CHECK(r.summary.status == Status::converged);
   CHECK(r.summary.location == Location::kink);
+}
+
+TEST_CASE("a nearest point where kinks cross or at a cone's tip: z = |u| + |v|, z = sqrt(u^2 + v^2)") {
+  // From below, the apex (0, 0, 0) is nearest when every one-sided slope there rises:
+  // f'(0; r) = -<p_uv, r> - p_z (|r_u| + |r_v|) for the pyramid, -<p_uv, r> - p_z |r| for the cone,
+  // both > 0 for these points (|p_z| > |p_u| + |p_v|, resp. > |p_uv|); the distance is |p|. Found
+  // by a sweep: such points ended `max_iterations`, up to 6e-6 off.
+  const Vec3 pyramid_points[] = {{0.36698034480922459, -0.71710821264450098, -0.78116617162692847},
+                                 {-0.45568784029898945, 0.31199489787954482, -0.82510372289549272},
+                                 {0.2, -0.1, -1.0}};
+  const auto pyramid = make_surface("u", "v", "abs(u)+abs(v)", {-1, 1}, {-1, 1});
+  for (const Vec3& p : pyramid_points) {
+    CAPTURE(p.x);
+    const ProjectionResult r = project(*pyramid, {p.x, p.y, p.z}, "auto");
+    CHECK(r.summary.status == Status::converged);
+    CHECK(r.summary.location == Location::kink);
+    CHECK(r.distance == doctest::Approx(norm(p)).epsilon(1e-14));
+    CHECK(std::abs(r.params[0]) + std::abs(r.params[1]) <= 1e-12);
+  }
+  const auto cone = make_surface("u", "v", "sqrt(u^2+v^2)", {-1, 1}, {-1, 1});
+  const Vec3 p{-0.45568784029898945, 0.31199489787954482, -0.58343643764166886};
+  const ProjectionResult r = project(*cone, {p.x, p.y, p.z}, "auto");
+  CHECK(r.summary.status == Status::converged);
+  CHECK(r.distance == doctest::Approx(norm(p)).epsilon(1e-14));
+  CHECK(std::abs(r.params[0]) + std::abs(r.params[1]) <= 1e-12);
+}
+
+TEST_CASE("a nearest point on a kink curve running into a corner: z = min(u^2, v^2) near (1, 1)") {
+  // The kink u = v carries (t, t, t^2); from this point the nearest is on it, just short of the
+  // corner (a sweep's point, once `max_iterations`). Reference: f(t) = |(t, t, t^2) - p|^2 on
+  // [-1, 1], its least value by golden-section search.
+  const Vec3 p{0.21507223397985342, 0.87424422671717616, 1.4564604458136341};
+  const auto dist = [&](double t) { return norm(Vec3{t, t, t * t} - p); };
+  double a = 0.5, b = 1.0;
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (int k = 0; k < 200; ++k) {
+    const double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    (dist(x1) < dist(x2) ? b : a) = dist(x1) < dist(x2) ? x2 : x1;
+  }
+  const double reference = std::min({dist(0.5 * (a + b)), dist(1.0)});
+  const auto surface = make_surface("u", "v", "min(u^2,v^2)", {-1, 1}, {-1, 1});
+  const ProjectionResult r = project(*surface, {p.x, p.y, p.z}, "auto");
+  CHECK(r.summary.status == Status::converged);
+  CHECK(r.distance <= reference * (1.0 + 1e-12));
+  CHECK(r.distance >= reference * (1.0 - 1e-12));
 }

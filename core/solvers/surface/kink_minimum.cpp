@@ -195,15 +195,75 @@ bool boundary_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box,
   return true;
 }
 
-}  // namespace
+// A kink point inside the box: where kink curves cross (z = |u| + |v| at (0, 0)) or where the
+// formulas are not differentiable at a point alone (z = sqrt(u^2 + v^2) at its tip). Compass search
+// (T. G. Kolda, R. M. Lewis, V. Torczon, Optimization by direct search: new perspectives on some
+// classical and modern methods, SIAM Review 45(3), 385-482, 2003, Section 1.1) from `start` closes
+// in on it, as it needs no gradient: ±`along_k` (the tangent of a kink curve
+// whose crossing is sought: its valley is too narrow for fixed directions) and eight directions
+// turned by an irrational angle at every level, steps halved from `first_step` down to rounding.
+// Where it ends within `margin` of the box's boundary, the boundary's test decides. Else the point
+// is accepted when no direction descends: f'(t; r) >= 0 for every r (Clarke's condition,
+// Section 2.3 of the book the header cites), read from a fan of 64 directions around it as on the boundary;
+// f' is linear on each of the finitely many sectors between kinks.
+bool point_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, double scale,
+                        double margin, const Local& start, const P2& along_k, double first_step,
+                        LocalSolution& s) {
+  Local best = start;
+  double angle0 = 0.0;
+  int evaluations = 0;
+  for (double step = first_step; step > 1e-17 * scale && evaluations < 4000;) {
+    bool moved = false;
+    for (int i = 0; i < 10 && !moved; ++i) {
+      const double angle = angle0 + 0.25 * std::numbers::pi * (i - 2);
+      const P2 dir =
+          i == 0 ? along_k : (i == 1 ? P2{-along_k[0], -along_k[1]} : P2{std::cos(angle), std::sin(angle)});
+      if (!(norm2d(dir) > 0.0)) continue;
+      const P2 q = along(best.t, step, dir);
+      if (!inside(box, q, 0.0)) continue;
+      const Local l = local_at(formulas, p, q);
+      ++evaluations;
+      if (l.finite && l.f < best.f) best = l, moved = true;
+    }
+    if (!moved) step *= 0.5, angle0 += 0.6180339887498949;  // the golden ratio's fraction, in radians
+  }
+  if (!(best.f <= 0.5 * s.distance * s.distance)) return false;
+  if (!inside(box, best.t, margin)) {
+    LocalSolution at = s;
+    at.u = best.t[0];
+    at.v = best.t[1];
+    if (!boundary_kink_minimum(formulas, box, p, scale, margin, at)) return false;
+    s = at;
+    return true;
+  }
+  const double h = 1e-7 * scale;
+  const Vec3 r = best.jet.s - p;
+  constexpr int kFan = 64;
+  for (int i = 0; i < kFan; ++i) {
+    const double angle = 2.0 * std::numbers::pi * i / kFan;
+    const P2 dir{std::cos(angle), std::sin(angle)};
+    const Local l = local_at(formulas, p, along(best.t, h, dir));
+    if (!l.finite) return false;
+    const Vec3 s_dir = l.jet.su * dir[0] + l.jet.sv * dir[1];
+    const double tolerance = 2.0 * l.h_norm * h + 1e-12 * norm(r) * norm(s_dir);
+    if (dot2(l.g, dir) < -tolerance) return false;
+  }
+  s.u = best.t[0];
+  s.v = best.t[1];
+  s.jet = best.jet;
+  s.distance = std::sqrt(2.0 * best.f);
+  s.status = Status::converged;
+  s.abandoned = false;
+  s.kink = true;
+  return true;
+}
 
-bool kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, LocalSolution& s) {
+// Steps 1-3 of the header: a minimum on a kink curve K, from the unconverged iterate t0.
+bool curve_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, double scale,
+                        double margin, LocalSolution& s) {
   const P2 t0{s.u, s.v};
   const Local l0 = local_at(formulas, p, t0);
   if (!l0.finite) return false;
-  const double scale = std::max({box.umax - box.umin, box.vmax - box.vmin, std::abs(s.u), std::abs(s.v)});
-  const double margin = 1e-9 * scale;
-  if (!inside(box, t0, margin)) return boundary_kink_minimum(formulas, box, p, scale, margin, s);
   // 1. across K along the piece's Newton step (its gradient where the Hessian is not definite)
   const double det = l0.h[0] * l0.h[2] - l0.h[1] * l0.h[1];
   P2 d = det > 0.0 && l0.h[0] > 0.0 ? P2{-(l0.h[2] * l0.g[0] - l0.h[1] * l0.g[1]) / det,
@@ -269,9 +329,29 @@ bool kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Ve
       f = fn;
       moved = true;
     }
-    if (!moved) return false;
+    if (!moved) break;
   }
-  return false;
+  // No stationary point found along K by Newton: K may run into a crossing of another kink (D
+  // jumps there, and the secant steps across it back and forth) or into the boundary, where the
+  // search along K's tangent takes over from the best point found on K.
+  const Local& here = k.a.f <= k.b.f ? k.a : k.b;
+  P2 n{k.b.g[0] - k.a.g[0], k.b.g[1] - k.a.g[1]};
+  const double jn = norm2d(n);
+  if (!(jn > 0.0)) return false;
+  return point_kink_minimum(formulas, box, p, scale, margin, here, {-n[1] / jn, n[0] / jn}, 1e-4 * scale, s);
+}
+
+}  // namespace
+
+bool kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, LocalSolution& s) {
+  if (!std::isfinite(s.u) || !std::isfinite(s.v)) return false;
+  const double scale = std::max({box.umax - box.umin, box.vmax - box.vmin, std::abs(s.u), std::abs(s.v)});
+  const double margin = 1e-9 * scale;
+  if (!inside(box, {s.u, s.v}, margin)) return boundary_kink_minimum(formulas, box, p, scale, margin, s);
+  const Local start = local_at(formulas, p, {s.u, s.v});
+  if (!start.finite) return false;
+  return curve_kink_minimum(formulas, box, p, scale, margin, s) ||
+         point_kink_minimum(formulas, box, p, scale, margin, start, {0.0, 0.0}, 1e-4 * scale, s);
 }
 
 }  // namespace footpoint::surface

@@ -33,6 +33,14 @@
 // the feasible cone (Clarke's condition with the box's normal cone: 0 in the hull of g-, g+ plus that cone).
 // f' is linear on each side of K, so a fan of 65 directions across the cone tells, each read from the
 // gradient a step 1e-7 of the box's size along it (off by |H| times that step, which the test allows).
+// Where step 2 finds no stationary point on K (K runs into a crossing with another kink, where its
+// derivative D jumps and the secant steps across it back and forth, or into the boundary), and where
+// no K is found at all (a point where the formulas are not differentiable alone, a cone's tip), a
+// compass search closes in on the kink point: no gradient needed, along ±K's tangent (its valley is
+// too narrow for fixed directions) and eight directions turned at every level, steps halved down to
+// rounding. The point is accepted when f'(t; r) >= 0 for every r, read from a fan of 64 directions
+// around it (the boundary's test where it ends at the boundary): z = |u| + |v| at (0, 0), z = sqrt(u^2 +
+// v^2) at its tip, z = min(u^2, v^2) along u = v up to the corner (1, 1).
 #pragma once
 #include "geometry/parametric_surface.hpp"
 #include "solvers/surface/projected_newton.hpp"
