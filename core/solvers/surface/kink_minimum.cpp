@@ -94,6 +94,40 @@ bool jumps(const Bracket& k) {
   return norm2d(jump) > 1e3 * width * std::max(k.a.h_norm, k.b.h_norm) + 1e-12 * size;
 }
 
+// No direction of the fan at angles [first, first + width] (65 of them) descends from `best`: the
+// one-sided derivative f'(t; r) is read as <g(t + h r), r>, the gradient of the piece r points into
+// a step h = 1e-7 of the box's size along r (clamped to the box), off by at most |H| h, which the
+// tolerance allows with the rounding of the orthogonality.
+bool rises_across_fan(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, const Local& best,
+                      double scale, double first, double width) {
+  const double h = 1e-7 * scale;
+  const Vec3 r = best.jet.s - p;
+  constexpr int kFan = 64;
+  for (int i = 0; i <= kFan; ++i) {
+    const double angle = first + width * i / kFan;
+    const P2 dir{std::cos(angle), std::sin(angle)};
+    P2 q = along(best.t, h, dir);
+    q = {std::clamp(q[0], box.umin, box.umax), std::clamp(q[1], box.vmin, box.vmax)};
+    const Local l = local_at(formulas, p, q);
+    if (!l.finite) return false;
+    const Vec3 s_dir = l.jet.su * dir[0] + l.jet.sv * dir[1];
+    const double tolerance = 2.0 * l.h_norm * h + 1e-12 * norm(r) * norm(s_dir);
+    if (dot2(l.g, dir) < -tolerance) return false;
+  }
+  return true;
+}
+
+// The solve's answer becomes the kink point `best` (converged).
+void adopt(const Local& best, LocalSolution& s) {
+  s.u = best.t[0];
+  s.v = best.t[1];
+  s.jet = best.jet;
+  s.distance = std::sqrt(2.0 * best.f);
+  s.status = Status::converged;
+  s.abandoned = false;
+  s.kink = true;
+}
+
 // Where K meets the box's boundary: t0 on an edge or at a corner (within `margin`). The point is
 // the corner itself, or on an edge the minimum of f along the edge, bracketed where the slope along
 // the edge changes sign and bisected to adjacent doubles. It is stationary when no feasible
@@ -170,28 +204,9 @@ bool boundary_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box,
     first = v_lo ? 0.0 : std::numbers::pi;
     width = std::numbers::pi;
   }
-  const double step = 1e-7 * scale;
-  const Vec3 r = best.jet.s - p;
-  constexpr int kFan = 64;
-  for (int i = 0; i <= kFan; ++i) {
-    const double angle = first + width * i / kFan;
-    const P2 dir{std::cos(angle), std::sin(angle)};
-    P2 q = along(best.t, step, dir);
-    q = {std::clamp(q[0], box.umin, box.umax), std::clamp(q[1], box.vmin, box.vmax)};
-    const Local l = local_at(formulas, p, q);
-    if (!l.finite) return false;
-    const Vec3 s_dir = l.jet.su * dir[0] + l.jet.sv * dir[1];
-    const double tolerance = 2.0 * l.h_norm * step + 1e-12 * norm(r) * norm(s_dir);
-    if (dot2(l.g, dir) < -tolerance) return false;
-  }
+  if (!rises_across_fan(formulas, box, p, best, scale, first, width)) return false;
   if (!(best.f <= 0.5 * s.distance * s.distance)) return false;
-  s.u = best.t[0];
-  s.v = best.t[1];
-  s.jet = best.jet;
-  s.distance = std::sqrt(2.0 * best.f);
-  s.status = Status::converged;
-  s.abandoned = false;
-  s.kink = true;
+  adopt(best, s);
   return true;
 }
 
@@ -204,7 +219,7 @@ bool boundary_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box,
 // turned by an irrational angle at every level, steps halved from `first_step` down to rounding.
 // Where it ends within `margin` of the box's boundary, the boundary's test decides. Else the point
 // is accepted when no direction descends: f'(t; r) >= 0 for every r (Clarke's condition,
-// Section 2.3 of the book the header cites), read from a fan of 64 directions around it as on the boundary;
+// Section 2.3 of the book the header cites), read from a fan of directions all around it as on the boundary;
 // f' is linear on each of the finitely many sectors between kinks.
 bool point_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, double scale,
                         double margin, const Local& start, const P2& along_k, double first_step,
@@ -236,25 +251,8 @@ bool point_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, co
     s = at;
     return true;
   }
-  const double h = 1e-7 * scale;
-  const Vec3 r = best.jet.s - p;
-  constexpr int kFan = 64;
-  for (int i = 0; i < kFan; ++i) {
-    const double angle = 2.0 * std::numbers::pi * i / kFan;
-    const P2 dir{std::cos(angle), std::sin(angle)};
-    const Local l = local_at(formulas, p, along(best.t, h, dir));
-    if (!l.finite) return false;
-    const Vec3 s_dir = l.jet.su * dir[0] + l.jet.sv * dir[1];
-    const double tolerance = 2.0 * l.h_norm * h + 1e-12 * norm(r) * norm(s_dir);
-    if (dot2(l.g, dir) < -tolerance) return false;
-  }
-  s.u = best.t[0];
-  s.v = best.t[1];
-  s.jet = best.jet;
-  s.distance = std::sqrt(2.0 * best.f);
-  s.status = Status::converged;
-  s.abandoned = false;
-  s.kink = true;
+  if (!rises_across_fan(formulas, box, p, best, scale, 0.0, 2.0 * std::numbers::pi)) return false;
+  adopt(best, s);
   return true;
 }
 
@@ -293,14 +291,8 @@ bool curve_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, co
       if (!(dot2(k.a.g, n) <= 0.0 && dot2(k.b.g, n) >= 0.0)) return false;
       const Local& best = k.a.f <= k.b.f ? k.a : k.b;
       if (!inside(box, best.t, margin) || !(best.f <= l0.f)) return false;
-      s.u = best.t[0];
-      s.v = best.t[1];
-      s.jet = best.jet;
-      s.distance = std::sqrt(2.0 * best.f);
-      s.status = Status::converged;
+      adopt(best, s);
       s.iterations += step + 1;
-      s.abandoned = false;
-      s.kink = true;
       return true;
     }
     const double curvature =
