@@ -87,6 +87,16 @@ inline Interval mul(const Interval& a, const Interval& b) {
   const double p0 = prod(a.lo, b.lo), p1 = prod(a.lo, b.hi), p2 = prod(a.hi, b.lo), p3 = prod(a.hi, b.hi);
   return outward(std::min(std::min(p0, p1), std::min(p2, p3)), std::max(std::max(p0, p1), std::max(p2, p3)));
 }
+// The product with a point a: the bounds of mul(point(a), b), from two products instead of four.
+inline Interval mul(double a, const Interval& b) {
+  if (a == 0.0 || is_zero(b)) return {0.0, 0.0};
+  auto prod = [a](double y) {
+    const double p = a * y;
+    return std::isnan(p) ? 0.0 : p;
+  };
+  const double p0 = prod(b.lo), p1 = prod(b.hi);
+  return a > 0.0 ? outward(p0, p1) : outward(p1, p0);
+}
 // a times a (tighter than mul(a, a): never negative).
 inline Interval sqr(const Interval& a) {
   const double l = std::abs(a.lo), h = std::abs(a.hi);

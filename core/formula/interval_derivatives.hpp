@@ -34,18 +34,18 @@ inline Derivatives interval_derivatives(Op op, const Interval& A, const Interval
     case Op::rdiv_k:  // k/x: -k/x^2 = -R/x, 2k/x^3 = -2 d1/x
       if (A.lo <= 0.0 && A.hi >= 0.0) return singular();
       d.d1 = neg(div(R, A));
-      d.d2 = mul(point(-2.0), div(d.d1, A));
+      d.d2 = mul(-2.0, div(d.d1, A));
       return d;
     case Op::pow_int: {  // n x^(n-1), n (n-1) x^(n-2); n is neither 0 nor 1 on the tape
       const int n = static_cast<int>(k);
       if (n < 0 && A.lo <= 0.0 && A.hi >= 0.0) return singular();
-      d.d1 = mul(point(n), IntervalArith::pow_int(A, n - 1));
+      d.d1 = mul(n, IntervalArith::pow_int(A, n - 1));
       if (second) d.d2 = mul(mul(point(n), point(n - 1.0)), IntervalArith::pow_int(A, n - 2));
       return d;
     }
     case Op::pow_real:  // x^k for x > 0: k x^k / x, (k - 1) d1 / x
       if (!std::isfinite(k) || !(A.lo > 0.0)) return singular();
-      d.d1 = mul(point(k), div(R, A));
+      d.d1 = mul(k, div(R, A));
       d.d2 = mul(sub(point(k), point(1.0)), div(d.d1, A));
       return d;
     case Op::sqrt:  // 0.5/sqrt(x), -d1 (0.5/x)
@@ -78,7 +78,7 @@ inline Derivatives interval_derivatives(Op op, const Interval& A, const Interval
     case Op::tan:  // 1 + tan^2, 2 tan (1 + tan^2)
       if (!std::isfinite(R.lo) || !std::isfinite(R.hi)) return singular();
       d.d1 = add(point(1.0), sqr(R));
-      d.d2 = mul(point(2.0), mul(R, d.d1));
+      d.d2 = mul(2.0, mul(R, d.d1));
       return d;
     case Op::asin:
     case Op::acos: {  // ±1/sqrt(1 - x^2), ±x (1 - x^2)^(-3/2)
@@ -92,7 +92,7 @@ inline Derivatives interval_derivatives(Op op, const Interval& A, const Interval
     case Op::atan: {  // 1/(1 + x^2), -2x/(1 + x^2)^2
       const Interval q = recip(add(point(1.0), sqr(A)));
       d.d1 = q;
-      d.d2 = mul(point(-2.0), mul(A, sqr(q)));
+      d.d2 = mul(-2.0, mul(A, sqr(q)));
       return d;
     }
     case Op::sinh:
@@ -105,7 +105,7 @@ inline Derivatives interval_derivatives(Op op, const Interval& A, const Interval
       return d;
     case Op::tanh:  // 1 - tanh^2, -2 tanh (1 - tanh^2)
       d.d1 = sub(point(1.0), sqr(R));
-      d.d2 = mul(point(-2.0), mul(R, d.d1));
+      d.d2 = mul(-2.0, mul(R, d.d1));
       return d;
     case Op::asinh: {  // 1/sqrt(1 + x^2), -x (1 + x^2)^(-3/2)
       const Interval q = recip(libm(Op::sqrt, add(point(1.0), sqr(A))));
@@ -124,7 +124,7 @@ inline Derivatives interval_derivatives(Op op, const Interval& A, const Interval
       if (!inside_unit()) return singular();
       const Interval q = recip(sub(point(1.0), sqr(A)));
       d.d1 = q;
-      d.d2 = mul(point(2.0), mul(A, sqr(q)));
+      d.d2 = mul(2.0, mul(A, sqr(q)));
       return d;
     }
     default:

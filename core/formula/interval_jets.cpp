@@ -147,12 +147,12 @@ struct IntervalJetArith {
       case Op::mul:
         if (&a ==
             &b) {  // x * x, one node for both operands: (x^2)_i = 2 x x_i, (x^2)_ij = 2 (x_i x_j + x x_ij)
-          for (int i = 0; i < N; ++i) r.g[i] = mul(point(2.0), mul(a.v, a.g[i]));
+          for (int i = 0; i < N; ++i) r.g[i] = mul(2.0, mul(a.v, a.g[i]));
           if constexpr (kHessian)
             for (int i = 0; i < N; ++i)
               for (int j = i; j < N; ++j)
                 r.h[j][i] = r.h[i][j] =
-                    mul(point(2.0), add(i == j ? sqr(a.g[i]) : mul(a.g[i], a.g[j]), mul(a.v, a.h[i][j])));
+                    mul(2.0, add(i == j ? sqr(a.g[i]) : mul(a.g[i], a.g[j]), mul(a.v, a.h[i][j])));
           return settle(r);
         }
         for (int i = 0; i < N; ++i) r.g[i] = add(mul(a.g[i], b.v), mul(a.v, b.g[i]));

@@ -14,7 +14,8 @@
 //   - with c >= ‖I - Y J‖∞, c < 1, every zero x of G in X has ‖x - m‖∞ <= ‖Y G(m)‖∞ / (1 - c):
 //     the tight enclosure of a zero next to a good approximation m, from one evaluation over a
 //     large X (which proves its uniqueness there) and one at m.
-// Every product and sum is outward rounded, so K(X), c and the radius enclose their exact values.
+// Every product and sum is rounded outwards (midpoint-radius, below), so K(X), c and the radius
+// enclose their exact values.
 #pragma once
 #include <array>
 #include <cmath>
@@ -92,31 +93,100 @@ KrawczykResult<N> krawczyk(const IntervalVector<N>& x, const Vector<N>& m, const
     for (int j = 0; j < N; ++j) c[i][j] = mid(jac[i][j]);
   Matrix<N> y{};
   if (!approximate_inverse<N>(c, y)) return r;
-  IntervalVector<N> ygm{}, dx{};
-  for (int i = 0; i < N; ++i) {
-    Interval s{0.0, 0.0};
-    for (int l = 0; l < N; ++l) s = add(s, mul(point(y[i][l]), gm[l]));
-    ygm[i] = s;
-    dx[i] = sub(x[i], point(m[i]));
+  // Y G(m), I - Y J and K(X) in midpoint-radius form (S. M. Rump, "Fast and parallel interval
+  // arithmetic", BIT 39 (1999) 534-554; formula/ball.hpp): each interval [lo, hi] is
+  // the ball about c = fl(lo/2 + hi/2) with a radius that bounds c - lo and hi - c, each a product
+  // or sum of balls is a centre computed in floating point plus a radius that covers both the
+  // propagated radii and the rounding of the centre. A dot product of at most 15 terms (and
+  // roundings) computed in round to nearest is within γ_15 / (1 - γ_15) < 15.1 u of the exact one,
+  // relative to the computed sum S of its terms' magnitudes, plus 15 η for underflows; a computed
+  // radius sum R likewise understates its exact value by at most 15.1 u R + 15 η (N. J. Higham,
+  // Accuracy and Stability of Numerical Algorithms, 2nd ed., SIAM 2002, Section 3.1). So
+  //   radius = fl(fl(R + fl(16 u S)) (1 + 32 u) + 2^-900)
+  // bounds the exact radius plus the centre's error: its own four roundings lose less than the
+  // margins (16 against 15.1, 32 against 15.1, 2^-900 against 30 η). The floor is a normal number:
+  // products with it do not fall into the subnormal range, which the processor handles slowly.
+  // Where every term has an exact zero factor the sum is exactly 0 and needs no floor: an exact
+  // coordinate (the plane z = 0 of a planar curve, fixed by G) stays exact, as K(X) ⊆ X needs.
+  static_assert(N >= 1 && N <= 6, "the rounding allowances count at most 15 terms");
+  constexpr double kU = 0x1p-53;
+  const auto radius = [](double r, double s, bool terms) {
+    return terms ? (r + s * (16.0 * kU)) * (1.0 + 32.0 * kU) + 0x1p-900 : 0.0;
+  };
+  const auto nonzero = [](double c, double rad) { return c != 0.0 || rad != 0.0; };
+  // The ball of an interval: the two differences are one rounding each (exact where subnormal).
+  std::array<double, N> gc{}, gr{}, dxc{}, dxr{};
+  std::array<std::array<double, N>, N> jc{}, jr{};
+  const auto to_ball = [](const Interval& a, double& centre, double& rad) {
+    centre = mid(a);
+    rad = std::fmax(centre - a.lo, a.hi - centre) * (1.0 + 4.0 * kU);
+  };
+  for (int l = 0; l < N; ++l) {
+    to_ball(gm[l], gc[l], gr[l]);
+    to_ball(sub(x[l], point(m[l])), dxc[l], dxr[l]);
+    for (int j = 0; j < N; ++j) to_ball(jac[l][j], jc[l][j], jr[l][j]);
   }
-  double contraction = 0.0, step = 0.0;
-  bool interior = true, inside = true, disjoint = false;
+  // Y G(m).
+  std::array<double, N> ygc{}, ygr{};
   for (int i = 0; i < N; ++i) {
-    Interval k = sub(point(m[i]), ygm[i]);
-    double row = 0.0;
-    for (int j = 0; j < N; ++j) {
-      Interval yj{0.0, 0.0};  // (Y J)_ij
-      for (int l = 0; l < N; ++l) yj = add(yj, mul(point(y[i][l]), jac[l][j]));
-      const Interval mij = sub(point(i == j ? 1.0 : 0.0), yj);
-      row = next_up(row + mag(mij));
-      k = add(k, mul(mij, dx[j]));
+    double c = 0.0, s = 0.0, rr = 0.0;
+    bool terms = false;
+    for (int l = 0; l < N; ++l) {
+      c += y[i][l] * gc[l];
+      s += std::abs(y[i][l] * gc[l]);
+      rr += std::abs(y[i][l]) * gr[l];
+      terms = terms || (y[i][l] != 0.0 && nonzero(gc[l], gr[l]));
     }
-    if (!(row <= contraction)) contraction = row;  // NaN propagates: no contraction
-    if (!(mag(ygm[i]) <= step)) step = mag(ygm[i]);
+    ygc[i] = c;
+    ygr[i] = radius(rr, s, terms);
+  }
+  // I - Y J.
+  std::array<std::array<double, N>, N> mc{}, mr{};
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j) {
+      double c = i == j ? 1.0 : 0.0, s = std::abs(c), rr = 0.0;
+      bool terms = false;
+      for (int l = 0; l < N; ++l) {
+        c -= y[i][l] * jc[l][j];
+        s += std::abs(y[i][l] * jc[l][j]);
+        rr += std::abs(y[i][l]) * jr[l][j];
+        terms = terms || (y[i][l] != 0.0 && nonzero(jc[l][j], jr[l][j]));
+      }
+      mc[i][j] = c;
+      mr[i][j] = radius(rr, s, terms);
+    }
+  double contraction = 0.0, step = 0.0;
+  bool interior = true, inside = true, disjoint = false, finite = true;
+  for (int i = 0; i < N; ++i) {
+    // K_i = m_i + r_i, r_i = Σ_j (I - Y J)_ij (X_j - m_j) - (Y G(m))_i: r_i as above, then
+    // c = fl(m_i + r_i), whose rounding u |c| joins the radius (two roundings more, covered by
+    // the factor), and [c - rad, c + rad] with each end one rounding: one step outwards. Where
+    // every term of r_i is an exact 0, c = m_i exactly and K_i is that point.
+    double rest = -ygc[i], s = std::abs(ygc[i]), rr = ygr[i], row = 0.0;
+    bool terms = nonzero(ygc[i], ygr[i]);
+    for (int j = 0; j < N; ++j) {
+      rest += mc[i][j] * dxc[j];
+      s += std::abs(mc[i][j] * dxc[j]);
+      rr += std::abs(mc[i][j]) * dxr[j] + mr[i][j] * (std::abs(dxc[j]) + dxr[j]);
+      row += std::abs(mc[i][j]) + mr[i][j];
+      terms = terms || (nonzero(mc[i][j], mr[i][j]) && nonzero(dxc[j], dxr[j]));
+    }
+    row = radius(row, 0.0, true);  // 2N - 1 roundings of a sum of non-negative terms
+    const double c = m[i] + rest;
+    const double rad = (radius(rr, s, terms) + kU * std::abs(c)) * (1.0 + 4.0 * kU);
+    const Interval k = terms ? Interval{next_down(c - rad), next_up(c + rad)} : point(m[i]);
+    finite = finite && std::isfinite(k.lo) && std::isfinite(k.hi) && std::isfinite(row);
+    if (!(row <= contraction)) contraction = row;
+    step = std::fmax(step, radius(std::abs(ygc[i]) + ygr[i], 0.0, true));
     r.image[i] = k;
-    if (k.hi < x[i].lo || k.lo > x[i].hi || is_empty(k)) disjoint = true;
+    if (k.hi < x[i].lo || k.lo > x[i].hi) disjoint = true;
     if (!(k.lo > x[i].lo && k.hi < x[i].hi)) interior = false;
     if (!(k.lo >= x[i].lo && k.hi <= x[i].hi)) inside = false;
+  }
+  // Infinite or NaN parts (an unbounded enclosure, an overflow) decide nothing.
+  if (!finite || !std::isfinite(step)) {
+    r.image = x;
+    return r;
   }
   r.contraction = contraction;
   if (contraction < 1.0) r.radius = next_up(step / next_down(1.0 - contraction));

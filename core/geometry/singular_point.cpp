@@ -76,7 +76,7 @@ std::optional<Box3> isolate_spatial(const ImplicitEquations& eq, Vec3 x, double 
   IntervalMatrix<4> a{};
   IntervalVector<4> g{}, xb{};
   for (int r3 = 0; r3 < 3; ++r3) {
-    g[r3] = iv::sub(jx.grad[0][r3], iv::mul(iv::point(mu), jx.grad[1][r3]));
+    g[r3] = iv::sub(jx.grad[0][r3], iv::mul(mu, jx.grad[1][r3]));
     xb[r3] = {box.lo[r3], box.hi[r3]};
     for (int c = 0; c < 3; ++c) a[r3][c] = iv::sub(j.hess[0][r3][c], iv::mul(m, j.hess[1][r3][c]));
     a[r3][3] = iv::neg(j.grad[1][r3]);

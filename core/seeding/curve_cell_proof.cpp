@@ -47,7 +47,7 @@ bool combination_excludes(const ImplicitIntervalJet& j, const ImplicitIntervalJe
     const IVec3 row = ivec::add(ivec::scale(w1, j.hess[0][r]), ivec::scale(w2, j.hess[1][r]));
     quadratic = iv::add(quadratic, iv::mul(offset[r], ivec::dot(row, offset)));
   }
-  return iv::add(iv::add(g_c, ivec::dot(grad_c, offset)), iv::mul(iv::point(0.5), quadratic)).excludes_zero();
+  return iv::add(iv::add(g_c, ivec::dot(grad_c, offset)), iv::mul(0.5, quadratic)).excludes_zero();
 }
 
 }  // namespace
@@ -102,8 +102,7 @@ CellProof prove_cell(const ImplicitEquations& equations, const Box3& cell, doubl
     Interval quadratic{0.0, 0.0};
     for (int r = 0; r < 3; ++r)
       quadratic = iv::add(quadratic, iv::mul(offset[r], ivec::dot(j.hess[i][r], offset)));
-    const Interval taylor =
-        iv::add(iv::add(jc.f[i], ivec::dot(jc.grad[i], offset)), iv::mul(iv::point(0.5), quadratic));
+    const Interval taylor = iv::add(iv::add(jc.f[i], ivec::dot(jc.grad[i], offset)), iv::mul(0.5, quadratic));
     if (iv::add(jc.f[i], ivec::dot(j.grad[i], offset)).excludes_zero() || taylor.excludes_zero()) {
       proof.verdict = CellVerdict::empty;
       return proof;
