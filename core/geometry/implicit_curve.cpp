@@ -76,20 +76,35 @@ void copy_jet(ImplicitIntervalJet& j, int i, const Jet& f, int n) {
   j.smooth = j.smooth && f.smooth && !f.v.partial;
 }
 
-template <template <int> class Jet, class Evaluate>
-ImplicitIntervalJet enclose(const Box3& box, bool planar, Evaluate&& evaluate) {
+// The interval [m - r, m + r] of a ball, one rounding of each end covered by one step outwards.
+Interval of_ball(const formula::Ball& b) { return formula::interval::outward(b.mid - b.rad, b.mid + b.rad); }
+
+// Copies formula i's ball jet (n variables) into j, as copy_jet.
+template <int N>
+void copy_jet(ImplicitIntervalJet& j, int i, const formula::BallJet1<N>& f, int n) {
+  j.f[i] = of_ball(f.v);
+  for (int r = 0; r < n; ++r) {
+    j.grad[i][r] = of_ball(f.g[r]);
+    for (int c = 0; c < 3; ++c) j.hess[i][r][c] = formula::interval::entire();
+  }
+  j.lipschitz = j.lipschitz && f.defined;
+  j.smooth = j.smooth && f.defined && f.differentiable;
+}
+
+// The enclosures from jets evaluated at the inputs (x, y, z): interval jets over a box, or ball
+// jets at a point; planar curves' f2 = z, with z's own enclosure.
+template <template <int> class Jet, class Input, class Evaluate>
+ImplicitIntervalJet enclose(const std::array<Input, 3>& in, Interval z, bool planar, Evaluate&& evaluate) {
   ImplicitIntervalJet j;
   if (planar) {
-    const formula::Interval in[2] = {{box.lo.x, box.hi.x}, {box.lo.y, box.hi.y}};
     Jet<2> f[1];
-    evaluate(in, f);
+    evaluate(in.data(), f);
     copy_jet(j, 0, f[0], 2);
-    j.f[1] = {box.lo.z, box.hi.z};
+    j.f[1] = z;
     j.grad[1][2] = {1.0, 1.0};
   } else {
-    const formula::Interval in[3] = {{box.lo.x, box.hi.x}, {box.lo.y, box.hi.y}, {box.lo.z, box.hi.z}};
     Jet<3> f[2];
-    evaluate(in, f);
+    evaluate(in.data(), f);
     copy_jet(j, 0, f[0], 3);
     copy_jet(j, 1, f[1], 3);
   }
@@ -97,18 +112,30 @@ ImplicitIntervalJet enclose(const Box3& box, bool planar, Evaluate&& evaluate) {
   return j;
 }
 
+std::array<Interval, 3> inputs(const Box3& box) {
+  return {{{box.lo.x, box.hi.x}, {box.lo.y, box.hi.y}, {box.lo.z, box.hi.z}}};
+}
+
 }  // namespace
 
+ImplicitIntervalJet ImplicitEquations::point_gradient(Vec3 x) const {
+  return enclose<formula::BallJet1>(
+      std::array<double, 3>{x.x, x.y, x.z}, {x.z, x.z}, planar_,
+      [&](const double* in, auto* f) { program_.ball_jets1<std::tuple_size_v<decltype(f->g)>>(in, f); });
+}
+
 ImplicitIntervalJet ImplicitEquations::interval_jet(const Box3& box) const {
-  return enclose<formula::IntervalJet2>(box, planar_, [&](const formula::Interval* in, auto* f) {
-    program_.interval_jets2<std::tuple_size_v<decltype(f->g)>>(in, f);
-  });
+  return enclose<formula::IntervalJet2>(inputs(box), {box.lo.z, box.hi.z}, planar_,
+                                        [&](const formula::Interval* in, auto* f) {
+                                          program_.interval_jets2<std::tuple_size_v<decltype(f->g)>>(in, f);
+                                        });
 }
 
 ImplicitIntervalJet ImplicitEquations::interval_gradient(const Box3& box) const {
-  return enclose<formula::IntervalJet1>(box, planar_, [&](const formula::Interval* in, auto* f) {
-    program_.interval_jets1<std::tuple_size_v<decltype(f->g)>>(in, f);
-  });
+  return enclose<formula::IntervalJet1>(inputs(box), {box.lo.z, box.hi.z}, planar_,
+                                        [&](const formula::Interval* in, auto* f) {
+                                          program_.interval_jets1<std::tuple_size_v<decltype(f->g)>>(in, f);
+                                        });
 }
 
 }  // namespace footpoint

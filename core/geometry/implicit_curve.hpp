@@ -68,6 +68,9 @@ class ImplicitEquations {
   // The same without the Hessians (about a third of the work): hess is left holding the whole
   // line; f, grad and the flags are those of interval_jet.
   ImplicitIntervalJet interval_gradient(const Box3& box) const;
+  // The enclosures of interval_gradient({x, x}) at one point, from ball jets (Program::ball_jets1,
+  // formula/ball.hpp: a few times a point jet's cost, interval jets of a point box 8-38 times).
+  ImplicitIntervalJet point_gradient(Vec3 x) const;
   const formula::Program& program() const { return program_; }
 
  private:

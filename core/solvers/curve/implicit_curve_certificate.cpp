@@ -1,6 +1,7 @@
 #include "solvers/curve/implicit_curve_certificate.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -34,13 +35,27 @@ Box3 around(Vec3 m, double r, const Box3& within) {
   return z;
 }
 
-Box3 intersection(const Box3& a, const Box3& b) {
+// The box [lo(a.lo, b.lo), hi(a.hi, b.hi)] axis by axis.
+template <class Lo, class Hi>
+Box3 per_axis(const Box3& a, const Box3& b, Lo lo, Hi hi) {
   Box3 r;
   for (int k = 0; k < 3; ++k) {
-    r.lo[k] = std::max(a.lo[k], b.lo[k]);
-    r.hi[k] = std::min(a.hi[k], b.hi[k]);
+    r.lo[k] = lo(a.lo[k], b.lo[k]);
+    r.hi[k] = hi(a.hi[k], b.hi[k]);
   }
   return r;
+}
+
+Box3 intersection(const Box3& a, const Box3& b) {
+  return per_axis(
+      a, b, [](double x, double y) { return std::max(x, y); },
+      [](double x, double y) { return std::min(x, y); });
+}
+
+Box3 hull(const Box3& a, const Box3& b) {
+  return per_axis(
+      a, b, [](double x, double y) { return std::min(x, y); },
+      [](double x, double y) { return std::max(x, y); });
 }
 
 bool empty(const Box3& b) {
@@ -48,6 +63,20 @@ bool empty(const Box3& b) {
     if (!(b.lo[k] <= b.hi[k])) return true;
   return false;
 }
+
+// The nodes of a depth-first walk of the cell tree still to visit. The tree splits at medians
+// (seeding/curve_cell_tree), so its depth is at most log2 of its items + 1 < 32, and a walk holds
+// at most one pending sibling per level.
+class NodeStack {
+ public:
+  bool empty() const { return size_ == 0; }
+  void push(std::int32_t node) { nodes_[size_++] = node; }
+  std::size_t pop() { return static_cast<std::size_t>(nodes_[--size_]); }
+
+ private:
+  std::array<std::int32_t, 64> nodes_{};
+  std::size_t size_ = 0;
+};
 
 class Certifier {
  public:
@@ -68,20 +97,18 @@ class Certifier {
     }
     const auto& nodes = d_.tree.nodes();
     const auto& items = d_.tree.items();
-    if (!nodes.empty()) {
-      std::vector<std::int32_t> stack{0};
-      while (!stack.empty()) {
-        const CurveCellTree::Node& node = nodes[static_cast<std::size_t>(stack.back())];
-        stack.pop_back();
-        if (far_enough(node.box)) continue;
-        if (node.left >= 0) {
-          stack.push_back(node.left);
-          stack.push_back(node.right);
-          continue;
-        }
-        for (std::int32_t i = node.first; i < node.first + node.count; ++i)
-          item(items[static_cast<std::size_t>(i)]);
+    NodeStack stack;
+    if (!nodes.empty()) stack.push(0);
+    while (!stack.empty()) {
+      const CurveCellTree::Node& node = nodes[stack.pop()];
+      if (far_enough(node.box)) continue;
+      if (node.left >= 0) {
+        stack.push(node.left);
+        stack.push(node.right);
+        continue;
       }
+      for (std::int32_t i = node.first; i < node.first + node.count; ++i)
+        item(items[static_cast<std::size_t>(i)]);
     }
     if (far2_ < std::numeric_limits<double>::infinity())
       contribute(formula::next_down(std::sqrt(far2_)), CertificateReason::gap_met);
@@ -106,8 +133,8 @@ class Certifier {
   // True when the whole box is at least the threshold away (its bound is kept for the end).
   bool far_enough(const Box3& b) {
     const double d2 = distance2_lower_bound(p_, b);
-    if (d2 < threshold2_) return false;
-    far2_ = std::fmin(far2_, d2);
+    if (!(d2 >= threshold2_)) return false;
+    if (d2 < far2_) far2_ = d2;
     return true;
   }
 
@@ -116,19 +143,20 @@ class Certifier {
   bool arcs_far_enough(std::size_t cell) {
     double lower = std::numeric_limits<double>::infinity();
     for (const ArcCapsule& c : d_.cells.arc_capsules(cell)) {
-      lower = std::fmin(lower, segment_distance_lower_bound(p_, c.a, c.b) - c.radius);
-      if (!(lower >= threshold_)) return false;
+      const double bound = segment_distance_lower_bound(p_, c.a, c.b) - c.radius;
+      if (!(bound >= threshold_)) return false;
+      if (bound < lower) lower = bound;
     }
-    far_arcs_ = std::fmin(far_arcs_, formula::next_down(lower));
+    if (lower < std::numeric_limits<double>::infinity())
+      far_arcs_ = std::fmin(far_arcs_, formula::next_down(lower));
     return true;
   }
 
   void item(const CellItem& it) {
     if (far_enough(it.box)) return;
-    const double dl = distance_lower_bound(p_, it.box);
     switch (it.kind) {
       case CellItemKind::box_face:
-        contribute(dl, CertificateReason::budget_exhausted);
+        contribute(distance_lower_bound(p_, it.box), CertificateReason::budget_exhausted);
         return;
       case CellItemKind::unproved: {
         const UnprovedBox& u = d_.cells.unproved[static_cast<std::size_t>(it.index)];
@@ -137,8 +165,7 @@ class Certifier {
         return;
       }
       case CellItemKind::proved_cell:
-        if (!arcs_far_enough(static_cast<std::size_t>(it.index)))
-          proved(d_.cells.cells[static_cast<std::size_t>(it.index)]);
+        if (!arcs_far_enough(static_cast<std::size_t>(it.index))) proved(static_cast<std::size_t>(it.index));
         return;
     }
   }
@@ -150,7 +177,7 @@ class Certifier {
     if (!foot_done_) {
       foot_done_ = true;
       ++boxes_;
-      const ImplicitIntervalJet j = eq_.interval_gradient({foot_, foot_});
+      const ImplicitIntervalJet j = eq_.point_gradient(foot_);
       foot_ok_ = j.smooth;
       foot_g_ = {j.f[0], j.f[1], ivec::dot(j.tangent(), from_p({foot_, foot_}))};
     }
@@ -259,15 +286,14 @@ class Certifier {
   const ProvedCell* cell_at(Vec3 x) const {
     const auto& nodes = d_.tree.nodes();
     const auto& items = d_.tree.items();
-    std::vector<std::int32_t> stack;
-    if (!nodes.empty()) stack.push_back(0);
+    NodeStack stack;
+    if (!nodes.empty()) stack.push(0);
     while (!stack.empty()) {
-      const CurveCellTree::Node& node = nodes[static_cast<std::size_t>(stack.back())];
-      stack.pop_back();
+      const CurveCellTree::Node& node = nodes[stack.pop()];
       if (!node.box.contains(x)) continue;
       if (node.left >= 0) {
-        stack.push_back(node.left);
-        stack.push_back(node.right);
+        stack.push(node.left);
+        stack.push(node.right);
         continue;
       }
       for (std::int32_t i = node.first; i < node.first + node.count; ++i) {
@@ -327,7 +353,7 @@ class Certifier {
     Vec3 m = zeros.center();
     if (!newton_on_g(m) || !e.box.contains(m)) return false;
     ++boxes_;
-    const ImplicitIntervalJet j = eq_.interval_gradient({m, m});
+    const ImplicitIntervalJet j = eq_.point_gradient(m);
     if (!j.smooth ||
         !zeros_about(e.box, m, {j.f[0], j.f[1], ivec::dot(j.tangent(), from_p({m, m}))}, jac, zeros))
       return false;
@@ -335,7 +361,8 @@ class Certifier {
     return true;
   }
 
-  void proved(const ProvedCell& cell) {
+  void proved(std::size_t index) {
+    const ProvedCell& cell = d_.cells.cells[index];
     const CellBounds& b = cell.bounds;
     const IVec3 pb = from_p(cell.box);
     if (ivec::dot(b.tangent, pb).excludes_zero()) return;
@@ -360,14 +387,47 @@ class Certifier {
       Vec3 x = zeros.center();
       if (newton_on_g(x) && zeros.contains(x)) {
         ++boxes_;
-        const ImplicitIntervalJet j = eq_.interval_gradient({x, x});
+        const ImplicitIntervalJet j = eq_.point_gradient(x);
         Box3 tight;
         if (j.smooth &&
             zeros_about(cell.box, x, {j.f[0], j.f[1], ivec::dot(j.tangent(), from_p({x, x}))}, jac, tight))
           return contribute_zeros(tight);
       }
     }
-    cell_parts(cell, zeros);
+    // Every zero of G left in the cell lies on one of its arcs, so in that arc's capsule box: the
+    // boxes are bisected (those that overlap as their hull), thin beside the arcs, not the cell.
+    std::array<Box3, 8> parts;
+    std::size_t n = 0;
+    for (const ArcCapsule& arc : d_.cells.arc_capsules(index)) {
+      const double lower = segment_distance_lower_bound(p_, arc.a, arc.b) - arc.radius;
+      if (lower >= threshold_) {
+        far_arcs_ = std::fmin(far_arcs_, formula::next_down(lower));
+        continue;
+      }
+      Box3 part = intersection(zeros, capsule_box(arc));
+      if (empty(part)) continue;
+      for (std::size_t i = 0; i < n;)
+        if (!empty(intersection(parts[i], part))) {
+          part = hull(part, parts[i]);
+          parts[i] = parts[--n];
+          i = 0;
+        } else {
+          ++i;
+        }
+      if (n == parts.size()) part = hull(part, parts[--n]);
+      parts[n++] = part;
+    }
+    for (std::size_t i = 0; i < n; ++i) cell_parts(cell, parts[i]);
+  }
+
+  // A box holding every point of the capsule (and so of its arc).
+  static Box3 capsule_box(const ArcCapsule& c) {
+    Box3 b;
+    for (int k = 0; k < 3; ++k) {
+      b.lo[k] = formula::next_down(std::fmin(c.a[k], c.b[k]) - c.radius);
+      b.hi[k] = formula::next_up(std::fmax(c.a[k], c.b[k]) + c.radius);
+    }
+    return b;
   }
 
   // Bisects `start` until every part is far enough, settled by `settle` (true: nothing more to
@@ -443,7 +503,7 @@ class Certifier {
     }
     const Vec3 m = part.center();
     ++boxes_;
-    const ImplicitIntervalJet jm = eq_.interval_gradient({m, m});
+    const ImplicitIntervalJet jm = eq_.point_gradient(m);
     if (!jm.smooth) return false;
     const KrawczykResult<3> k = krawczyk<3>(as_vector(ivec::of_box(part)), {m.x, m.y, m.z},
                                             {jm.f[0], jm.f[1], ivec::dot(jm.tangent(), from_p({m, m}))}, jac);
