@@ -17,6 +17,7 @@
 // Every product and sum is rounded outwards (midpoint-radius, below), so K(X), c and the radius
 // enclose their exact values.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -62,9 +63,9 @@ bool approximate_inverse(const Matrix<N>& c, Matrix<N>& y) {
         const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
         y[j][i] = c[i1][j1] * c[i2][j2] - c[i1][j2] * c[i2][j1];  // cofactor (i, j), transposed
       }
-    const double det = c[0][0] * y[0][0] + c[0][1] * y[1][0] + c[0][2] * y[2][0];
+    const double inverse_det = 1.0 / (c[0][0] * y[0][0] + c[0][1] * y[1][0] + c[0][2] * y[2][0]);
     for (auto& row : y)
-      for (double& v : row) v /= det;
+      for (double& v : row) v *= inverse_det;
   } else {
     for (int j = 0; j < N; ++j) {
       Vector<N> e{};
@@ -119,7 +120,8 @@ KrawczykResult<N> krawczyk(const IntervalVector<N>& x, const Vector<N>& m, const
   std::array<std::array<double, N>, N> jc{}, jr{};
   const auto to_ball = [](const Interval& a, double& centre, double& rad) {
     centre = mid(a);
-    rad = std::fmax(centre - a.lo, a.hi - centre) * (1.0 + 4.0 * kU);
+    // a NaN difference comes with a centre that is not finite, which decides nothing below
+    rad = std::max(centre - a.lo, a.hi - centre) * (1.0 + 4.0 * kU);
   };
   for (int l = 0; l < N; ++l) {
     to_ball(gm[l], gc[l], gr[l]);
@@ -177,7 +179,8 @@ KrawczykResult<N> krawczyk(const IntervalVector<N>& x, const Vector<N>& m, const
     const Interval k = terms ? Interval{next_down(c - rad), next_up(c + rad)} : point(m[i]);
     finite = finite && std::isfinite(k.lo) && std::isfinite(k.hi) && std::isfinite(row);
     if (!(row <= contraction)) contraction = row;
-    step = std::fmax(step, radius(std::abs(ygc[i]) + ygr[i], 0.0, true));
+    const double step_i = radius(std::abs(ygc[i]) + ygr[i], 0.0, true);
+    if (!(step_i <= step)) step = step_i;  // NaN propagates: no radius
     r.image[i] = k;
     if (k.hi < x[i].lo || k.lo > x[i].hi) disjoint = true;
     if (!(k.lo > x[i].lo && k.hi < x[i].hi)) interior = false;

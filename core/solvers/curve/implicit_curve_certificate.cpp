@@ -147,9 +147,14 @@ class Certifier {
       if (!(bound >= threshold_)) return false;
       if (bound < lower) lower = bound;
     }
-    if (lower < std::numeric_limits<double>::infinity())
-      far_arcs_ = std::fmin(far_arcs_, formula::next_down(lower));
+    if (lower < std::numeric_limits<double>::infinity()) keep_far_arc(lower);
     return true;
+  }
+
+  // A capsule bound at least the threshold (never NaN), kept for the end rounded down.
+  void keep_far_arc(double bound) {
+    const double lowered = formula::next_down(bound);
+    if (lowered < far_arcs_) far_arcs_ = lowered;
   }
 
   void item(const CellItem& it) {
@@ -401,7 +406,7 @@ class Certifier {
     for (const ArcCapsule& arc : d_.cells.arc_capsules(index)) {
       const double lower = segment_distance_lower_bound(p_, arc.a, arc.b) - arc.radius;
       if (lower >= threshold_) {
-        far_arcs_ = std::fmin(far_arcs_, formula::next_down(lower));
+        keep_far_arc(lower);
         continue;
       }
       Box3 part = intersection(zeros, capsule_box(arc));
