@@ -36,10 +36,14 @@ long double segment_distance_long(Vec3 p, Vec3 a, Vec3 b) {
 }
 
 // Every point of `curve` (samples of a parametrisation) inside a proved cell lies within the
-// radius of one of the cell's capsules; returns the median of radius / cell edge.
+// radius of one of the cell's capsules, and in the cell's item box of the certificate's tree (the
+// part of the cell the capsules reach); returns the median of radius / cell edge.
 double check_capsules_hold(const CurveDiscovery& d, const std::vector<Vec3>& curve) {
   std::vector<double> ratios;
   int checked_cells = 0;
+  std::vector<Box3> item_box(d.cells.cells.size());
+  for (const CellItem& it : d.tree.items())
+    if (it.kind == CellItemKind::proved_cell) item_box[static_cast<std::size_t>(it.index)] = it.box;
   for (std::size_t c = 0; c < d.cells.cells.size(); ++c) {
     const ProvedCell& cell = d.cells.cells[c];
     const std::span<const ArcCapsule> capsules = d.cells.arc_capsules(c);
@@ -59,6 +63,11 @@ double check_capsules_hold(const CurveDiscovery& d, const std::vector<Vec3>& cur
                     << cell.box.hi.y << "] x [" << cell.box.lo.z << ", " << cell.box.hi.z << "], radius "
                     << double(radius));
       REQUIRE(nearest <= 1e-14L);
+      REQUIRE(item_box[c].contains(x, 1e-14));
+    }
+    for (int k = 0; k < 3; ++k) {
+      REQUIRE(item_box[c].lo[k] >= cell.box.lo[k]);
+      REQUIRE(item_box[c].hi[k] <= cell.box.hi[k]);
     }
     checked_cells += inside > 0;
   }

@@ -220,4 +220,13 @@ ArcCapsule arc_capsule(const CellBounds& bounds, int axis, const FaceCrossing& s
   return {start.point, end.point, std::isfinite(radius) ? radius : std::numeric_limits<double>::infinity()};
 }
 
+Box3 capsule_box(const ArcCapsule& c) {
+  Box3 b;
+  for (int k = 0; k < 3; ++k) {
+    b.lo[k] = formula::next_down(std::fmin(c.a[k], c.b[k]) - c.radius);
+    b.hi[k] = formula::next_up(std::fmax(c.a[k], c.b[k]) + c.radius);
+  }
+  return b;
+}
+
 }  // namespace footpoint

@@ -87,6 +87,8 @@ struct ArcCapsule {
 };
 ArcCapsule arc_capsule(const CellBounds& bounds, int axis, const FaceCrossing& start,
                        const FaceCrossing& end);
+// A box holding every point of the capsule (and so of its arc).
+Box3 capsule_box(const ArcCapsule& c);
 
 struct CellProof {
   CellVerdict verdict = CellVerdict::unproved;

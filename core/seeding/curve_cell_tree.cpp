@@ -17,11 +17,32 @@ bool on_box_face(const FaceCrossing& x, const Box3& domain) {
   return false;
 }
 
+// The part of a proved cell its arcs can be in: the cell less what lies outside every capsule's
+// box (thin beside a nearly straight arc, where the cell is a cube).
+Box3 arcs_box(const CurveCells& cells, std::size_t cell) {
+  const Box3& box = cells.cells[cell].box;
+  const auto capsules = cells.arc_capsules(cell);
+  if (capsules.empty()) return box;
+  Box3 hull = capsule_box(capsules.front());
+  for (const ArcCapsule& c : capsules.subspan(1)) {
+    const Box3 b = capsule_box(c);
+    for (int k = 0; k < 3; ++k) {
+      hull.lo[k] = std::min(hull.lo[k], b.lo[k]);
+      hull.hi[k] = std::max(hull.hi[k], b.hi[k]);
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    hull.lo[k] = std::max(hull.lo[k], box.lo[k]);
+    hull.hi[k] = std::min(hull.hi[k], box.hi[k]);
+  }
+  return hull;
+}
+
 }  // namespace
 
 CurveCellTree::CurveCellTree(const CurveCells& cells, const Box3& domain) {
   for (std::size_t i = 0; i < cells.cells.size(); ++i)
-    items_.push_back({cells.cells[i].box, CellItemKind::proved_cell, static_cast<std::int32_t>(i)});
+    items_.push_back({arcs_box(cells, i), CellItemKind::proved_cell, static_cast<std::int32_t>(i)});
   for (std::size_t i = 0; i < cells.unproved.size(); ++i)
     items_.push_back({cells.unproved[i].box, CellItemKind::unproved, static_cast<std::int32_t>(i)});
   for (std::size_t i = 0; i < cells.crossings.size(); ++i)

@@ -2,7 +2,9 @@
 // point is projected: its proved cells, its unproved boxes and its exact box-face crossings (the
 // items). A certificate (solvers/curve/implicit_curve_certificate) visits only the items whose box
 // is nearer to p than the answer: a binary tree of boxes, split at the median of the items'
-// centres along the longest side, pruned by the rigorous box distance (interval_vec3.hpp).
+// centres along the longest side, pruned by the rigorous box distance (interval_vec3.hpp). A
+// proved cell's item box is the part of the cell its arcs' capsules can reach (thin beside a
+// nearly straight arc), an unproved box and a crossing's enclosure are their own.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -20,7 +22,7 @@ enum class CellItemKind : std::uint8_t {
 };
 
 struct CellItem {
-  Box3 box;
+  Box3 box;  // holds every point of the curve the item stands for
   CellItemKind kind = CellItemKind::proved_cell;
   std::int32_t index = 0;
 };

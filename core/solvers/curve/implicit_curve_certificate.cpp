@@ -289,13 +289,16 @@ class Certifier {
 
   // A proved cell holding the foot point (nullptr when none does).
   const ProvedCell* cell_at(Vec3 x) const {
+    // The tree's boxes are its cells' arcs' boxes: a point a few roundings off the curve (a
+    // computed foot point) may lie just outside, so they are met with a slack.
+    const double slack = 1e-9 * (1.0 + std::fmax(std::fabs(x.x), std::fmax(std::fabs(x.y), std::fabs(x.z))));
     const auto& nodes = d_.tree.nodes();
     const auto& items = d_.tree.items();
     NodeStack stack;
     if (!nodes.empty()) stack.push(0);
     while (!stack.empty()) {
       const CurveCellTree::Node& node = nodes[stack.pop()];
-      if (!node.box.contains(x)) continue;
+      if (!node.box.contains(x, slack)) continue;
       if (node.left >= 0) {
         stack.push(node.left);
         stack.push(node.right);
@@ -303,8 +306,9 @@ class Certifier {
       }
       for (std::int32_t i = node.first; i < node.first + node.count; ++i) {
         const CellItem& it = items[static_cast<std::size_t>(i)];
-        if (it.kind == CellItemKind::proved_cell && it.box.contains(x))
-          return &d_.cells.cells[static_cast<std::size_t>(it.index)];
+        if (it.kind != CellItemKind::proved_cell || !it.box.contains(x, slack)) continue;
+        const ProvedCell& cell = d_.cells.cells[static_cast<std::size_t>(it.index)];
+        if (cell.box.contains(x)) return &cell;
       }
     }
     return nullptr;
@@ -423,16 +427,6 @@ class Certifier {
       parts[n++] = part;
     }
     for (std::size_t i = 0; i < n; ++i) cell_parts(cell, parts[i]);
-  }
-
-  // A box holding every point of the capsule (and so of its arc).
-  static Box3 capsule_box(const ArcCapsule& c) {
-    Box3 b;
-    for (int k = 0; k < 3; ++k) {
-      b.lo[k] = formula::next_down(std::fmin(c.a[k], c.b[k]) - c.radius);
-      b.hi[k] = formula::next_up(std::fmax(c.a[k], c.b[k]) + c.radius);
-    }
-    return b;
   }
 
   // Bisects `start` until every part is far enough, settled by `settle` (true: nothing more to
