@@ -7,7 +7,9 @@
 namespace footpoint {
 namespace {
 
-constexpr std::int32_t kLeafItems = 4;
+// Items per leaf: with the arcs' thin boxes a leaf of 8 is tested as fast as the nodes above it
+// (4: 2 % slower on [Curve] Ex. 2, 16: the same as 8).
+constexpr std::int32_t kLeafItems = 8;
 
 bool on_box_face(const FaceCrossing& x, const Box3& domain) {
   for (int a = 0; a < 3; ++a)
