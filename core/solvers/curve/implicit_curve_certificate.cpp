@@ -90,11 +90,6 @@ class Certifier {
     c.absolute_gap = implicit_absolute_gap(p_, foot_);
     threshold_ = distance_ - std::fmax(Certificate::kRelativeGap * distance_, c.absolute_gap);
     threshold2_ = threshold_ > 0.0 ? square_upper_bound(threshold_) : 0.0;
-    foot_cell_ = cell_at(foot_);
-    if (foot_cell_) {
-      foot_cell_edge_ = foot_cell_->box.max_edge();
-      foot_enlarged();
-    }
     const auto& nodes = d_.tree.nodes();
     const auto& items = d_.tree.items();
     NodeStack stack;
@@ -110,6 +105,7 @@ class Certifier {
       for (std::int32_t i = node.first; i < node.first + node.count; ++i)
         item(items[static_cast<std::size_t>(i)]);
     }
+    bound_near_cells();
     if (far2_ < std::numeric_limits<double>::infinity())
       contribute(formula::next_down(std::sqrt(far2_)), CertificateReason::gap_met);
     contribute(far_arcs_, CertificateReason::gap_met);
@@ -170,9 +166,34 @@ class Certifier {
         return;
       }
       case CellItemKind::proved_cell:
-        if (!arcs_far_enough(static_cast<std::size_t>(it.index))) proved(static_cast<std::size_t>(it.index));
+        if (!arcs_far_enough(static_cast<std::size_t>(it.index)))
+          near_cell(static_cast<std::size_t>(it.index));
         return;
     }
+  }
+
+  // A proved cell its capsules do not rule out: kept until the walk has met the foot's cell (the
+  // first whose box holds the foot point), or bounded at once when there is no room left.
+  void near_cell(std::size_t index) {
+    if (!foot_cell_ && d_.cells.cells[index].box.contains(foot_)) foot_cell_ = &d_.cells.cells[index];
+    if (!near_bounded_ && near_count_ < near_cells_.size()) {
+      near_cells_[near_count_++] = index;
+      return;
+    }
+    bound_near_cells();
+    proved(index);
+  }
+
+  // The kept cells, after Krawczyk's test over the foot cell's enlarged box, which may settle
+  // them all.
+  void bound_near_cells() {
+    if (near_bounded_) return;
+    near_bounded_ = true;
+    if (foot_cell_) {
+      foot_cell_edge_ = foot_cell_->box.max_edge();
+      foot_enlarged();
+    }
+    for (std::size_t i = 0; i < near_count_; ++i) proved(near_cells_[i]);
   }
 
   IVec3 from_p(const Box3& b) const { return ivec::sub(ivec::of_point(p_), ivec::of_box(b)); }
@@ -285,33 +306,6 @@ class Certifier {
     foot_region_ = e.box;
     foot_region_zeros_ = zeros;
     foot_region_ok_ = true;
-  }
-
-  // A proved cell holding the foot point (nullptr when none does).
-  const ProvedCell* cell_at(Vec3 x) const {
-    // The tree's boxes are its cells' arcs' boxes: a point a few roundings off the curve (a
-    // computed foot point) may lie just outside, so they are met with a slack.
-    const double slack = 1e-9 * (1.0 + std::fmax(std::fabs(x.x), std::fmax(std::fabs(x.y), std::fabs(x.z))));
-    const auto& nodes = d_.tree.nodes();
-    const auto& items = d_.tree.items();
-    NodeStack stack;
-    if (!nodes.empty()) stack.push(0);
-    while (!stack.empty()) {
-      const CurveCellTree::Node& node = nodes[stack.pop()];
-      if (!node.box.contains(x, slack)) continue;
-      if (node.left >= 0) {
-        stack.push(node.left);
-        stack.push(node.right);
-        continue;
-      }
-      for (std::int32_t i = node.first; i < node.first + node.count; ++i) {
-        const CellItem& it = items[static_cast<std::size_t>(i)];
-        if (it.kind != CellItemKind::proved_cell || !it.box.contains(x, slack)) continue;
-        const ProvedCell& cell = d_.cells.cells[static_cast<std::size_t>(it.index)];
-        if (cell.box.contains(x)) return &cell;
-      }
-    }
-    return nullptr;
   }
 
   // Where the compiled enclosures of `cell` leave a zero of G possible in `part`: nowhere, or a
@@ -572,7 +566,10 @@ class Certifier {
   bool foot_box_tried_ = false, foot_box_ok_ = false;
   Box3 foot_box_, foot_zeros_;
   double foot_cell_edge_ = 0.0;
-  const ProvedCell* foot_cell_ = nullptr;
+  const ProvedCell* foot_cell_ = nullptr;  // a proved cell holding the foot point, if one is near
+  std::array<std::size_t, 64> near_cells_{};
+  std::size_t near_count_ = 0;
+  bool near_bounded_ = false;
   bool foot_region_ok_ = false;
   Box3 foot_region_, foot_region_zeros_;
 };
