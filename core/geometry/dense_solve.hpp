@@ -1,6 +1,7 @@
 // Small dense linear systems A x = b (N <= 5) by Gaussian elimination with partial pivoting, on
 // the stack: the Newton steps on curves (the Lagrange system of `auto` is 5 x 5) allocate nothing.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -20,7 +21,7 @@ bool dense_solve(Matrix<N> a, Vector<N>& b,
                  double pivot_tolerance = 64.0 * std::numeric_limits<double>::epsilon()) {
   double scale = 0.0;
   for (const auto& row : a)
-    for (double v : row) scale = std::fmax(scale, std::fabs(v));
+    for (double v : row) scale = std::max(scale, std::fabs(v));  // a NaN entry is passed over, as by fmax
   if (!(scale > 0.0) || !std::isfinite(scale)) return false;
   const double tiny = pivot_tolerance * scale;
   for (int k = 0; k < N; ++k) {
