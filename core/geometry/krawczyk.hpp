@@ -94,21 +94,21 @@ KrawczykResult<N> krawczyk(const IntervalVector<N>& x, const Vector<N>& m, const
     for (int j = 0; j < N; ++j) c[i][j] = mid(jac[i][j]);
   Matrix<N> y{};
   if (!approximate_inverse<N>(c, y)) return r;
-  // Y G(m), I - Y J and K(X) in midpoint-radius form (S. M. Rump, "Fast and parallel interval
-  // arithmetic", BIT 39 (1999) 534-554; formula/ball.hpp): each interval [lo, hi] is
-  // the ball about c = fl(lo/2 + hi/2) with a radius that bounds c - lo and hi - c, each a product
-  // or sum of balls is a centre computed in floating point plus a radius that covers both the
-  // propagated radii and the rounding of the centre. A dot product of at most 15 terms (and
-  // roundings) computed in round to nearest is within γ_15 / (1 - γ_15) < 15.1 u of the exact one,
-  // relative to the computed sum S of its terms' magnitudes, plus 15 η for underflows; a computed
-  // radius sum R likewise understates its exact value by at most 15.1 u R + 15 η (N. J. Higham,
-  // Accuracy and Stability of Numerical Algorithms, 2nd ed., SIAM 2002, Section 3.1). So
+  // Y G(m), I - Y J and K(X) in midpoint-radius form ([Rump99]; formula/ball.hpp): each interval
+  // [lo, hi] is the ball about c = fl(lo/2 + hi/2) with a radius that bounds c - lo and hi - c;
+  // each product or sum of balls is a centre computed in floating point plus a radius that covers
+  // both the propagated radii and the rounding of the centre. A dot product of at most 15 terms
+  // (and roundings) computed in round to nearest is within γ_15 / (1 - γ_15) < 15.1 u of the exact
+  // one, relative to the computed sum S of its terms' magnitudes, plus 15 η for underflows; a
+  // computed radius sum R likewise understates its exact value by at most 15.1 u R + 15 η
+  // (N. J. Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., SIAM 2002, Section 3.1).
+  // So
   //   radius = fl(fl(R + fl(16 u S)) (1 + 32 u) + 2^-900)
   // bounds the exact radius plus the centre's error: its own four roundings lose less than the
-  // margins (16 against 15.1, 32 against 15.1, 2^-900 against 30 η). The floor is a normal number:
-  // products with it do not fall into the subnormal range, which the processor handles slowly.
-  // Where every term has an exact zero factor the sum is exactly 0 and needs no floor: an exact
-  // coordinate (the plane z = 0 of a planar curve, fixed by G) stays exact, as K(X) ⊆ X needs.
+  // margins (16 against 15.1, 32 against 15.1, 2^-900 against 30 η). The floor is a normal number,
+  // so products with it stay out of the subnormal range (slow on some processors). Where every
+  // term has an exact zero factor the sum is exactly 0 and needs no floor: an exact coordinate
+  // (the plane z = 0 of a planar curve, fixed by G) stays exact, as K(X) ⊆ X needs.
   static_assert(N >= 1 && N <= 6, "the rounding allowances count at most 15 terms");
   constexpr double kU = 0x1p-53;
   const auto radius = [](double r, double s, bool terms) {
