@@ -235,3 +235,54 @@ TEST_CASE("ball jets flag kinks, jumps and points outside the domain") {
   CHECK(at("(u<v)+u", 1.0, 1.0 + 0x1p-52).defined);        // exact operands one ulp apart: decided
   CHECK_FALSE(at("(sin(u)<sin(v))+u", 1.0, 1.0).defined);  // rounded values that close: a jump
 }
+
+TEST_CASE("ball jets of sums of monomials (the polynomial fast path) hold the exact value and gradient") {
+  // Coefficients folded from the tape's constants with roundings of their own (1/9, (1/3)^3, a
+  // product of decimals), three variables, and points where products underflow (the tape's ball
+  // arithmetic instead) or cancel.
+  struct Case {
+    const char* text;
+    std::function<std::array<LD, 4>(LD, LD, LD)> f;  // value, d/dx, d/dy, d/dz
+  };
+  const Case cases[] = {
+      {"x^2/9+y^2/16+z^2/9+4*x*y-1",
+       [](LD x, LD y, LD z) {
+         return std::array<LD, 4>{x * x / 9 + y * y / 16 + z * z / 9 + 4 * x * y - 1, 2 * x / 9 + 4 * y,
+                                  2 * y / 16 + 4 * x, 2 * z / 9};
+       }},
+      {"(x/3)^3-0.1*x*y^2*0.7+z^5/7",
+       [](LD x, LD y, LD z) {
+         const LD c = static_cast<LD>(0.1) * static_cast<LD>(0.7);
+         return std::array<LD, 4>{x * x * x / 27 - c * x * y * y + z * z * z * z * z / 7,
+                                  x * x / 9 - c * y * y, -2 * c * x * y, 5 * z * z * z * z / 7};
+       }},
+      {"x^7*y^3*z-2.5*x*y*z+x-y",
+       [](LD x, LD y, LD z) {
+         const LD x6 = x * x * x * x * x * x;
+         return std::array<LD, 4>{
+             x6 * x * y * y * y * z - 2.5L * x * y * z + x - y, 7 * x6 * y * y * y * z - 2.5L * y * z + 1,
+             3 * x6 * x * y * y * z - 2.5L * x * z - 1, x6 * x * y * y * y - 2.5L * x * y};
+       }},
+  };
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> U(-3.0, 3.0);
+  for (const Case& c : cases) {
+    INFO(std::string(c.text));
+    const Program p = Program::compile({{"f", c.text}}, {"x", "y", "z"}, {});
+    REQUIRE(p.sum_of_monomials());
+    for (int i = 0; i < 600; ++i) {
+      double x[3] = {U(rng), U(rng), U(rng)};
+      if (i % 50 == 0) x[0] = 1e-200;  // x^2 underflows: the tape's own ball arithmetic
+      if (i % 50 == 1) x[1] = 0.0;
+      BallJet1<3> b;
+      p.ball_jets1<3>(x, &b);
+      REQUIRE(b.defined);
+      const auto exact = c.f(x[0], x[1], x[2]);
+      CHECK(holds(b.v, exact[0]));
+      for (int j = 0; j < 3; ++j) CHECK(holds(b.g[j], exact[1 + j]));
+      // tight: a few hundred ulps of the largest term (|x^7 y^3 z| <= 3^11)
+      CHECK(b.v.rad <= 1e-12 * (1.0 + std::abs(b.v.mid)) * 2e5);
+      CHECK(b.g[0].rad <= 1e-12 * (1.0 + std::abs(b.g[0].mid)) * 2e5);
+    }
+  }
+}

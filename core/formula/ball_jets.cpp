@@ -279,6 +279,7 @@ struct BallJet1Arith {
 
 template <int N>
 void Program::ball_jets1(const double* x, BallJet1<N>* out) const {
+  if (tape_->polynomial && polynomial_ball_jets1<N>(*tape_->polynomial, x, out)) return;
   run<BallJet1Arith<N>>(*tape_, x, out);
   for (int k = 0; k < num_outputs(); ++k) {
     BallJet1<N>& o = out[k];

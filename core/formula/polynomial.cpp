@@ -1,6 +1,7 @@
 // Recognising sums of monomials on the tape and evaluating their jets term by term (polynomial.hpp).
 #include "formula/polynomial.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -22,20 +23,43 @@ struct NodeForm {
   int num_leaves = 0;
 };
 
+// An upper bound of a coefficient's error: the bound computed in round to nearest (a few roundings
+// of non-negative terms, covered by the factor) plus one rounding of the coefficient itself,
+// u |c| + η (the smallest subnormal: an underflow).
+double error_bound(double propagated, double c) {
+  return (propagated + 0x1p-53 * std::abs(c)) * (1.0 + 0x1p-40) + 2.0 * 0x1p-1074;
+}
+
 Monomial constant_term(double c) {
   Monomial m;
   m.c = c;
   return m;
 }
 
+// m times an exact double s: exact for s = ±1.
 Monomial scaled(Monomial m, double s) {
+  if (s == 1.0 || s == -1.0) {
+    m.c *= s;
+    return m;
+  }
   m.c *= s;
+  m.c_error = error_bound(std::abs(s) * m.c_error, m.c);
+  return m;
+}
+
+// m divided by an exact double k, as m times fl(1/k): |fl(1/k) - 1/k| <= u |fl(1/k)| + η.
+Monomial divided(Monomial m, double k) {
+  const double q = 1.0 / k;
+  const double before = std::abs(m.c), before_error = m.c_error;
+  m.c *= q;
+  m.c_error = error_bound(before_error / std::abs(k) + before * (0x1p-53 * std::abs(q) + 0x1p-1074), m.c);
   return m;
 }
 
 Monomial product(const Monomial& a, const Monomial& b) {
   Monomial m;
   m.c = a.c * b.c;
+  m.c_error = error_bound(std::abs(a.c) * b.c_error + std::abs(b.c) * a.c_error + a.c_error * b.c_error, m.c);
   for (int i = 0; i < 3; ++i) m.e[i] = static_cast<std::int16_t>(a.e[i] + b.e[i]);
   return m;
 }
@@ -112,14 +136,19 @@ NodeForm read_node(const Node& node, const std::vector<NodeForm>& forms) {
     case Op::mul_k:
       return a->kind == K::term ? term_form(scaled(a->term, node.k)) : NodeForm{};
     case Op::div_k:
-      return a->kind == K::term ? term_form(scaled(a->term, 1.0 / node.k)) : NodeForm{};
+      return a->kind == K::term ? term_form(divided(a->term, node.k)) : NodeForm{};
     case Op::mul:
       return a->kind == K::term && b->kind == K::term ? term_form(product(a->term, b->term)) : NodeForm{};
     case Op::pow_int: {
       if (a->kind != K::term || node.k < 0 || node.k > PolynomialForm::kMaxDegree) return {};
       Monomial m = a->term;
       const int k = static_cast<int>(node.k);
+      // c^k by binary powering, within (k + 1) u |c^k| + k η of the power of the computed c
+      // (interval_arith.hpp's bound); |c^k - (c ± e)^k| <= k (|c| + e)^(k - 1) e.
+      const double c = std::abs(m.c), e = m.c_error;
       m.c = pow_int(m.c, k);
+      m.c_error = e == 0.0 ? 0.0 : error_bound(k * pow_int(c + e, k - 1) * e, 0.0) * (1.0 + 0x1p-40);
+      m.c_error = error_bound(m.c_error + (k + 1.0) * 0x1p-53 * std::abs(m.c) + k * 0x1p-1074, m.c);
       for (auto& e : m.e) e = static_cast<std::int16_t>(e * k);
       return term_form(m);
     }
@@ -279,6 +308,73 @@ void polynomial_jets2(const PolynomialForm& poly, const double* x, Jet2<N>* out)
   else
     polynomial_jets2_any<N>(poly, x, out);
 }
+
+template <int N>
+bool polynomial_ball_jets1(const PolynomialForm& poly, const double* x, BallJet1<N>* out) {
+  constexpr double kU = 0x1p-53, kSmallest = 0x1p-1000;
+  bool tiny = false;  // a nonzero product below 2^-1000 (or one that underflowed to 0)
+  const auto times = [&tiny](double a, double b) {
+    const double r = a * b;
+    tiny = tiny || (std::abs(r) < kSmallest && a != 0.0 && b != 0.0);
+    return r;
+  };
+  // pw[i][1 + e] = x_i^e for e >= 0, pw[i][0] = 0 (the exponent -1 of a derivative of x^0)
+  double pw[N][PolynomialForm::kMaxDegree + 2];
+  for (int i = 0; i < N; ++i) {
+    pw[i][0] = 0.0;
+    pw[i][1] = 1.0;
+    for (int e = 1; e <= poly.max_degree[i]; ++e) pw[i][1 + e] = times(pw[i][e], x[i]);
+  }
+  const std::size_t num_outputs = poly.first.size() - 1;
+  for (std::size_t k = 0; k < num_outputs; ++k) {
+    // value and gradient: the computed sum, the sum of the terms' magnitudes, the coefficients'
+    // errors times the monomials' magnitudes
+    double v = 0.0, v_mag = 0.0, v_err = 0.0;
+    std::array<double, N> g{}, g_mag{}, g_err{};
+    int factors = 0;
+    const std::uint32_t begin = poly.first[k], end = poly.first[k + 1];
+    for (std::uint32_t t = begin; t < end; ++t) {
+      const Monomial& m = poly.terms[t];
+      int degree = 0;
+      double mono = 1.0;  // x^a y^b z^d
+      for (int i = 0; i < N; ++i) {
+        mono = times(mono, pw[i][1 + m.e[i]]);
+        degree += m.e[i];
+      }
+      factors = std::max(factors, degree + N + 2);
+      const double term = times(m.c, mono);
+      v += term;
+      v_mag += std::abs(term);
+      v_err += m.c_error * std::abs(mono);
+      for (int j = 0; j < N; ++j) {
+        if (m.e[j] == 0) continue;
+        // c e_j x_j^(e_j - 1) times the other powers; the coefficient c e_j rounded once more
+        double d = 1.0;
+        for (int i = 0; i < N; ++i) d = times(d, pw[i][i == j ? m.e[i] : 1 + m.e[i]]);
+        const double ce = times(m.c, m.e[j]);
+        const double dt = times(ce, d);
+        g[j] += dt;
+        g_mag[j] += std::abs(dt);
+        g_err[j] += (m.e[j] * m.c_error + kU * std::abs(ce)) * std::abs(d);
+      }
+    }
+    // (the error terms' own products may underflow: half the smallest subnormal each)
+    const double n = static_cast<double>(end - begin);
+    const double rel = 1.25 * (n + factors + 2) * kU, underflows = 2.0 * n * 0x1p-1074;
+    BallJet1<N>& o = out[k];
+    o.v = {v, ball::inflate(rel * v_mag + 1.25 * v_err) + underflows};
+    for (int j = 0; j < N; ++j) o.g[j] = {g[j], ball::inflate(rel * g_mag[j] + 1.25 * g_err[j]) + underflows};
+    o.defined = o.differentiable = true;
+    bool finite = std::isfinite(o.v.mid) && std::isfinite(o.v.rad);
+    for (int j = 0; j < N; ++j) finite = finite && std::isfinite(o.g[j].mid) && std::isfinite(o.g[j].rad);
+    if (!finite || tiny) return false;
+  }
+  return true;
+}
+
+template bool polynomial_ball_jets1<1>(const PolynomialForm&, const double*, BallJet1<1>*);
+template bool polynomial_ball_jets1<2>(const PolynomialForm&, const double*, BallJet1<2>*);
+template bool polynomial_ball_jets1<3>(const PolynomialForm&, const double*, BallJet1<3>*);
 
 template void polynomial_jets2<1>(const PolynomialForm&, const double*, Jet2<1>*);
 template void polynomial_jets2<2>(const PolynomialForm&, const double*, Jet2<2>*);

@@ -16,12 +16,16 @@
 #include <optional>
 #include <vector>
 
+#include "formula/ball.hpp"
 #include "formula/jet.hpp"
 
 namespace footpoint::formula {
 
 struct Monomial {
-  double c = 0.0;                              // coefficient
+  double c = 0.0;  // coefficient
+  // |c - the exact coefficient| at most: the tape's constants are exact, each operation that
+  // folded them into c (a product, 1/k, a power) rounded once more (ball jets need it).
+  double c_error = 0.0;
   std::array<std::int16_t, 3> e{};             // exponent of each variable
   std::array<double, 3> ce{};                  // c e_j: the gradient's coefficients
   std::array<std::array<double, 3>, 3> cee{};  // c e_j e_k (j != k), c e_j (e_j - 1): the Hessian's
@@ -42,5 +46,18 @@ struct PolynomialForm {
 // Second-order jets of every formula (N = the number of variables).
 template <int N>
 void polynomial_jets2(const PolynomialForm& poly, const double* x, Jet2<N>* out);
+
+// Ball jets of every formula (ball.hpp's contract: the exact value and gradient at x lie in the
+// balls), term by term. Each term c x^a y^b z^d is a product of at most K = a + b + d + N + 1
+// correctly rounded factors, so it is within γ_K of the exact product of c and the powers; the
+// sum of n terms in the tape's order adds γ_(n-1) of the sum of their magnitudes S (N. J.
+// Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., SIAM 2002, Sections 3.1 and
+// 4.2); the coefficients' own errors add Σ c_error |x^a y^b z^d|. With γ_j <= 1.01 j u here
+// (j u <= 2^-40), radius = inflate(1.25 (n + K + 2) u S + 1.25 Σ c_error |monomial|) covers
+// all of it. The relative model needs every product to stay a normal number: false (nothing
+// written) when a nonzero product falls below 2^-1000 or anything overflows, and the tape's own
+// ball arithmetic is used instead.
+template <int N>
+bool polynomial_ball_jets1(const PolynomialForm& poly, const double* x, BallJet1<N>* out);
 
 }  // namespace footpoint::formula
