@@ -367,10 +367,12 @@ class Certifier {
   void proved(std::size_t index) {
     const ProvedCell& cell = d_.cells.cells[index];
     const CellBounds& b = cell.bounds;
-    const IVec3 pb = from_p(cell.box);
-    if (ivec::dot(b.tangent, pb).excludes_zero()) return;
+    // Inside the foot's region every zero of G is the foot point's, whose box is all there is to
+    // bound (the box comparison first: cheaper than F's range).
     if (foot_region_ok_ && foot_region_.contains(cell.box))
       return contribute_zeros(intersection(foot_region_zeros_, cell.box));
+    const IVec3 pb = from_p(cell.box);
+    if (ivec::dot(b.tangent, pb).excludes_zero()) return;
     const IVec3 offset = ivec::sub(ivec::of_box(cell.box), ivec::of_point(b.center));
     const IVec3 grad_f = gradient_of_f(b.tangent, b.tangent_derivatives, pb);
     const Interval f_center = ivec::dot(b.tangent_center, from_p({b.center, b.center}));
