@@ -25,19 +25,9 @@ Box3 arcs_box(const CurveCells& cells, std::size_t cell) {
   const Box3& box = cells.cells[cell].box;
   const auto capsules = cells.arc_capsules(cell);
   if (capsules.empty()) return box;
-  Box3 hull = capsule_box(capsules.front());
-  for (const ArcCapsule& c : capsules.subspan(1)) {
-    const Box3 b = capsule_box(c);
-    for (int k = 0; k < 3; ++k) {
-      hull.lo[k] = std::min(hull.lo[k], b.lo[k]);
-      hull.hi[k] = std::max(hull.hi[k], b.hi[k]);
-    }
-  }
-  for (int k = 0; k < 3; ++k) {
-    hull.lo[k] = std::max(hull.lo[k], box.lo[k]);
-    hull.hi[k] = std::min(hull.hi[k], box.hi[k]);
-  }
-  return hull;
+  Box3 all = capsule_box(capsules.front());
+  for (const ArcCapsule& c : capsules.subspan(1)) all = hull(all, capsule_box(c));
+  return intersection(all, box);
 }
 
 }  // namespace
@@ -56,13 +46,8 @@ CurveCellTree::CurveCellTree(const CurveCells& cells, const Box3& domain) {
 std::int32_t CurveCellTree::build(std::int32_t first, std::int32_t count) {
   Node node;
   node.box = items_[static_cast<std::size_t>(first)].box;
-  for (std::int32_t i = first; i < first + count; ++i) {
-    const CellItem& item = items_[static_cast<std::size_t>(i)];
-    for (int k = 0; k < 3; ++k) {
-      node.box.lo[k] = std::min(node.box.lo[k], item.box.lo[k]);
-      node.box.hi[k] = std::max(node.box.hi[k], item.box.hi[k]);
-    }
-  }
+  for (std::int32_t i = first + 1; i < first + count; ++i)
+    node.box = hull(node.box, items_[static_cast<std::size_t>(i)].box);
   const auto at = static_cast<std::int32_t>(nodes_.size());
   nodes_.push_back(node);
   if (count <= kLeafItems) {

@@ -35,35 +35,6 @@ Box3 around(Vec3 m, double r, const Box3& within) {
   return z;
 }
 
-// The box [lo(a.lo, b.lo), hi(a.hi, b.hi)] axis by axis.
-template <class Lo, class Hi>
-Box3 per_axis(const Box3& a, const Box3& b, Lo lo, Hi hi) {
-  Box3 r;
-  for (int k = 0; k < 3; ++k) {
-    r.lo[k] = lo(a.lo[k], b.lo[k]);
-    r.hi[k] = hi(a.hi[k], b.hi[k]);
-  }
-  return r;
-}
-
-Box3 intersection(const Box3& a, const Box3& b) {
-  return per_axis(
-      a, b, [](double x, double y) { return std::max(x, y); },
-      [](double x, double y) { return std::min(x, y); });
-}
-
-Box3 hull(const Box3& a, const Box3& b) {
-  return per_axis(
-      a, b, [](double x, double y) { return std::min(x, y); },
-      [](double x, double y) { return std::max(x, y); });
-}
-
-bool empty(const Box3& b) {
-  for (int k = 0; k < 3; ++k)
-    if (!(b.lo[k] <= b.hi[k])) return true;
-  return false;
-}
-
 // The nodes of a depth-first walk of the cell tree still to visit. The tree splits at medians
 // (seeding/curve_cell_tree), so its depth is at most log2 of its items + 1 < 32, and a walk holds
 // at most one pending sibling per level.
@@ -74,7 +45,7 @@ class NodeStack {
   std::size_t pop() { return static_cast<std::size_t>(nodes_[--size_]); }
 
  private:
-  std::array<std::int32_t, 64> nodes_{};
+  std::array<std::int32_t, 64> nodes_;  // [0, size_) pushed before read
   std::size_t size_ = 0;
 };
 
@@ -262,7 +233,7 @@ class Certifier {
   }
 
   void contribute_zeros(const Box3& zeros) {
-    if (!empty(zeros)) contribute(distance_lower_bound(p_, zeros), CertificateReason::budget_exhausted);
+    if (!zeros.empty()) contribute(distance_lower_bound(p_, zeros), CertificateReason::budget_exhausted);
   }
 
   // The box about the foot point in which Krawczyk's test with fresh interval jets proved every
@@ -347,7 +318,7 @@ class Certifier {
     if (k.verdict == KrawczykVerdict::no_zero) return true;
     zeros = intersection(cell.box, ivec::to_box({k.image[0], k.image[1], k.image[2]}));
     if (k.contraction < 1.0) zeros = intersection(zeros, around(c, k.radius, e.box));
-    if (empty(zeros) || distance_lower_bound(p_, zeros) >= threshold_) {
+    if (zeros.empty() || distance_lower_bound(p_, zeros) >= threshold_) {
       contribute_zeros(zeros);
       return true;
     }
@@ -385,7 +356,7 @@ class Certifier {
       // The answer's own cell: its zero is the foot point, to rounding, when the test contracts.
       if (zeros_about(cell.box, foot_, g, jac, zeros)) return contribute_zeros(zeros);
     } else if (zeros_about(cell.box, b.center, {b.f_center[0], b.f_center[1], f_center}, jac, zeros)) {
-      if (empty(zeros) || distance_lower_bound(p_, zeros) >= threshold_) return contribute_zeros(zeros);
+      if (zeros.empty() || distance_lower_bound(p_, zeros) >= threshold_) return contribute_zeros(zeros);
       if (foot_box() && foot_box_.contains(zeros)) return contribute_zeros(foot_zeros_);
       // A critical point of its own (a farther local minimum, a maximum): about its Newton point,
       // enclosed by fresh interval jets, the box shrinks to rounding.
@@ -410,9 +381,9 @@ class Certifier {
         continue;
       }
       Box3 part = intersection(zeros, capsule_box(arc));
-      if (empty(part)) continue;
+      if (part.empty()) continue;
       for (std::size_t i = 0; i < n;)
-        if (!empty(intersection(parts[i], part))) {
+        if (parts[i].intersects(part)) {
           part = hull(part, parts[i]);
           parts[i] = parts[--n];
           i = 0;
@@ -462,7 +433,7 @@ class Certifier {
         return true;
       Box3 zeros;
       if (zeros_in_part(cell, y, zeros)) {
-        if (empty(zeros) || distance_lower_bound(p_, zeros) >= threshold_) {
+        if (zeros.empty() || distance_lower_bound(p_, zeros) >= threshold_) {
           contribute_zeros(zeros);
           return true;
         }
@@ -506,7 +477,7 @@ class Certifier {
     if (!(k.contraction < 1.0)) return false;
     zeros = intersection(intersection(part, ivec::to_box({k.image[0], k.image[1], k.image[2]})),
                          around(m, k.radius, part));
-    if (!empty(zeros) && distance_lower_bound(p_, zeros) < threshold_ &&
+    if (!zeros.empty() && distance_lower_bound(p_, zeros) < threshold_ &&
         zeros.max_edge() > 1e-3 * part.max_edge())
       return false;
     contribute_zeros(zeros);
@@ -568,8 +539,8 @@ class Certifier {
   bool foot_box_tried_ = false, foot_box_ok_ = false;
   Box3 foot_box_, foot_zeros_;
   double foot_cell_edge_ = 0.0;
-  const ProvedCell* foot_cell_ = nullptr;  // a proved cell holding the foot point, if one is near
-  std::array<std::size_t, 64> near_cells_{};
+  const ProvedCell* foot_cell_ = nullptr;   // a proved cell holding the foot point, if one is near
+  std::array<std::size_t, 64> near_cells_;  // [0, near_count_) written before read
   std::size_t near_count_ = 0;
   bool near_bounded_ = false;
   bool foot_region_ok_ = false;
