@@ -36,6 +36,12 @@ TEST_CASE("distance_lower_bound: below the exact distance to the box, and tight"
   // Inside the box: 0.
   CHECK(distance_lower_bound({0.5, 0.5, 0.5}, {{0, 0, 0}, {1, 1, 1}}) == 0.0);
   CHECK(square_upper_bound(0.1) >= 0.1L * 0.1L);
+  // A NaN coordinate of the point claims nothing along its axis: the bound is that of the others.
+  const double nan = std::nan("");
+  CHECK(distance2_lower_bound({nan, 0.5, 0.5}, {{0, 0, 0}, {1, 1, 1}}) == 0.0);
+  CHECK(distance2_lower_bound({nan, 3.0, 0.5}, {{0, 0, 0}, {1, 1, 1}}) <= 4.0);
+  CHECK(distance2_lower_bound({nan, 3.0, 0.5}, {{0, 0, 0}, {1, 1, 1}}) >= 4.0 * (1.0 - 1e-14));
+  CHECK(distance2_lower_bound({nan, nan, nan}, {{0, 0, 0}, {1, 1, 1}}) == 0.0);
 }
 
 TEST_CASE("interval dot and cross products hold the products of their points") {

@@ -4,6 +4,7 @@
 // carry the enclosures of the implicit curves' tangent T = ∇f1 × ∇f2 and of the orthogonality
 // function F = ⟨T, p - X⟩ ([Curve] eqs. (7)) over boxes.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -69,8 +70,9 @@ inline IVec3 apply(const IMat3& m, const IVec3& v) { return {dot(m[0], v), dot(m
 inline double distance2_lower_bound(Vec3 p, const Box3& b) {
   double s = 0.0;
   for (int k = 0; k < 3; ++k) {
-    const double below = b.lo[k] - p[k], above = p[k] - b.hi[k];
-    const double g = below > 0.0 ? below : (above > 0.0 ? above : 0.0);
+    // std::max(0, ·) last: a NaN gap counts as 0 (std::max returns its first argument unless the
+    // second compares greater).
+    const double g = std::max(0.0, std::max(b.lo[k] - p[k], p[k] - b.hi[k]));
     s += g * g;
   }
   if (!(s <= std::numeric_limits<double>::max()))
