@@ -16,12 +16,12 @@ namespace footpoint {
 
 namespace {
 
-// The solvers of the spatial-curve paper [Curve] take the curve's equations and box; asked for a
-// certificate (options.certify), their answer gets the one `auto`'s would (a local method's answer
-// is certified or refuted, not improved).
+// The solvers of the spatial-curve paper [Curve] take the curve's equations as written and its
+// box; asked for a certificate (options.certify), their answer gets the one `auto`'s would (a
+// local method's answer is certified or refuted, not improved).
 template <ProjectionResult (*solve)(const ImplicitEquations&, const Box3&, Vec3, const Options&)>
 ProjectionResult in_box(const ImplicitCurve& c, Vec3 p, const Options& o) {
-  ProjectionResult r = solve(c.equations(), c.box(), p, o);
+  ProjectionResult r = solve(c.written_equations(), c.box(), p, o);
   if (o.certify.value_or(false) && std::isfinite(r.distance))
     r.summary.certificate = curve::certify_implicit_curve_answer(
         c.equations(), c.box(), c.discovery(), p,
@@ -111,7 +111,8 @@ const MethodTable<ImplicitCurve>& table(PointDims dims) {
 
 ImplicitCurve::ImplicitCurve(GeometryDefinition def, ImplicitEquations equations, Box3 box)
     : CompiledGeometry(std::move(def)),
-      equations_(std::move(equations)),
+      written_(std::move(equations)),
+      equations_(written_.program().square_free(), written_.planar()),
       box_(box),
       discovery_(discover_implicit_curve(equations_, box_)),
       index_(discovery_.samples) {}
@@ -128,7 +129,9 @@ ProjectionResult ImplicitCurve::project_with(std::size_t index, const double* p,
 const std::vector<MethodInfo>& implicit_curve_methods() { return table(PointDims::any).infos(); }
 
 std::size_t ImplicitCurve::memory_bytes() const {
-  return sizeof(*this) + equations_.program().memory_bytes() + discovery_.memory_bytes() +
+  const formula::Program& written = written_.program();
+  return sizeof(*this) + equations_.program().memory_bytes() +
+         (written.same_tape(equations_.program()) ? 0 : written.memory_bytes()) + discovery_.memory_bytes() +
          index_.memory_bytes();
 }
 

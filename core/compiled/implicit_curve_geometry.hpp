@@ -1,6 +1,9 @@
 // The compiled implicit curve: its equations and box (geometry/implicit_curve.hpp), what `auto`
 // precomputes (seeding/curve_discovery: the proved cells with their enclosures and tree, the
 // samples of every piece with their k-d tree), and projection by method name.
+// Two forms of the equations: as written, which the papers' methods iterate on, and their
+// square-free form (formula::Program::square_free: the same points, each repeated factor once),
+// which discovery, `auto`, the certificates and the meshes work with.
 #pragma once
 #include <cstddef>
 #include <vector>
@@ -22,7 +25,9 @@ class ImplicitCurve final : public CompiledGeometry {
   const std::vector<MethodInfo>& methods() const override;
   std::size_t memory_bytes() const override;
 
+  // The square-free equations (the written ones when they have no repeated factor).
   const ImplicitEquations& equations() const { return equations_; }
+  const ImplicitEquations& written_equations() const { return written_; }
   const Box3& box() const { return box_; }
   const CurveDiscovery& discovery() const { return discovery_; }
   const CurveSampleIndex& sample_index() const { return index_; }
@@ -31,6 +36,7 @@ class ImplicitCurve final : public CompiledGeometry {
   PointDims dims() const;
   ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
 
+  ImplicitEquations written_;
   ImplicitEquations equations_;
   Box3 box_;
   CurveDiscovery discovery_;  // samples of every piece of the curve in the box (for `auto`)

@@ -78,6 +78,9 @@ struct Program::Tape {
   std::optional<PolynomialForm> polynomial;  // set when every formula is a sum of monomials
 };
 
+// The nodes the outputs depend on, in their order, renumbered (tape_builder.cpp); no polynomial form.
+Program::Tape live_part(const Program::Tape& tape);
+
 // The formulas as sums of monomials in the tape's order of summation, if every one of them is.
 std::optional<PolynomialForm> polynomial_form(const Program::Tape& tape);
 

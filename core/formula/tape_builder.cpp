@@ -130,30 +130,13 @@ class TapeBuilder {
     return add({Op::select, a, b, c, 0.0});
   }
 
-  // The tape of the nodes the outputs depend on (constants absorbed into *_k ops drop out), in
-  // their original order, renumbered.
+  // The tape of the nodes the outputs depend on (constants absorbed into *_k ops drop out).
   Program::Tape take(std::vector<std::int32_t> outputs, int num_inputs) {
-    std::vector<char> live(nodes_.size(), 0);
-    for (auto o : outputs) live[o] = 1;
-    for (std::size_t i = nodes_.size(); i-- > 0;) {
-      if (!live[i]) continue;
-      for (auto operand : {nodes_[i].a, nodes_[i].b, nodes_[i].c})
-        if (operand >= 0) live[operand] = 1;
-    }
-    std::vector<std::int32_t> renumber(nodes_.size(), -1);
-    Program::Tape tape;
-    for (std::size_t i = 0; i < nodes_.size(); ++i) {
-      if (!live[i]) continue;
-      Node n = nodes_[i];
-      for (auto* operand : {&n.a, &n.b, &n.c})
-        if (*operand >= 0) *operand = renumber[*operand];
-      renumber[i] = static_cast<std::int32_t>(tape.nodes.size());
-      tape.nodes.push_back(n);
-    }
-    for (auto& o : outputs) o = renumber[o];
-    tape.outputs = std::move(outputs);
-    tape.num_inputs = num_inputs;
-    return tape;
+    Program::Tape all;
+    all.nodes = std::move(nodes_);
+    all.outputs = std::move(outputs);
+    all.num_inputs = num_inputs;
+    return live_part(all);
   }
   bool full() const { return nodes_.size() > max_nodes_; }
 
@@ -248,6 +231,29 @@ Op binary_op_of(mu::ECmdCode code) {
 }
 
 }  // namespace
+
+Program::Tape live_part(const Program::Tape& tape) {
+  std::vector<char> live(tape.nodes.size(), 0);
+  for (const std::int32_t o : tape.outputs) live[static_cast<std::size_t>(o)] = 1;
+  for (std::size_t i = tape.nodes.size(); i-- > 0;) {
+    if (!live[i]) continue;
+    for (const std::int32_t operand : {tape.nodes[i].a, tape.nodes[i].b, tape.nodes[i].c})
+      if (operand >= 0) live[static_cast<std::size_t>(operand)] = 1;
+  }
+  std::vector<std::int32_t> renumber(tape.nodes.size(), -1);
+  Program::Tape out;
+  out.num_inputs = tape.num_inputs;
+  for (std::size_t i = 0; i < tape.nodes.size(); ++i) {
+    if (!live[i]) continue;
+    Node n = tape.nodes[i];
+    for (std::int32_t* operand : {&n.a, &n.b, &n.c})
+      if (*operand >= 0) *operand = renumber[static_cast<std::size_t>(*operand)];
+    renumber[i] = static_cast<std::int32_t>(out.nodes.size());
+    out.nodes.push_back(n);
+  }
+  for (const std::int32_t o : tape.outputs) out.outputs.push_back(renumber[static_cast<std::size_t>(o)]);
+  return out;
+}
 
 Program::Tape build_tape(const std::vector<NamedFormula>& formulas, const std::vector<std::string>& variables,
                          const std::map<std::string, double>& constants, const CompileLimits& limits) {

@@ -1,0 +1,91 @@
+// Program::square_free: every repeated factor at the top of a formula taken once.
+//
+// Formula k is read from its output node down through the operations that multiply: a product
+// a * b, a negation -a, a constant multiple or quotient a * c, a / c (c finite and nonzero) and an
+// integer power a^m (m >= 1). What they multiply are its factors g_1, ..., g_r (any other node; a
+// finite nonzero constant is dropped), so that f = c g_1^m_1 ... g_r^m_r with c finite and
+// nonzero. Where formula k has a power m >= 2 or the same factor (the same tape node: common
+// subexpressions are shared) twice, it is replaced by the product g_1 ... g_r of its distinct
+// factors. At every x:
+//  - the new formula is defined exactly where the old one is (both need every g_i defined, and
+//    an integer power, a product, a negation or a constant multiple of defined values is defined);
+//  - it vanishes exactly where the old one does (a product of real numbers vanishes iff a factor
+//    does, and c != 0).
+// So the zero set is the same set of points. Where f vanishes to order m_i >= 2 on {g_i = 0}, the
+// square-free product vanishes to first order there: (x^2 + y^2 - 1)^2, singular at every point of
+// its circle (∇f = 0), becomes the regular circle x^2 + y^2 - 1. Repeated factors that are not
+// the same node ((x - 1) (1 - x)) are not recognised: that formula stays as written.
+#include <vector>
+
+#include "formula/program.hpp"
+#include "formula/tape.hpp"
+
+namespace footpoint::formula {
+
+namespace {
+
+bool finite_nonzero(double k) { return k == k && k != 0.0 && k - k == 0.0; }
+
+// The factors of node i, in the order met; `repeated` is set when a power m >= 2 or a factor met
+// twice shows the formula is not square-free.
+void factors(const Program::Tape& tape, std::int32_t i, std::vector<std::int32_t>& out, bool& repeated) {
+  const Node& n = tape.nodes[static_cast<std::size_t>(i)];
+  switch (n.op) {
+    case Op::mul:
+      factors(tape, n.a, out, repeated);
+      factors(tape, n.b, out, repeated);
+      return;
+    case Op::neg:
+      factors(tape, n.a, out, repeated);
+      return;
+    case Op::mul_k:
+    case Op::div_k:
+      if (finite_nonzero(n.k)) return factors(tape, n.a, out, repeated);
+      break;
+    case Op::pow_int:
+      if (n.k >= 1.0) {
+        if (n.k >= 2.0) repeated = true;
+        return factors(tape, n.a, out, repeated);
+      }
+      break;
+    case Op::constant:
+      if (finite_nonzero(n.k)) return;
+      break;
+    default:
+      break;
+  }
+  for (const std::int32_t f : out)
+    if (f == i) {
+      repeated = true;
+      return;
+    }
+  out.push_back(i);
+}
+
+}  // namespace
+
+Program Program::square_free() const {
+  Tape tape = *tape_;
+  bool changed = false;
+  for (std::int32_t& output : tape.outputs) {
+    std::vector<std::int32_t> distinct;
+    bool repeated = false;
+    factors(tape, output, distinct, repeated);
+    if (!repeated || distinct.empty()) continue;
+    std::int32_t product = distinct.front();
+    for (std::size_t i = 1; i < distinct.size(); ++i) {
+      tape.nodes.push_back({Op::mul, product, distinct[i], -1, 0.0});
+      product = static_cast<std::int32_t>(tape.nodes.size() - 1);
+    }
+    output = product;
+    changed = true;
+  }
+  if (!changed) return *this;
+  Tape reduced = live_part(tape);
+  reduced.polynomial = polynomial_form(reduced);
+  Program p;
+  p.tape_ = std::make_shared<const Tape>(std::move(reduced));
+  return p;
+}
+
+}  // namespace footpoint::formula
