@@ -58,6 +58,10 @@ TEST_CASE("square_free: repeated factors at the top of a product are taken once"
   check_against({"-3*(x^2+y^2-1)^3*(y-x)^2/7"}, {"(x^2+y^2-1)*(y-x)"}, 2);
   check_against({"(x-0.5)*(x^2+y^2-1)^2*sin(y)"}, {"(x-0.5)*(x^2+y^2-1)*sin(y)"}, 2);
   check_against({"x^4"}, {"x"}, 2);
+  // A product as long as a formula may be: x*x*...*x, 1500 factors.
+  std::string chain = "x";
+  for (int i = 1; i < 1500; ++i) chain += "*x";
+  check_against({chain}, {"x"}, 2);
   // A factor that is not a polynomial keeps its domain: sqrt(x) is undefined for x < 0 both ways.
   check_against({"sqrt(x)^2*(y-1)"}, {"sqrt(x)*(y-1)"}, 2);
   // Spatial: each equation on its own, a square-free one unchanged.

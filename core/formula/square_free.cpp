@@ -15,6 +15,7 @@
 // square-free product vanishes to first order there: (x^2 + y^2 - 1)^2, singular at every point of
 // its circle (∇f = 0), becomes the regular circle x^2 + y^2 - 1. Repeated factors that are not
 // the same node ((x - 1) (1 - x)) are not recognised: that formula stays as written.
+#include <algorithm>
 #include <vector>
 
 #include "formula/program.hpp"
@@ -26,40 +27,48 @@ namespace {
 
 bool finite_nonzero(double k) { return k == k && k != 0.0 && k - k == 0.0; }
 
-// The factors of node i, in the order met; `repeated` is set when a power m >= 2 or a factor met
-// twice shows the formula is not square-free.
-void factors(const Program::Tape& tape, std::int32_t i, std::vector<std::int32_t>& out, bool& repeated) {
-  const Node& n = tape.nodes[static_cast<std::size_t>(i)];
-  switch (n.op) {
-    case Op::mul:
-      factors(tape, n.a, out, repeated);
-      factors(tape, n.b, out, repeated);
-      return;
-    case Op::neg:
-      factors(tape, n.a, out, repeated);
-      return;
-    case Op::mul_k:
-    case Op::div_k:
-      if (finite_nonzero(n.k)) return factors(tape, n.a, out, repeated);
-      break;
-    case Op::pow_int:
-      if (n.k >= 1.0) {
-        if (n.k >= 2.0) repeated = true;
-        return factors(tape, n.a, out, repeated);
-      }
-      break;
-    case Op::constant:
-      if (finite_nonzero(n.k)) return;
-      break;
-    default:
-      break;
-  }
-  for (const std::int32_t f : out)
-    if (f == i) {
-      repeated = true;
-      return;
+// The factors of node `root`, left to right; `repeated` is set when a power m >= 2 or a factor met
+// twice shows the formula is not square-free. An explicit stack: a product of a formula's length
+// is a chain of thousands of nodes.
+void factors(const Program::Tape& tape, std::int32_t root, std::vector<std::int32_t>& out, bool& repeated) {
+  std::vector<std::int32_t> pending{root};
+  while (!pending.empty()) {
+    const std::int32_t i = pending.back();
+    pending.pop_back();
+    const Node& n = tape.nodes[static_cast<std::size_t>(i)];
+    switch (n.op) {
+      case Op::mul:
+        pending.push_back(n.b);
+        pending.push_back(n.a);
+        continue;
+      case Op::neg:
+        pending.push_back(n.a);
+        continue;
+      case Op::mul_k:
+      case Op::div_k:
+        if (finite_nonzero(n.k)) {
+          pending.push_back(n.a);
+          continue;
+        }
+        break;
+      case Op::pow_int:
+        if (n.k >= 1.0) {
+          if (n.k >= 2.0) repeated = true;
+          pending.push_back(n.a);
+          continue;
+        }
+        break;
+      case Op::constant:
+        if (finite_nonzero(n.k)) continue;
+        break;
+      default:
+        break;
     }
-  out.push_back(i);
+    if (std::find(out.begin(), out.end(), i) != out.end())
+      repeated = true;
+    else
+      out.push_back(i);
+  }
 }
 
 }  // namespace
