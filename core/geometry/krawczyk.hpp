@@ -14,8 +14,8 @@
 //   - with c >= ‖I - Y J‖∞, c < 1, every zero x of G in X has ‖x - m‖∞ <= ‖Y G(m)‖∞ / (1 - c):
 //     the tight enclosure of a zero next to a good approximation m, from one evaluation over a
 //     large X (which proves its uniqueness there) and one at m.
-// Every product and sum is rounded outwards (midpoint-radius, below), so K(X), c and the radius
-// enclose their exact values.
+// Every product and sum is rounded outwards (midpoint-radius, geometry/midpoint_radius.hpp), so
+// K(X), c and the radius enclose their exact values.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -24,6 +24,7 @@
 
 #include "formula/interval.hpp"
 #include "geometry/dense_solve.hpp"
+#include "geometry/midpoint_radius.hpp"
 
 namespace footpoint {
 
@@ -94,34 +95,18 @@ KrawczykResult<N> krawczyk(const IntervalVector<N>& x, const Vector<N>& m, const
     for (int j = 0; j < N; ++j) c[i][j] = mid(jac[i][j]);
   Matrix<N> y{};
   if (!approximate_inverse<N>(c, y)) return r;
-  // Y G(m), I - Y J and K(X) in midpoint-radius form ([Rump99]; formula/ball.hpp): each interval
-  // [lo, hi] is the ball about c = fl(lo/2 + hi/2) with a radius that bounds c - lo and hi - c;
-  // each product or sum of balls is a centre computed in floating point plus a radius that covers
-  // both the propagated radii and the rounding of the centre. A dot product of at most 15 terms
-  // (and roundings) computed in round to nearest is within γ_15 / (1 - γ_15) < 15.1 u of the exact
-  // one, relative to the computed sum S of its terms' magnitudes, plus 15 η for underflows; a
-  // computed radius sum R likewise understates its exact value by at most 15.1 u R + 15 η
-  // (N. J. Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., SIAM 2002, Section 3.1).
-  // So
-  //   radius = fl(fl(R + fl(16 u S)) (1 + 32 u) + 2^-900)
-  // bounds the exact radius plus the centre's error: its own four roundings lose less than the
-  // margins (16 against 15.1, 32 against 15.1, 2^-900 against 30 η). The floor is a normal number,
-  // so products with it stay out of the subnormal range (slow on some processors). Where every
-  // term has an exact zero factor the sum is exactly 0 and needs no floor: an exact coordinate
-  // (the plane z = 0 of a planar curve, fixed by G) stays exact, as K(X) ⊆ X needs.
+  // Y G(m), I - Y J and K(X) in midpoint-radius form, each a centre and one radius with the
+  // rounding allowance of geometry/midpoint_radius.hpp.
   static_assert(N >= 1 && N <= 6, "the rounding allowances count at most 15 terms");
-  constexpr double kU = 0x1p-53;
-  const auto radius = [](double r, double s, bool terms) {
-    return terms ? (r + s * (16.0 * kU)) * (1.0 + 32.0 * kU) + 0x1p-900 : 0.0;
-  };
+  constexpr double kU = midrad::kU;
+  const auto radius = midrad::radius;
   const auto nonzero = [](double c, double rad) { return c != 0.0 || rad != 0.0; };
-  // The ball of an interval: the two differences are one rounding each (exact where subnormal).
   std::array<double, N> gc{}, gr{}, dxc{}, dxr{};
   std::array<std::array<double, N>, N> jc{}, jr{};
   const auto to_ball = [](const Interval& a, double& centre, double& rad) {
-    centre = mid(a);
-    // a NaN difference comes with a centre that is not finite, which decides nothing below
-    rad = std::max(centre - a.lo, a.hi - centre) * (1.0 + 4.0 * kU);
+    const midrad::Ball b = midrad::of(a);
+    centre = b.c;
+    rad = b.r;
   };
   for (int l = 0; l < N; ++l) {
     to_ball(gm[l], gc[l], gr[l]);

@@ -10,6 +10,7 @@
 #include "geometry/implicit_curve_differentials.hpp"
 #include "geometry/interval_vec3.hpp"
 #include "geometry/krawczyk.hpp"
+#include "geometry/midpoint_radius.hpp"
 #include "geometry/segment_distance.hpp"
 
 namespace footpoint::curve {
@@ -182,10 +183,12 @@ class Certifier {
     return foot_ok_;
   }
 
-  // ∇F over a box from enclosures of T and ∂T/∂x_j over it.
-  IVec3 gradient_of_f(const IVec3& t, const IMat3& dt, const IVec3& pb) const {
+  // ∇F over a box from enclosures of T and ∂T/∂x_j over it: ∂_j F = Σ_i ∂_j T_i (p - x)_i - T_j
+  // ([Curve] eq. (7)), in midpoint-radius form (an exact 0 stays exact: the z-column of a planar
+  // curve, which Krawczyk's test needs exact).
+  static IVec3 gradient_of_f(const IVec3& t, const IMat3& dt, const IVec3& pb) {
     IVec3 g;
-    for (int j = 0; j < 3; ++j) g[j] = iv::sub(ivec::dot(dt[j], pb), t[j]);
+    for (int j = 0; j < 3; ++j) g[j] = midrad::dot_minus(dt[j], pb, t[j]);
     return g;
   }
 
