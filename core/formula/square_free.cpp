@@ -16,6 +16,7 @@
 // its circle (∇f = 0), becomes the regular circle x^2 + y^2 - 1. Repeated factors that are not
 // the same node ((x - 1) (1 - x)) are not recognised: that formula stays as written.
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "formula/program.hpp"
@@ -25,7 +26,7 @@ namespace footpoint::formula {
 
 namespace {
 
-bool finite_nonzero(double k) { return k == k && k != 0.0 && k - k == 0.0; }
+bool finite_nonzero(double k) { return std::isfinite(k) && k != 0.0; }
 
 // The factors of node `root`, left to right; `repeated` is set when a power m >= 2 or a factor met
 // twice shows the formula is not square-free. An explicit stack: a product of a formula's length

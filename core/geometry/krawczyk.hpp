@@ -100,47 +100,40 @@ KrawczykResult<N> krawczyk(const IntervalVector<N>& x, const Vector<N>& m, const
   static_assert(N >= 1 && N <= 6, "the rounding allowances count at most 15 terms");
   constexpr double kU = midrad::kU;
   const auto radius = midrad::radius;
-  const auto nonzero = [](double c, double rad) { return c != 0.0 || rad != 0.0; };
-  std::array<double, N> gc{}, gr{}, dxc{}, dxr{};
-  std::array<std::array<double, N>, N> jc{}, jr{};
-  const auto to_ball = [](const Interval& a, double& centre, double& rad) {
-    const midrad::Ball b = midrad::of(a);
-    centre = b.c;
-    rad = b.r;
-  };
+  using midrad::Ball;
+  std::array<Ball, N> g{}, dx{};
+  std::array<std::array<Ball, N>, N> jb{};
   for (int l = 0; l < N; ++l) {
-    to_ball(gm[l], gc[l], gr[l]);
-    to_ball(sub(x[l], point(m[l])), dxc[l], dxr[l]);
-    for (int j = 0; j < N; ++j) to_ball(jac[l][j], jc[l][j], jr[l][j]);
+    g[l] = midrad::of(gm[l]);
+    dx[l] = midrad::of(sub(x[l], point(m[l])));
+    for (int j = 0; j < N; ++j) jb[l][j] = midrad::of(jac[l][j]);
   }
   // Y G(m).
-  std::array<double, N> ygc{}, ygr{};
+  std::array<Ball, N> yg{};
   for (int i = 0; i < N; ++i) {
     double c = 0.0, s = 0.0, rr = 0.0;
     bool terms = false;
     for (int l = 0; l < N; ++l) {
-      c += y[i][l] * gc[l];
-      s += std::abs(y[i][l] * gc[l]);
-      rr += std::abs(y[i][l]) * gr[l];
-      terms = terms || (y[i][l] != 0.0 && nonzero(gc[l], gr[l]));
+      c += y[i][l] * g[l].c;
+      s += std::abs(y[i][l] * g[l].c);
+      rr += std::abs(y[i][l]) * g[l].r;
+      terms = terms || (y[i][l] != 0.0 && g[l].nonzero());
     }
-    ygc[i] = c;
-    ygr[i] = radius(rr, s, terms);
+    yg[i] = {c, radius(rr, s, terms)};
   }
   // I - Y J.
-  std::array<std::array<double, N>, N> mc{}, mr{};
+  std::array<std::array<Ball, N>, N> mb{};
   for (int i = 0; i < N; ++i)
     for (int j = 0; j < N; ++j) {
       double c = i == j ? 1.0 : 0.0, s = std::abs(c), rr = 0.0;
       bool terms = false;
       for (int l = 0; l < N; ++l) {
-        c -= y[i][l] * jc[l][j];
-        s += std::abs(y[i][l] * jc[l][j]);
-        rr += std::abs(y[i][l]) * jr[l][j];
-        terms = terms || (y[i][l] != 0.0 && nonzero(jc[l][j], jr[l][j]));
+        c -= y[i][l] * jb[l][j].c;
+        s += std::abs(y[i][l] * jb[l][j].c);
+        rr += std::abs(y[i][l]) * jb[l][j].r;
+        terms = terms || (y[i][l] != 0.0 && jb[l][j].nonzero());
       }
-      mc[i][j] = c;
-      mr[i][j] = radius(rr, s, terms);
+      mb[i][j] = {c, radius(rr, s, terms)};
     }
   double contraction = 0.0, step = 0.0;
   bool interior = true, inside = true, disjoint = false, finite = true;
@@ -149,14 +142,14 @@ KrawczykResult<N> krawczyk(const IntervalVector<N>& x, const Vector<N>& m, const
     // c = fl(m_i + r_i), whose rounding u |c| joins the radius (two roundings more, covered by
     // the factor), and [c - rad, c + rad] with each end one rounding: one step outwards. Where
     // every term of r_i is an exact 0, c = m_i exactly and K_i is that point.
-    double rest = -ygc[i], s = std::abs(ygc[i]), rr = ygr[i], row = 0.0;
-    bool terms = nonzero(ygc[i], ygr[i]);
+    double rest = -yg[i].c, s = std::abs(yg[i].c), rr = yg[i].r, row = 0.0;
+    bool terms = yg[i].nonzero();
     for (int j = 0; j < N; ++j) {
-      rest += mc[i][j] * dxc[j];
-      s += std::abs(mc[i][j] * dxc[j]);
-      rr += std::abs(mc[i][j]) * dxr[j] + mr[i][j] * (std::abs(dxc[j]) + dxr[j]);
-      row += std::abs(mc[i][j]) + mr[i][j];
-      terms = terms || (nonzero(mc[i][j], mr[i][j]) && nonzero(dxc[j], dxr[j]));
+      rest += mb[i][j].c * dx[j].c;
+      s += std::abs(mb[i][j].c * dx[j].c);
+      rr += std::abs(mb[i][j].c) * dx[j].r + mb[i][j].r * (std::abs(dx[j].c) + dx[j].r);
+      row += std::abs(mb[i][j].c) + mb[i][j].r;
+      terms = terms || (mb[i][j].nonzero() && dx[j].nonzero());
     }
     row = radius(row, 0.0, true);  // 2N - 1 roundings of a sum of non-negative terms
     const double c = m[i] + rest;
@@ -164,7 +157,7 @@ KrawczykResult<N> krawczyk(const IntervalVector<N>& x, const Vector<N>& m, const
     const Interval k = terms ? Interval{next_down(c - rad), next_up(c + rad)} : point(m[i]);
     finite = finite && std::isfinite(k.lo) && std::isfinite(k.hi) && std::isfinite(row);
     if (!(row <= contraction)) contraction = row;
-    const double step_i = radius(std::abs(ygc[i]) + ygr[i], 0.0, true);
+    const double step_i = radius(std::abs(yg[i].c) + yg[i].r, 0.0, true);
     if (!(step_i <= step)) step = step_i;  // NaN propagates: no radius
     r.image[i] = k;
     if (k.hi < x[i].lo || k.lo > x[i].hi) disjoint = true;
