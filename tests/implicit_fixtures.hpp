@@ -1,9 +1,14 @@
 // Shared by the unit tests of the implicit-curve kernels and solvers: equations compiled from
-// formulas, and a circle whose foot points and differential geometry are known in closed form.
+// formulas, curves compiled as posted definitions, and a circle whose foot points and
+// differential geometry are known in closed form.
 #pragma once
+#include <array>
 #include <cmath>
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "compiled/compiled_geometry.hpp"
 #include "formula/program.hpp"
 #include "geometry/implicit_curve.hpp"
 
@@ -18,6 +23,19 @@ inline ImplicitEquations spatial_equations(const std::string& f1, const std::str
 // f = 0 in x, y (embedded as f1 = f, f2 = z).
 inline ImplicitEquations planar_equations(const std::string& f) {
   return ImplicitEquations(formula::Program::compile({{"equations[0]", f}}, {"x", "y"}, {}), true);
+}
+
+// The implicit curve {equations = 0} (one in x, y or two in x, y, z) inside `box` (the ranges of
+// x, y[, z]), compiled as a posted definition.
+inline std::shared_ptr<const CompiledGeometry> implicit_curve(const std::vector<std::string>& equations,
+                                                              const std::vector<std::array<double, 2>>& box) {
+  GeometryDefinition def;
+  def.type = GeometryType::implicit_curve;
+  for (std::size_t i = 0; i < equations.size(); ++i)
+    def.formulas.push_back({"equations[" + std::to_string(i) + "]", equations[i]});
+  const char* names[] = {"x", "y", "z"};
+  for (std::size_t k = 0; k < box.size(); ++k) def.domain.push_back({names[k], box[k]});
+  return compile_geometry(def);
 }
 
 // The circle {x^2 + y^2 + z^2 = 4} ∩ {z = 1}: centre (0, 0, 1), radius sqrt(3), in the plane z = 1.

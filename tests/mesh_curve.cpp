@@ -9,6 +9,7 @@
 
 #include "compiled/implicit_curve_geometry.hpp"
 #include "compiled/parametric_curve_geometry.hpp"
+#include "implicit_fixtures.hpp"
 #include "mesh/mesh.hpp"
 
 using namespace footpoint;
@@ -23,17 +24,6 @@ std::shared_ptr<const CompiledGeometry> parametric(std::vector<formula::NamedFor
   def.type = GeometryType::parametric_curve;
   def.formulas = std::move(xyz);
   def.domain = {{"t", t}};
-  return compile_geometry(def);
-}
-
-std::shared_ptr<const CompiledGeometry> implicit(std::vector<std::string> equations,
-                                                 std::vector<std::array<double, 2>> box) {
-  GeometryDefinition def;
-  def.type = GeometryType::implicit_curve;
-  for (std::size_t i = 0; i < equations.size(); ++i)
-    def.formulas.push_back({"equations[" + std::to_string(i) + "]", equations[i]});
-  const char* names[] = {"x", "y", "z"};
-  for (std::size_t k = 0; k < box.size(); ++k) def.domain.push_back({names[k], box[k]});
   return compile_geometry(def);
 }
 
@@ -158,7 +148,7 @@ TEST_CASE("planar parametric curve: z = 0, the part where the formula is not fin
 }
 
 TEST_CASE("planar implicit ellipse: one closed polyline on the curve, tangents orthogonal to the gradient") {
-  const auto g = implicit({"x^2/4+y^2-1"}, {{-3, 3}, {-2, 2}});
+  const auto g = test::implicit_curve({"x^2/4+y^2-1"}, {{-3, 3}, {-2, 2}});
   const Mesh m = mesh_geometry(*g, MeshOptions{4096});
   check_well_formed_polylines(m);
   REQUIRE(m.polylines.size() == 1);
@@ -183,7 +173,7 @@ TEST_CASE("planar implicit ellipse: one closed polyline on the curve, tangents o
 }
 
 TEST_CASE("implicit circle cut by the box: an open piece ending on the face") {
-  const auto g = implicit({"x^2+y^2-1"}, {{-0.5, 2}, {-2, 2}});
+  const auto g = test::implicit_curve({"x^2+y^2-1"}, {{-0.5, 2}, {-2, 2}});
   const Mesh m = mesh_geometry(*g, MeshOptions{512});
   check_well_formed_polylines(m);
   REQUIRE(m.polylines.size() == 1);
@@ -207,7 +197,7 @@ int passes(const Mesh& m, std::int32_t v) {
 }
 
 TEST_CASE("lemniscate of Bernoulli: one loop through the crossing twice, the crossing one vertex") {
-  const auto g = implicit({"(x^2+y^2)^2-2*(x^2-y^2)"}, {{-2, 2}, {-1.5, 1.5}});
+  const auto g = test::implicit_curve({"(x^2+y^2)^2-2*(x^2-y^2)"}, {{-2, 2}, {-1.5, 1.5}});
   const Mesh m = mesh_geometry(*g, MeshOptions{2048});
   check_well_formed_polylines(m);
   REQUIRE(m.singular_points.size() == 1);
@@ -226,7 +216,7 @@ TEST_CASE("lemniscate of Bernoulli: one loop through the crossing twice, the cro
 }
 
 TEST_CASE("two crossing lines: both pieces pass the singular point") {
-  const auto g = implicit({"x*y"}, {{-1, 1.2}, {-1, 1.1}});
+  const auto g = test::implicit_curve({"x*y"}, {{-1, 1.2}, {-1, 1.1}});
   const Mesh m = mesh_geometry(*g, MeshOptions{2048});
   check_well_formed_polylines(m);
   REQUIRE(m.singular_points.size() == 1);
@@ -243,7 +233,8 @@ TEST_CASE("two crossing lines: both pieces pass the singular point") {
 }
 
 TEST_CASE("Viviani's curve: every vertex on the sphere and the cylinder, the crossing passed twice") {
-  const auto g = implicit({"x^2+y^2+z^2-4", "(x-1)^2+y^2-1"}, {{-2.5, 2.5}, {-2.5, 2.5}, {-2.5, 2.5}});
+  const auto g =
+      test::implicit_curve({"x^2+y^2+z^2-4", "(x-1)^2+y^2-1"}, {{-2.5, 2.5}, {-2.5, 2.5}, {-2.5, 2.5}});
   const Mesh m = mesh_geometry(*g, MeshOptions{1024});
   check_well_formed_polylines(m);
   for (const Vec3& x : m.vertices) {

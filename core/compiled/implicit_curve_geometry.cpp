@@ -24,8 +24,8 @@ ProjectionResult in_box(const ImplicitCurve& c, Vec3 p, const Options& o) {
   ProjectionResult r = solve(c.written_equations(), c.box(), p, o);
   if (o.certify.value_or(false) && std::isfinite(r.distance))
     r.summary.certificate = curve::certify_implicit_curve_answer(
-        c.equations(), c.box(), c.discovery(), p,
-        {r.foot[0], r.foot[1], c.equations().planar() ? 0.0 : r.foot[2]}, r.distance);
+        c.factors(), c.box(), p, {r.foot[0], r.foot[1], c.equations().planar() ? 0.0 : r.foot[2]},
+        r.distance);
   return r;
 }
 
@@ -48,7 +48,7 @@ constexpr Method<ImplicitCurve> kMethods[] = {
       statuses({Status::converged, Status::non_finite, Status::degenerate, Status::beyond_max_distance,
                 Status::deadline_exceeded})},
      [](const ImplicitCurve& c, Vec3 p, const Options& o) {
-       return curve::implicit_curve_auto(c.equations(), c.box(), c.discovery(), c.sample_index(), p, o);
+       return curve::implicit_curve_auto(c.factors(), c.box(), p, o);
      }},
     {{"tangent_foot",
       "Newton steps (2) onto the curve, then the tangent foot point (4), until they agree",
@@ -109,30 +109,53 @@ const MethodTable<ImplicitCurve>& table(PointDims dims) {
 
 }  // namespace
 
-ImplicitCurve::ImplicitCurve(GeometryDefinition def, ImplicitEquations equations, Box3 box)
-    : CompiledGeometry(std::move(def)),
-      written_(std::move(equations)),
-      equations_(written_.program().square_free(), written_.planar()),
-      box_(box),
-      discovery_(discover_implicit_curve(equations_, box_)),
-      index_(discovery_.samples) {}
+// At most this many factor curves (each costs a discovery at compile time and a search and a
+// certificate per point); equations with more stay whole.
+constexpr std::size_t kMaxFactorCurves = 8;
 
-PointDims ImplicitCurve::dims() const { return equations_.planar() ? PointDims::planar : PointDims::spatial; }
+ImplicitCurve::ImplicitCurve(GeometryDefinition def, ImplicitEquations equations, Box3 box)
+    : CompiledGeometry(std::move(def)), written_(std::move(equations)), box_(box) {
+  const bool planar = written_.planar();
+  std::vector<formula::Program> systems = written_.program().factor_systems(kMaxFactorCurves);
+  if (systems.size() == 1) {
+    whole_ =
+        std::make_unique<const DiscoveredCurve>(ImplicitEquations(std::move(systems.front()), planar), box_);
+    factors_.push_back(whole_.get());
+    return;
+  }
+  whole_ = std::make_unique<const DiscoveredCurve>(
+      ImplicitEquations(written_.program().square_free(), planar), box_);
+  for (formula::Program& system : systems) {
+    auto f = std::make_unique<const DiscoveredCurve>(ImplicitEquations(std::move(system), planar), box_);
+    if (f->discovery.samples.size() == 0) continue;  // no point of this factor in the box
+    factors_.push_back(f.get());
+    factor_curves_.push_back(std::move(f));
+  }
+  // No factor with a point in the box: nor has the whole curve (empty_curve below), which then
+  // stands for itself.
+  if (factors_.empty()) factors_.push_back(whole_.get());
+}
+
+PointDims ImplicitCurve::dims() const {
+  return equations().planar() ? PointDims::planar : PointDims::spatial;
+}
 
 const std::vector<MethodInfo>& ImplicitCurve::methods() const { return table(dims()).infos(); }
 
 ProjectionResult ImplicitCurve::project_with(std::size_t index, const double* p,
                                              const Options& options) const {
-  return table(dims()).project(index, *this, {p[0], p[1], equations_.planar() ? 0.0 : p[2]}, options);
+  return table(dims()).project(index, *this, {p[0], p[1], equations().planar() ? 0.0 : p[2]}, options);
 }
 
 const std::vector<MethodInfo>& implicit_curve_methods() { return table(PointDims::any).infos(); }
 
 std::size_t ImplicitCurve::memory_bytes() const {
   const formula::Program& written = written_.program();
-  return sizeof(*this) + equations_.program().memory_bytes() +
-         (written.same_tape(equations_.program()) ? 0 : written.memory_bytes()) + discovery_.memory_bytes() +
-         index_.memory_bytes();
+  std::size_t bytes = sizeof(*this) + whole_->memory_bytes() +
+                      (written.same_tape(equations().program()) ? 0 : written.memory_bytes()) +
+                      factors_.capacity() * sizeof(factors_[0]);
+  for (const auto& f : factor_curves_) bytes += f->memory_bytes();
+  return bytes;
 }
 
 std::shared_ptr<const CompiledGeometry> compile_implicit_curve(const GeometryDefinition& def,

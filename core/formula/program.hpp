@@ -101,12 +101,19 @@ class Program {
                                                           std::size_t max_count = 64) const;
 
   // The same formulas with every repeated factor at the top of a product taken once
-  // (formula/square_free.cpp): formula k, c g_1^m_1 ... g_r^m_r with c a nonzero constant and
+  // (formula/product_factors.cpp): formula k, c g_1^m_1 ... g_r^m_r with c a nonzero constant and
   // integer powers m_i >= 1, becomes g_1 ... g_r when some m_i >= 2 or some factor appears twice.
   // It is defined and vanishes exactly where formula k is and does, but to first order on each
   // {g_i = 0}: (x^2 + y^2 - 1)^2 becomes the circle's regular equation. A Program sharing this
   // one's tape when no formula has a repeated factor.
   Program square_free() const;
+  // The systems whose common zeros, united, are this one's (formula/product_factors.cpp): one
+  // factor of each formula's top-level product, over every choice, where every factor of a formula
+  // is defined on all of R^n (a polynomial, or built with exp, sin, cos, ...): (x^2 + y^2 - 1)
+  // ((x - 2)^2 + y^2 - 1) = 0 is the union of two circles. Each has one formula per formula of
+  // this one, and their zero sets may meet. When no formula splits, or when there would be more
+  // than max_systems, the one system square_free().
+  std::vector<Program> factor_systems(std::size_t max_systems) const;
   // True when both evaluate the one tape (a copy, or square_free() of a square-free Program).
   bool same_tape(const Program& other) const { return tape_ == other.tape_; }
 

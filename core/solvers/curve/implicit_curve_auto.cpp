@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "solvers/curve/auto_result.hpp"
 #include "solvers/curve/curve_descent.hpp"
@@ -93,89 +94,150 @@ Found solve_from(const Curve& curve, Vec3 p, std::int32_t i, const IterationCont
 
 namespace {
 
-ProjectionResult search(const ImplicitEquations& eq, const Box3& box, const CurveDiscovery& discovery,
-                        const CurveSampleIndex& index, Vec3 p, const Options& options) {
-  const Curve curve{eq, box, discovery, index};
-  const CurveSamples& s = discovery.samples;
-  const double h = s.spacing;
+// The factor curves in order of their distance bounds from p (ties in the order given), without
+// storage: the next after (bound, index) `after` is the least greater one. -1 when none is left.
+std::ptrdiff_t next_factor(std::span<const DiscoveredCurve* const> factors, Vec3 p, double after_bound,
+                           std::ptrdiff_t after, double& bound) {
+  std::ptrdiff_t next = -1;
+  for (std::ptrdiff_t i = 0; i < std::ssize(factors); ++i) {
+    const double b = factors[static_cast<std::size_t>(i)]->distance_lower_bound(p);
+    const bool later = b > after_bound || (b == after_bound && i > after);
+    if (later && (next < 0 || b < bound)) {
+      next = i;
+      bound = b;
+    }
+  }
+  return next;
+}
+
+// True when x, within d of p, lies on another factor curve than `on` to the tolerance of its
+// residuals: a point where two factor curves meet is a singular point of their union.
+bool on_another_factor(std::span<const DiscoveredCurve* const> factors, const DiscoveredCurve* on, Vec3 p,
+                       Vec3 x, double d, const Box3& box, const IterationControl& control) {
+  for (const DiscoveredCurve* f : factors) {
+    if (f == on || f->distance_lower_bound(p) > d) continue;
+    Summary other;
+    fill_implicit_residuals(f->equations, box, p, x, other);
+    if (implicit_residuals_met(other, x, control, false)) return true;
+  }
+  return false;
+}
+
+ProjectionResult search(std::span<const DiscoveredCurve* const> factors, const Box3& box, Vec3 p,
+                        const Options& options) {
   ProjectionResult r;
-  r.dim = eq.planar() ? 2 : 3;
+  r.dim = factors.front()->equations.planar() ? 2 : 3;
   r.num_params = 0;
   r.summary.method = "auto";
   r.summary.starts = 0;
 
-  // The nearest sample and the candidates in one pass; with all_minima every discrete local
-  // minimum of the samples is a candidate, else only those that can hold the nearest point.
-  SampleCandidates candidates;
-  double d0sq = 0.0;
-  const std::int32_t nearest =
-      index.nearest_and_local_minima(p, options.all_minima ? kInfinity : 0.5 * h, candidates, d0sq);
-  if (nearest < 0) {
-    // No point of the curve in the box.
-    r.summary.status = Status::degenerate;
-    return r;
-  }
-  const double d0 = std::sqrt(d0sq);
-  const Vec3 s0 = s.points[static_cast<std::size_t>(nearest)];
-  if (d0 - 0.5 * h > options.max_distance) {
-    // Every curve point is farther than max_distance (the h/2 bound).
-    r = implicit_result(eq, box, p, s0, "auto");
-    withhold_answer(r);
-    r.summary.starts = 0;
-    return r;
-  }
   const IterationControl control = make_control(options, 60, nullptr);
-  const double slack = 1e-12 * std::max({1.0, d0, discovery.scale});
+  double scale = 0.0;
+  for (const DiscoveredCurve* f : factors) scale = std::max(scale, f->discovery.scale);
+  double slack = -1.0;  // set by the first factor curve's nearest sample
 
   // The nearest candidate whose residuals meet the tolerance, and the nearest of all. A local
   // solve that stopped short of the tolerance (next to a singular point the Lagrange system is
   // singular and the descent stalls in the last digits) loses to a converged candidate at the
   // same distance, e.g. the singular point itself, refined at discovery.
   Found best, best_met;
+  const DiscoveredCurve *best_on = nullptr, *best_met_on = nullptr;
   std::vector<std::array<double, 3>> trace, best_trace, best_met_trace;
   std::vector<Minimum> minima;
   std::vector<ImplicitMinimum> found;  // every minimum solved, for the multiplicity
   int starts = 0;
-  for (int k = 0; k < candidates.count; ++k) {
-    const SampleCandidate& c = candidates.items[static_cast<std::size_t>(k)];
-    const double dc = std::sqrt(c.distance2);
-    // Nothing within h/2 of this sample's stretch of curve can beat the best any more.
-    if (!options.all_minima && dc - 0.5 * h > best.distance + slack) break;
-    ++starts;
-    trace.clear();
-    Found f = solve_from(curve, p, c.index, control, options.trace ? &trace : nullptr);
-    if (!f.valid) continue;
-    Summary fs;
-    fill_residuals(curve, p, f, fs);
-    f.met = implicit_residuals_met(fs, f.x, control);
-    found.push_back({f.x, f.distance});
-    if (options.all_minima) {
-      add_distinct_minimum(minima, f.x, 1e-8 * std::max(1.0, discovery.scale),
-                           {{f.x.x, f.x.y, eq.planar() ? 0.0 : f.x.z}, {0.0, 0.0}, f.distance, fs.location});
+  // The sample with the least bound d0 - h/2 of the distance to its stretch of curve.
+  const DiscoveredCurve* lowest_on = nullptr;
+  Vec3 lowest_sample;
+  double lowest = kInfinity;
+  // The factor curves nearest first by the boxes that hold them: once a minimum is found, a factor
+  // curve whose box is farther holds no nearer point (factor curves with no point in the box have
+  // no box and no part here).
+  double bound = -kInfinity;
+  for (std::ptrdiff_t i = -1; (i = next_factor(factors, p, bound, i, bound)) >= 0;) {
+    if (!options.all_minima && bound > best.distance + std::max(slack, 0.0)) break;
+    const DiscoveredCurve* f = factors[static_cast<std::size_t>(i)];
+    const Curve curve{f->equations, box, f->discovery, f->index};
+    const CurveSamples& s = f->discovery.samples;
+    const double h = s.spacing;
+    // The nearest sample and the candidates in one pass; with all_minima every discrete local
+    // minimum of the samples is a candidate, else only those that can hold the nearest point.
+    SampleCandidates candidates;
+    double d0sq = 0.0;
+    const std::int32_t nearest =
+        f->index.nearest_and_local_minima(p, options.all_minima ? kInfinity : 0.5 * h, candidates, d0sq);
+    if (nearest < 0) continue;
+    const double d0 = std::sqrt(d0sq);
+    if (slack < 0.0) slack = 1e-12 * std::max({1.0, d0, scale});
+    if (d0 - 0.5 * h < lowest) {
+      lowest = d0 - 0.5 * h;
+      lowest_on = f;
+      lowest_sample = s.points[static_cast<std::size_t>(nearest)];
     }
-    if (f.met && f.distance < best_met.distance) {
-      best_met = f;
-      if (options.trace) best_met_trace = trace;
+    // Every point of this curve is farther than max_distance (the h/2 bound).
+    if (d0 - 0.5 * h > options.max_distance) continue;
+    for (int k = 0; k < candidates.count; ++k) {
+      const SampleCandidate& c = candidates.items[static_cast<std::size_t>(k)];
+      const double dc = std::sqrt(c.distance2);
+      // Nothing within h/2 of this sample's stretch of curve can beat the best any more.
+      if (!options.all_minima && dc - 0.5 * h > best.distance + slack) break;
+      ++starts;
+      trace.clear();
+      Found fd = solve_from(curve, p, c.index, control, options.trace ? &trace : nullptr);
+      if (!fd.valid) continue;
+      Summary fs;
+      fill_residuals(curve, p, fd, fs);
+      fd.met = implicit_residuals_met(fs, fd.x, control);
+      found.push_back({fd.x, fd.distance});
+      if (options.all_minima) {
+        add_distinct_minimum(minima, fd.x, 1e-8 * std::max(1.0, scale),
+                             {{fd.x.x, fd.x.y, curve.equations.planar() ? 0.0 : fd.x.z},
+                              {0.0, 0.0},
+                              fd.distance,
+                              fs.location});
+      }
+      if (fd.met && fd.distance < best_met.distance) {
+        best_met = fd;
+        best_met_on = f;
+        if (options.trace) best_met_trace = trace;
+      }
+      if (fd.distance < best.distance) {
+        best = fd;
+        best_on = f;
+        if (options.trace) best_trace.swap(trace);
+      }
     }
-    if (f.distance < best.distance) {
-      best = f;
-      if (options.trace) best_trace.swap(trace);
-    }
+  }
+  if (!lowest_on) {
+    // No point of the curve in the box.
+    r.summary.status = Status::degenerate;
+    return r;
+  }
+  if (!best.valid && lowest > options.max_distance) {
+    // Every curve point is farther than max_distance (the h/2 bound).
+    r = implicit_result(lowest_on->equations, box, p, lowest_sample, "auto");
+    withhold_answer(r);
+    r.summary.starts = 0;
+    return r;
   }
   if (!best.valid) {
     // No local solve succeeded (should not happen): the nearest sample, not converged.
-    r = implicit_result(eq, box, p, s0, "auto");
+    r = implicit_result(lowest_on->equations, box, p, lowest_sample, "auto");
     r.summary.status = Status::degenerate;
     r.summary.starts = starts;
     return r;
   }
   if (best_met.valid && !(best.distance < best_met.distance - slack)) {
     best = best_met;
+    best_on = best_met_on;
     best_trace.swap(best_met_trace);
   }
-  r = implicit_result(eq, box, p, best.x, "auto");
-  fill_residuals(curve, p, best, r.summary);
-  r.summary.multiplicity = implicit_curve_multiplicity(eq, p, r, found);
+  r = implicit_result(best_on->equations, box, p, best.x, "auto");
+  if (factors.size() > 1 &&
+      on_another_factor(factors, best_on, p, best.x, best.distance + slack, box, control))
+    best.singular = true;
+  fill_residuals({best_on->equations, box, best_on->discovery, best_on->index}, p, best, r.summary);
+  r.summary.multiplicity = implicit_curve_multiplicity(best_on->equations, p, r, found);
   // a continuum of nearest points: the answer stands for all of them, no arbitrary sample
   if (r.summary.multiplicity.kind == Multiplicity::continuum)
     minima.assign(1, {r.foot, r.params, r.distance, r.summary.location});
@@ -186,13 +248,12 @@ ProjectionResult search(const ImplicitEquations& eq, const Box3& box, const Curv
 
 }  // namespace
 
-ProjectionResult implicit_curve_auto(const ImplicitEquations& eq, const Box3& box,
-                                     const CurveDiscovery& discovery, const CurveSampleIndex& index, Vec3 p,
+ProjectionResult implicit_curve_auto(std::span<const DiscoveredCurve* const> factors, const Box3& box, Vec3 p,
                                      const Options& options) {
-  ProjectionResult r = search(eq, box, discovery, index, p, options);
+  ProjectionResult r = search(factors, box, p, options);
   if (options.certify.value_or(true) && std::isfinite(r.distance))
     r.summary.certificate = certify_implicit_curve_answer(
-        eq, box, discovery, p, {r.foot[0], r.foot[1], eq.planar() ? 0.0 : r.foot[2]}, r.distance);
+        factors, box, p, {r.foot[0], r.foot[1], r.dim == 2 ? 0.0 : r.foot[2]}, r.distance);
   return r;
 }
 

@@ -11,19 +11,22 @@
 //  4. The certificate (solvers/curve/implicit_curve_certificate, unless options.certify is false):
 //     a rigorous lower bound of the distance over the whole curve in the box, from the certified
 //     subdivision of discovery, and whether it meets the answer.
+// A curve that is the union of factor curves (seeding/discovered_curve.hpp) is searched on each,
+// nearest first; a foot on two of them is a singular point of the union. The certificate bounds
+// the distance to each, L the least.
 // options.initial is not used: the search is global. With all_minima every discrete local minimum
 // of the samples is refined and the distinct minima are returned, best first.
 #pragma once
+#include <span>
+
 #include "geometry/implicit_curve.hpp"
 #include "geometry/projection_result.hpp"
-#include "seeding/curve_discovery.hpp"
-#include "seeding/curve_sample_index.hpp"
+#include "seeding/discovered_curve.hpp"
 
 namespace footpoint::curve {
 
-// `discovery` holds the samples of the curve {equations = 0} in `box`, `index` their k-d tree.
-ProjectionResult implicit_curve_auto(const ImplicitEquations& equations, const Box3& box,
-                                     const CurveDiscovery& discovery, const CurveSampleIndex& index, Vec3 p,
+// The curve is the union of `factors` (at least one), discovered in `box`.
+ProjectionResult implicit_curve_auto(std::span<const DiscoveredCurve* const> factors, const Box3& box, Vec3 p,
                                      const Options& options);
 
 }  // namespace footpoint::curve

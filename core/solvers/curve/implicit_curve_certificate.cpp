@@ -564,4 +564,22 @@ Certificate certify_implicit_curve_answer(const ImplicitEquations& equations, co
   return Certifier(equations, box, discovery, p, foot, distance).run();
 }
 
+Certificate certify_implicit_curve_answer(std::span<const DiscoveredCurve* const> factors, const Box3& box,
+                                          Vec3 p, Vec3 foot, double distance) {
+  Certificate all;
+  for (const DiscoveredCurve* f : factors) {
+    const Certificate c = Certifier(f->equations, box, f->discovery, p, foot, distance).run();
+    // Each is below the answer's distance; the least is the union's, with its reason.
+    if (!all.computed || c.lower_bound < all.lower_bound) {
+      const int boxes = all.boxes;
+      all = c;
+      all.boxes = boxes;
+    }
+    all.boxes += c.boxes;
+  }
+  all.certified = Certificate::meets_gap(distance, all.lower_bound, all.absolute_gap);
+  if (all.certified) all.reason = CertificateReason::gap_met;
+  return all;
+}
+
 }  // namespace footpoint::curve

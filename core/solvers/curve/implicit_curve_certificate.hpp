@@ -32,10 +32,16 @@
 // where the formulas are smooth and the box does not touch D's faces; what the budget leaves
 // contributes its box distance (reason singular).
 // Every bound is rounded outwards; F at a point is enclosed by interval jets at that point.
+//
+// A curve that is the union of factor curves (seeding/discovered_curve.hpp): L is the least of
+// the bounds over each, each computed against the same answer (its gap and threshold).
 #pragma once
+#include <span>
+
 #include "geometry/certificate.hpp"
 #include "geometry/implicit_curve.hpp"
 #include "seeding/curve_discovery.hpp"
+#include "seeding/discovered_curve.hpp"
 
 namespace footpoint::curve {
 
@@ -48,5 +54,9 @@ double implicit_absolute_gap(Vec3 p, Vec3 foot);
 Certificate certify_implicit_curve_answer(const ImplicitEquations& equations, const Box3& box,
                                           const CurveDiscovery& discovery, Vec3 p, Vec3 foot,
                                           double distance);
+
+// The same over the union of `factors`.
+Certificate certify_implicit_curve_answer(std::span<const DiscoveredCurve* const> factors, const Box3& box,
+                                          Vec3 p, Vec3 foot, double distance);
 
 }  // namespace footpoint::curve

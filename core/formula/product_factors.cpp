@@ -1,4 +1,5 @@
-// Program::square_free: every repeated factor at the top of a formula taken once.
+// The factors at the top of a formula's product: Program::square_free takes every repeated one
+// once, Program::factor_systems splits the curve into the curves of the factors.
 //
 // Formula k is read from its output node down through the operations that multiply: a product
 // a * b, a negation -a, a constant multiple or quotient a * c, a / c (c finite and nonzero) and an
@@ -72,7 +73,100 @@ void factors(const Program::Tape& tape, std::int32_t root, std::vector<std::int3
   }
 }
 
+// True when every node below `root` is an operation defined at every real input: a polynomial's
+// (+, -, *, constant multiples and quotients, integer powers >= 0) and exp, sin, cos, atan, sinh,
+// cosh, tanh, asinh, abs, min, max of such.
+bool defined_everywhere(const Program::Tape& tape, std::int32_t root) {
+  std::vector<bool> seen(tape.nodes.size(), false);
+  std::vector<std::int32_t> pending{root};
+  while (!pending.empty()) {
+    const std::int32_t i = pending.back();
+    pending.pop_back();
+    if (i < 0 || seen[static_cast<std::size_t>(i)]) continue;
+    seen[static_cast<std::size_t>(i)] = true;
+    const Node& n = tape.nodes[static_cast<std::size_t>(i)];
+    switch (n.op) {
+      case Op::constant:
+        if (!std::isfinite(n.k)) return false;
+        break;
+      case Op::div_k:
+        if (!finite_nonzero(n.k)) return false;
+        break;
+      case Op::pow_int:
+        if (n.k < 0.0) return false;
+        break;
+      case Op::variable:
+      case Op::add:
+      case Op::sub:
+      case Op::mul:
+      case Op::neg:
+      case Op::add_k:
+      case Op::mul_k:
+      case Op::rsub_k:
+      case Op::exp:
+      case Op::sin:
+      case Op::cos:
+      case Op::atan:
+      case Op::sinh:
+      case Op::cosh:
+      case Op::tanh:
+      case Op::asinh:
+      case Op::abs:
+      case Op::min:
+      case Op::max:
+        break;
+      default:
+        return false;
+    }
+    pending.push_back(n.a);
+    pending.push_back(n.b);
+    pending.push_back(n.c);
+  }
+  return true;
+}
+
+// The tape computing `outputs` from `tape`'s nodes, pruned, with its polynomial form.
+Program::Tape with_outputs(const Program::Tape& tape, std::vector<std::int32_t> outputs) {
+  Program::Tape t = tape;
+  t.outputs = std::move(outputs);
+  Program::Tape reduced = live_part(t);
+  reduced.polynomial = polynomial_form(reduced);
+  return reduced;
+}
+
 }  // namespace
+
+std::vector<Program> Program::factor_systems(std::size_t max_systems) const {
+  // The factors each formula splits into: its distinct factors when all are defined everywhere,
+  // else the formula itself.
+  std::vector<std::vector<std::int32_t>> split;
+  std::size_t systems = 1;
+  for (const std::int32_t output : tape_->outputs) {
+    std::vector<std::int32_t> distinct;
+    bool repeated = false;
+    factors(*tape_, output, distinct, repeated);
+    bool total = !distinct.empty();
+    for (const std::int32_t g : distinct) total = total && defined_everywhere(*tape_, g);
+    if (!total) distinct.assign(1, output);
+    systems *= distinct.size();
+    split.push_back(std::move(distinct));
+  }
+  if (systems <= 1 || systems > max_systems) return {square_free()};
+  std::vector<Program> out;
+  std::vector<std::size_t> choice(split.size(), 0);  // one factor of each formula, odometer order
+  for (std::size_t s = 0; s < systems; ++s) {
+    std::vector<std::int32_t> outputs;
+    for (std::size_t k = 0; k < split.size(); ++k) outputs.push_back(split[k][choice[k]]);
+    Program p;
+    p.tape_ = std::make_shared<const Tape>(with_outputs(*tape_, std::move(outputs)));
+    out.push_back(std::move(p));
+    for (std::size_t k = split.size(); k-- > 0;) {
+      if (++choice[k] < split[k].size()) break;
+      choice[k] = 0;
+    }
+  }
+  return out;
+}
 
 Program Program::square_free() const {
   Tape tape = *tape_;
@@ -91,10 +185,8 @@ Program Program::square_free() const {
     changed = true;
   }
   if (!changed) return *this;
-  Tape reduced = live_part(tape);
-  reduced.polynomial = polynomial_form(reduced);
   Program p;
-  p.tape_ = std::make_shared<const Tape>(std::move(reduced));
+  p.tape_ = std::make_shared<const Tape>(with_outputs(tape, tape.outputs));
   return p;
 }
 
