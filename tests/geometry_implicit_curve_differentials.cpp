@@ -68,3 +68,25 @@ TEST_CASE("at a singular point (T = 0) there is no tangent and no curvature vect
   Vec3 c;
   CHECK(!curve::curvature_vector(j, c));
 }
+
+TEST_CASE("critical_point_step: Newton on (f1, f2, F) converges quadratically to the circle's foot") {
+  const ImplicitEquations eq = circle();
+  const Vec3 p{2.5, -1.2, 1.7};
+  const Vec3 foot = circle_foot(p);
+  Vec3 x = foot + Vec3{3e-3, -2e-3, 1e-3};
+  double previous = norm(x - foot);
+  for (int n = 0; n < 3; ++n) {
+    const ImplicitJet j = eq.jet(x);
+    Vec3 step;
+    REQUIRE(curve::critical_point_step(j, x, p, j.f, step));
+    x += step;
+    const double error = norm(x - foot);
+    CHECK(error <= std::fmax(4.0 * previous * previous, 1e-15));  // quadratic, to rounding
+    previous = error;
+  }
+  CHECK(previous <= 1e-15);
+  // At a singular point of the curve G' is singular: no step.
+  const ImplicitEquations cone = spatial_equations("x^2+y^2-z^2", "z-x");
+  Vec3 step;
+  CHECK_FALSE(curve::critical_point_step(cone.jet({0, 0, 0}), {0, 0, 0}, p, {0.0, 0.0}, step));
+}

@@ -90,6 +90,12 @@ class Program {
   // (formula/ball.hpp): a few times the cost of jets2, for the certificates of answers.
   template <int N>
   void ball_jets1(const double* x, BallJet1<N>* out) const;
+  // Rigorous enclosures of every formula's value at the point x whose radius is the rounding of the
+  // value itself, u |f(x)|, plus O(u^2) of the magnitudes met (formula/accurate_values.cpp:
+  // double-double arithmetic with error-free transformations): where ball_jets1's radius is
+  // O(u) of them, too wide to locate a foot point on two nearly tangent surfaces. Polynomial
+  // operations only: false (out unspecified) for a tape with any other operation, or out of range.
+  bool accurate_values(const double* x, Ball* out) const;
 
   // The translations δ != 0 of the inputs under which every formula is invariant, f(x + δ) = f(x)
   // for all x, as far as the formulas' structure proves it (formula/invariant_translations.cpp:

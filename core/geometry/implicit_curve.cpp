@@ -124,6 +124,15 @@ ImplicitIntervalJet ImplicitEquations::point_gradient(Vec3 x) const {
       [&](const double* in, auto* f) { program_.ball_jets1<std::tuple_size_v<decltype(f->g)>>(in, f); });
 }
 
+bool ImplicitEquations::accurate_values(Vec3 x, std::array<Interval, 2>& f) const {
+  const double xyz[3] = {x.x, x.y, x.z};
+  formula::Ball b[2];
+  if (!program_.accurate_values(xyz, b)) return false;
+  f[0] = of_ball(b[0]);
+  f[1] = planar_ ? Interval{x.z, x.z} : of_ball(b[1]);
+  return true;
+}
+
 ImplicitIntervalJet ImplicitEquations::interval_jet(const Box3& box) const {
   return enclose<formula::IntervalJet2>(inputs(box), {box.lo.z, box.hi.z}, planar_,
                                         [&](const formula::Interval* in, auto* f) {

@@ -71,6 +71,9 @@ class ImplicitEquations {
   // The enclosures of interval_gradient({x, x}) at one point, from ball jets (Program::ball_jets1,
   // formula/ball.hpp: a few times a point jet's cost, interval jets of a point box 8-38 times).
   ImplicitIntervalJet point_gradient(Vec3 x) const;
+  // Enclosures of f1 and f2 at x to the rounding of the values themselves plus O(u^2)
+  // (Program::accurate_values); false where the formulas are not polynomials or x is out of range.
+  bool accurate_values(Vec3 x, std::array<Interval, 2>& f) const;
   const formula::Program& program() const { return program_; }
 
  private:

@@ -35,4 +35,18 @@ OrthogonalityFunction orthogonality_function(const ImplicitJet& j, Vec3 x, Vec3 
   return f;
 }
 
+bool critical_point_step(const ImplicitJet& j, Vec3 x, Vec3 p, const std::array<double, 2>& f, Vec3& step) {
+  const OrthogonalityFunction o = orthogonality_function(j, x, p);
+  Matrix<3> a{};
+  for (int c = 0; c < 3; ++c) {
+    a[0][c] = j.grad[0][c];
+    a[1][c] = j.grad[1][c];
+    a[2][c] = o.gradient[c];
+  }
+  Vector<3> b{-f[0], -f[1], -o.value};
+  if (!dense_solve<3>(a, b)) return false;
+  step = {b[0], b[1], b[2]};
+  return true;
+}
+
 }  // namespace footpoint::curve

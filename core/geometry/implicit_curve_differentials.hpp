@@ -25,4 +25,10 @@ struct OrthogonalityFunction {
 };
 OrthogonalityFunction orthogonality_function(const ImplicitJet& j, Vec3 x, Vec3 p);
 
+// Newton's step δ on G(X) = (f1(X), f2(X), F(X)), whose zeros are the curve's critical points of
+// the distance from P ([Curve] eqs. (5), (7)): the rows ∇f1, ∇f2, ∇F of G' at x times δ equal
+// -(f[0], f[1], F(x)), with f the values of f1 and f2 at x to use (the jet's own, or more
+// accurate ones). False when G' is singular there.
+bool critical_point_step(const ImplicitJet& j, Vec3 x, Vec3 p, const std::array<double, 2>& f, Vec3& step);
+
 }  // namespace footpoint::curve

@@ -3,9 +3,11 @@
 // (seeding/curve_sample_index). A compiled curve is the union of one or more of them, one per
 // factor system of its equations (formula::Program::factor_systems).
 #pragma once
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <utility>
+#include <vector>
 
 #include "geometry/box3.hpp"
 #include "geometry/implicit_curve.hpp"
@@ -20,7 +22,8 @@ struct DiscoveredCurve {
   DiscoveredCurve(ImplicitEquations eq, const Box3& box)
       : equations(std::move(eq)),
         discovery(discover_implicit_curve(equations, box)),
-        index(discovery.samples) {}
+        index(discovery.samples),
+        sines(sines_at_samples(equations, discovery.samples)) {}
   // The index points into discovery.samples: neither copied nor moved.
   DiscoveredCurve(const DiscoveredCurve&) = delete;
   DiscoveredCurve& operator=(const DiscoveredCurve&) = delete;
@@ -36,12 +39,28 @@ struct DiscoveredCurve {
 
   std::size_t memory_bytes() const {
     return sizeof(*this) + equations.program().memory_bytes() + discovery.memory_bytes() +
-           index.memory_bytes();
+           index.memory_bytes() + sines.capacity() * sizeof(float);
   }
 
   ImplicitEquations equations;
   CurveDiscovery discovery;
   CurveSampleIndex index;
+  // The sine of the angle between ∇f1 and ∇f2 at each sample (1 for planar curves, 0 where it is
+  // not a number: a singular point): small where the curve is cut by nearly tangent surfaces,
+  // whose foot points the search refines (solvers/curve/foot_refinement.hpp).
+  std::vector<float> sines;
+
+ private:
+  static std::vector<float> sines_at_samples(const ImplicitEquations& eq, const CurveSamples& samples) {
+    std::vector<float> out(samples.size(), 1.0F);
+    if (eq.planar()) return out;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const ImplicitJet j = eq.jet(samples.points[i]);
+      const double sine = norm(j.tangent()) / (norm(j.grad[0]) * norm(j.grad[1]));
+      out[i] = std::isnan(sine) ? 0.0F : static_cast<float>(sine);
+    }
+    return out;
+  }
 };
 
 }  // namespace footpoint

@@ -6,6 +6,7 @@
 
 #include "solvers/curve/auto_result.hpp"
 #include "solvers/curve/curve_descent.hpp"
+#include "solvers/curve/foot_refinement.hpp"
 #include "solvers/curve/implicit_curve_certificate.hpp"
 #include "solvers/curve/implicit_curve_multiplicity.hpp"
 #include "solvers/curve/implicit_curve_summary.hpp"
@@ -20,8 +21,9 @@ struct Found {
   int iterations = 0;
   double step = 0.0;
   bool valid = false;
-  bool singular = false;  // a singular point found at discovery
-  bool met = false;       // its residuals meet the tolerance
+  bool singular = false;     // a singular point found at discovery
+  bool met = false;          // its residuals meet the tolerance
+  std::int32_t sample = -1;  // the sample it was solved from
 };
 
 // What the search reads: the curve's equations and box, its samples and their k-d tree.
@@ -50,6 +52,7 @@ Found solve_from(const Curve& curve, Vec3 p, std::int32_t i, const IterationCont
   const Vec3 start = s.points[static_cast<std::size_t>(i)];
   const double start_distance = norm(p - start);
   Found f;
+  f.sample = i;
   const SampleKind kind = s.kind[static_cast<std::size_t>(i)];
   if (kind == SampleKind::box_face || kind == SampleKind::singular_point) {
     f.x = start;
@@ -231,6 +234,17 @@ ProjectionResult search(std::span<const DiscoveredCurve* const> factors, const B
     best = best_met;
     best_on = best_met_on;
     best_trace.swap(best_met_trace);
+  }
+  // Where the surfaces are nearly tangent (at the sample it was solved from, an angle below twice
+  // the refinement's), the foot refined to its coordinates' rounding (foot_refinement); a foot on
+  // a face of the box (or next to one) stays as it is.
+  if (!best.singular && best_on->sines[static_cast<std::size_t>(best.sample)] < 2.0 * kRefineSine) {
+    const double margin = 1e-9 * (1.0 + norm(best.x));
+    Vec3 x = best.x;
+    if (box.contains(best.x, -margin) && refine_foot(best_on->equations, p, x) && box.contains(x, -margin)) {
+      best.x = x;
+      best.distance = norm(p - x);
+    }
   }
   r = implicit_result(best_on->equations, box, p, best.x, "auto");
   if (factors.size() > 1 &&

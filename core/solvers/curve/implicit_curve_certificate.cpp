@@ -6,12 +6,12 @@
 #include <cmath>
 #include <limits>
 
-#include "geometry/dense_solve.hpp"
 #include "geometry/implicit_curve_differentials.hpp"
 #include "geometry/interval_vec3.hpp"
 #include "geometry/krawczyk.hpp"
 #include "geometry/midpoint_radius.hpp"
 #include "geometry/segment_distance.hpp"
+#include "solvers/curve/foot_refinement.hpp"
 
 namespace footpoint::curve {
 namespace {
@@ -60,7 +60,8 @@ class Certifier {
     Certificate c;
     c.computed = true;
     c.absolute_gap = implicit_absolute_gap(p_, foot_);
-    threshold_ = distance_ - std::fmax(Certificate::kRelativeGap * distance_, c.absolute_gap);
+    gap_ = std::fmax(Certificate::kRelativeGap * distance_, c.absolute_gap);
+    threshold_ = distance_ - gap_;
     threshold2_ = threshold_ > 0.0 ? square_upper_bound(threshold_) : 0.0;
     const auto& nodes = d_.tree.nodes();
     const auto& items = d_.tree.items();
@@ -174,13 +175,39 @@ class Certifier {
   bool foot_values(IntervalVector<3>& g) {
     if (!foot_done_) {
       foot_done_ = true;
-      ++boxes_;
-      const ImplicitIntervalJet j = eq_.point_gradient(foot_);
-      foot_ok_ = j.smooth;
-      foot_g_ = {j.f[0], j.f[1], ivec::dot(j.tangent(), from_p({foot_, foot_}))};
+      foot_ok_ = values_at(foot_, foot_g_);
     }
     g = foot_g_;
     return foot_ok_;
+  }
+
+  // G = (f1, f2, F) at a point m near a zero of G, enclosed; false when the formulas are not
+  // smooth there. Krawczyk's box about m is about ‖Y G(m)‖: the widths of f1, f2 over |∇f_i|,
+  // divided by the sine of the angle between ∇f1 and ∇f2. Where that exceeds a quarter of the gap
+  // (two nearly tangent surfaces), f1 and f2 are enclosed to the rounding of their values
+  // instead (ImplicitEquations::accurate_values).
+  bool values_at(Vec3 m, IntervalVector<3>& g) {
+    ++boxes_;
+    const ImplicitIntervalJet j = eq_.point_gradient(m);
+    if (!j.smooth) return false;
+    g = {j.f[0], j.f[1], ivec::dot(j.tangent(), from_p({m, m}))};
+    std::array<Interval, 2> f;
+    if (position_spread(j) > 0.25 * gap_ && eq_.accurate_values(m, f)) {
+      g[0] = f[0];
+      g[1] = f[1];
+    }
+    return true;
+  }
+
+  // How far the foot may move for the widths of the enclosures of f1 and f2 (see foot_values).
+  static double position_spread(const ImplicitIntervalJet& j) {
+    Vec3 n[2];
+    double spread = 0.0;
+    for (int i = 0; i < 2; ++i) {
+      n[i] = {iv::mid(j.grad[i][0]), iv::mid(j.grad[i][1]), iv::mid(j.grad[i][2])};
+      spread = std::fmax(spread, iv::rad(j.f[i]) / norm(n[i]));
+    }
+    return spread * norm(n[0]) * norm(n[1]) / norm(cross(n[0], n[1]));
   }
 
   // ∇F over a box from enclosures of T and ∂T/∂x_j over it: ∂_j F = Σ_i ∂_j T_i (p - x)_i - T_j
@@ -220,18 +247,12 @@ class Certifier {
   bool newton_on_g(Vec3& x) const {
     for (int n = 0; n < 6; ++n) {
       const ImplicitJet j = eq_.jet(x);
-      const OrthogonalityFunction f = orthogonality_function(j, x, p_);
-      Matrix<3> a{};
-      for (int c = 0; c < 3; ++c) {
-        a[0][c] = j.grad[0][c];
-        a[1][c] = j.grad[1][c];
-        a[2][c] = f.gradient[c];
-      }
-      Vector<3> b{-j.f[0], -j.f[1], -f.value};
-      if (!dense_solve<3>(a, b)) return false;
-      x += Vec3{b[0], b[1], b[2]};
+      Vec3 step;
+      if (!critical_point_step(j, x, p_, j.f, step)) return false;
+      x += step;
       if (!is_finite(x)) return false;
     }
+    refine_foot(eq_, p_, x);  // on two nearly tangent surfaces (foot_refinement.hpp)
     return true;
   }
 
@@ -266,6 +287,16 @@ class Certifier {
     return foot_box_ok_;
   }
 
+  // A box about the foot point holding every zero of G in some region, from Krawczyk's test over
+  // that region: its radius is ‖Y G(foot)‖ / (1 - c), and c, from enclosures over the whole
+  // region, may be near 1 where ∇f1 and ∇f2 are nearly parallel. When it is too wide to meet the
+  // gap and lies in foot_box(), the zeros are those of the foot box's test (fresh jets over a
+  // smaller box, a smaller c).
+  Box3 tightened(const Box3& zeros) {
+    if (zeros.empty() || distance_lower_bound(p_, zeros) >= threshold_) return zeros;
+    return foot_box() && foot_box_.contains(zeros) ? foot_zeros_ : zeros;
+  }
+
   // Krawczyk's test over the foot cell's enlarged box about the foot point: when it contracts,
   // every zero of G in that box lies within a few ulps of the foot, and the cells inside it need
   // nothing more.
@@ -278,7 +309,7 @@ class Certifier {
     Box3 zeros;
     if (!zeros_about(e.box, foot_, g, jac, zeros)) return;
     foot_region_ = e.box;
-    foot_region_zeros_ = zeros;
+    foot_region_zeros_ = tightened(zeros);
     foot_region_ok_ = true;
   }
 
@@ -312,7 +343,7 @@ class Certifier {
     Box3 zeros;
     if (e.box.contains(foot_) && foot_values(g)) {
       if (!zeros_about(e.box, foot_, g, jac, zeros)) return false;
-      contribute_zeros(intersection(zeros, cell.box));
+      contribute_zeros(intersection(tightened(zeros), cell.box));
       return true;
     }
     const Vec3 c = cell.bounds.center;
@@ -329,11 +360,8 @@ class Certifier {
     // enclosed by fresh interval jets, the box shrinks to rounding.
     Vec3 m = zeros.center();
     if (!newton_on_g(m) || !e.box.contains(m)) return false;
-    ++boxes_;
-    const ImplicitIntervalJet j = eq_.point_gradient(m);
-    if (!j.smooth ||
-        !zeros_about(e.box, m, {j.f[0], j.f[1], ivec::dot(j.tangent(), from_p({m, m}))}, jac, zeros))
-      return false;
+    IntervalVector<3> gm{};
+    if (!values_at(m, gm) || !zeros_about(e.box, m, gm, jac, zeros)) return false;
     contribute_zeros(intersection(zeros, cell.box));
     return true;
   }
@@ -357,21 +385,17 @@ class Certifier {
     Box3 zeros = cell.box;
     if (cell.box.contains(foot_) && foot_values(g)) {
       // The answer's own cell: its zero is the foot point, to rounding, when the test contracts.
-      if (zeros_about(cell.box, foot_, g, jac, zeros)) return contribute_zeros(zeros);
+      if (zeros_about(cell.box, foot_, g, jac, zeros)) return contribute_zeros(tightened(zeros));
     } else if (zeros_about(cell.box, b.center, {b.f_center[0], b.f_center[1], f_center}, jac, zeros)) {
       if (zeros.empty() || distance_lower_bound(p_, zeros) >= threshold_) return contribute_zeros(zeros);
       if (foot_box() && foot_box_.contains(zeros)) return contribute_zeros(foot_zeros_);
       // A critical point of its own (a farther local minimum, a maximum): about its Newton point,
       // enclosed by fresh interval jets, the box shrinks to rounding.
       Vec3 x = zeros.center();
-      if (newton_on_g(x) && zeros.contains(x)) {
-        ++boxes_;
-        const ImplicitIntervalJet j = eq_.point_gradient(x);
-        Box3 tight;
-        if (j.smooth &&
-            zeros_about(cell.box, x, {j.f[0], j.f[1], ivec::dot(j.tangent(), from_p({x, x}))}, jac, tight))
-          return contribute_zeros(tight);
-      }
+      IntervalVector<3> gx{};
+      Box3 tight;
+      if (newton_on_g(x) && zeros.contains(x) && values_at(x, gx) && zeros_about(cell.box, x, gx, jac, tight))
+        return contribute_zeros(tight);
     }
     // Every zero of G left in the cell lies on one of its arcs, so in that arc's capsule box: the
     // boxes are bisected (those that overlap as their hull), thin beside the arcs, not the cell.
@@ -531,7 +555,7 @@ class Certifier {
   const CurveDiscovery& d_;
   Vec3 p_, foot_;
   double distance_;
-  double threshold_ = 0.0, threshold2_ = 0.0;
+  double gap_ = 0.0, threshold_ = 0.0, threshold2_ = 0.0;
   double far2_ = std::numeric_limits<double>::infinity();      // the least squared bound of far boxes
   double far_arcs_ = std::numeric_limits<double>::infinity();  // the least bound of far capsules
   double lower_ = std::numeric_limits<double>::infinity();
