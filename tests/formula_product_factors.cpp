@@ -138,6 +138,15 @@ TEST_CASE("factor_systems: no split where a factor may be undefined, or too many
   }
   CHECK(compile({"x*(x-1)*(x-2)", "y*(y-1)*(y-2)"}, 3).factor_systems(8).size() == 1);
   CHECK(compile({"x*(x-1)*(x-2)", "y*(y-1)*(y-2)"}, 3).factor_systems(9).size() == 9);
+  // A formula with more factors than systems allowed stays whole; the other one splits.
+  CHECK(compile({"x*(x-1)*(x-2)", "y*(y-1)*(y-2)"}, 3).factor_systems(2).size() == 1);
+  const std::vector<Program> one_split = compile({"x*(x-1)*(x-2)", "y*(y-1)"}, 3).factor_systems(2);
+  REQUIRE(one_split.size() == 2);
+  const double at[3] = {0.5, 0.25, 0.0};
+  double f[2] = {};
+  one_split[1].values(at, f);
+  CHECK(f[0] == 0.5 * -0.5 * -1.5);  // x (x - 1) (x - 2) whole
+  CHECK(f[1] == 0.25 - 1.0);         // the second factor of y (y - 1)
 }
 
 TEST_CASE("factor_systems: the union of the systems' zeros is the formulas' zero set") {

@@ -137,15 +137,15 @@ Program::Tape with_outputs(const Program::Tape& tape, std::vector<std::int32_t> 
 }  // namespace
 
 std::vector<Program> Program::factor_systems(std::size_t max_systems) const {
-  // The factors each formula splits into: its distinct factors when all are defined everywhere,
-  // else the formula itself.
+  // The factors each formula splits into: its distinct factors when all are defined everywhere
+  // and there are at most max_systems of them, else the formula itself.
   std::vector<std::vector<std::int32_t>> split;
   std::size_t systems = 1;
   for (const std::int32_t output : tape_->outputs) {
     std::vector<std::int32_t> distinct;
     bool repeated = false;
     factors(*tape_, output, distinct, repeated);
-    bool total = !distinct.empty();
+    bool total = !distinct.empty() && distinct.size() <= max_systems;
     for (const std::int32_t g : distinct) total = total && defined_everywhere(*tape_, g);
     if (!total) distinct.assign(1, output);
     systems *= distinct.size();

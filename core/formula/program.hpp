@@ -117,8 +117,9 @@ class Program {
   // factor of each formula's top-level product, over every choice, where every factor of a formula
   // is defined on all of R^n (a polynomial, or built with exp, sin, cos, ...): (x^2 + y^2 - 1)
   // ((x - 2)^2 + y^2 - 1) = 0 is the union of two circles. Each has one formula per formula of
-  // this one, and their zero sets may meet. When no formula splits, or when there would be more
-  // than max_systems, the one system square_free().
+  // this one, and their zero sets may meet. A formula with more than max_systems factors is not
+  // split; when no formula splits, or when there would be more than max_systems systems, the one
+  // system square_free().
   std::vector<Program> factor_systems(std::size_t max_systems) const;
   // True when both evaluate the one tape (a copy, or square_free() of a square-free Program).
   bool same_tape(const Program& other) const { return tape_ == other.tape_; }

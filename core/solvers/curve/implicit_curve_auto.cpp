@@ -93,10 +93,6 @@ Found solve_from(const Curve& curve, Vec3 p, std::int32_t i, const IterationCont
   return f;
 }
 
-}  // namespace
-
-namespace {
-
 // The factor curves in order of their distance bounds from p (ties in the order given), without
 // storage: the next after (bound, index) `after` is the least greater one. -1 when none is left.
 std::ptrdiff_t next_factor(std::span<const DiscoveredCurve* const> factors, Vec3 p, double after_bound,

@@ -199,7 +199,7 @@ class Certifier {
     return true;
   }
 
-  // How far the foot may move for the widths of the enclosures of f1 and f2 (see foot_values).
+  // How far the point may move for the widths of the enclosures of f1 and f2 (see values_at).
   static double position_spread(const ImplicitIntervalJet& j) {
     Vec3 n[2];
     double spread = 0.0;
