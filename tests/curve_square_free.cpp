@@ -11,6 +11,7 @@
 #include <random>
 
 #include "compiled/implicit_curve_geometry.hpp"
+#include "implicit_fixtures.hpp"
 
 using namespace footpoint;
 
@@ -51,11 +52,7 @@ double viviani_distance(const std::array<double, 3>& p) {
 }  // namespace
 
 TEST_CASE("a planar curve with a squared equation is the regular circle it is") {
-  GeometryDefinition def;
-  def.type = GeometryType::implicit_curve;
-  def.formulas = {{"equations[0]", "-2*(x^2+y^2-1)^2"}};
-  def.domain = {{"x", {-2.0, 2.0}}, {"y", {-2.0, 2.0}}};
-  const auto g = compile_implicit_curve(def, {});
+  const auto g = test::implicit_curve({"-2*(x^2+y^2-1)^2"}, {{-2.0, 2.0}, {-2.0, 2.0}});
   const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
   CHECK_FALSE(curve.equations().program().same_tape(curve.written_equations().program()));
   CHECK(curve.discovery().stats.unproved_boxes == 0);
@@ -83,11 +80,8 @@ TEST_CASE("a planar curve with a squared equation is the regular circle it is") 
 }
 
 TEST_CASE("a spatial curve with a squared equation: Viviani's curve") {
-  GeometryDefinition def;
-  def.type = GeometryType::implicit_curve;
-  def.formulas = {{"equations[0]", "(x^2+y^2+z^2-4)^2"}, {"equations[1]", "(x-1)^2+y^2-1"}};
-  def.domain = {{"x", {-3.0, 3.0}}, {"y", {-3.0, 3.0}}, {"z", {-3.0, 3.0}}};
-  const auto g = compile_implicit_curve(def, {});
+  const auto g =
+      test::implicit_curve({"(x^2+y^2+z^2-4)^2", "(x-1)^2+y^2-1"}, {{-3.0, 3.0}, {-3.0, 3.0}, {-3.0, 3.0}});
   std::mt19937_64 rng(19);
   std::uniform_real_distribution<double> u(-3.0, 3.0);
   int certified = 0;
