@@ -23,6 +23,9 @@ struct ImplicitJet {
   std::array<Mat3, 2> hess{};
   // The tangent T = grad f1 x grad f2 ([Curve] eq. (7)).
   Vec3 tangent() const { return cross(grad[0], grad[1]); }
+  // The sine of the angle between grad f1 and grad f2, |T| / (|grad f1| |grad f2|): 0 at a
+  // singular point, small where the two surfaces are nearly tangent; NaN where a gradient is 0.
+  double normals_sine() const { return norm(tangent()) / (norm(grad[0]) * norm(grad[1])); }
 };
 
 // Enclosures over a box of f1, f2, their gradients and Hessians (formula/interval_jet.hpp's

@@ -55,8 +55,7 @@ struct DiscoveredCurve {
     std::vector<float> out(samples.size(), 1.0F);
     if (eq.planar()) return out;
     for (std::size_t i = 0; i < samples.size(); ++i) {
-      const ImplicitJet j = eq.jet(samples.points[i]);
-      const double sine = norm(j.tangent()) / (norm(j.grad[0]) * norm(j.grad[1]));
+      const double sine = eq.jet(samples.points[i]).normals_sine();
       out[i] = std::isnan(sine) ? 0.0F : static_cast<float>(sine);
     }
     return out;

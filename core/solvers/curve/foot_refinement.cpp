@@ -26,8 +26,7 @@ bool accurate_residual(const ImplicitEquations& eq, Vec3 x, const ImplicitJet& j
 
 bool refine_foot(const ImplicitEquations& eq, Vec3 p, Vec3& x) {
   ImplicitJet j = eq.jet(x);
-  const double n1 = norm(j.grad[0]), n2 = norm(j.grad[1]);
-  if (!(norm(j.tangent()) < kRefineSine * n1 * n2)) return false;
+  if (!(j.normals_sine() < kRefineSine)) return false;
   std::array<double, 2> f{};
   double residual = 0.0;
   if (!accurate_residual(eq, x, j, f, residual)) return false;
