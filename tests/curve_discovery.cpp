@@ -304,3 +304,64 @@ TEST_CASE("discovery: a curve that is one isolated point is bounded at the fines
   CHECK(r.distance == doctest::Approx(0.5).epsilon(1e-6));
   CHECK(r.summary.certificate.lower_bound <= 0.5);
 }
+
+TEST_CASE("discovery: every point of the curve lies within h/2 of a sample") {
+  // Viviani's curve (1 + cos t, sin t, 2 sin(t/2)), t in [0, 4 pi): the bound `auto`'s search
+  // relies on (curve_samples.hpp), against the parametrisation.
+  const json& c = case_of("curve_spatial_cases.json", "viviani");
+  const auto g = compile_discovery_case(c);
+  const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
+  const CurveSamples& s = curve.discovery().samples;
+  double worst = 0.0;
+  for (int k = 0; k < 4000; ++k) {
+    const double t = 4.0 * M_PI * k / 4000;
+    const Vec3 x{1.0 + std::cos(t), std::sin(t), 2.0 * std::sin(0.5 * t)};
+    double nearest = 1e300;
+    for (const Vec3& y : s.points) nearest = std::min(nearest, norm(x - y));
+    worst = std::max(worst, nearest);
+  }
+  CHECK(worst <= 0.5 * s.spacing);
+}
+
+TEST_CASE("discovery: samples are no denser than the spacing and the turning ask") {
+  // Along a piece, every two consecutive links span more than max_step (h / 1.01) or turn by more
+  // than max_turn (0.15 rad), as the thinning keeps the farthest point the last kept one reaches
+  // (curve_arc_samples): links <= 2 (1.01 L / h + T / 0.15) + 2 per piece, with L the chords'
+  // length and T their turning, here with 10 % for the chords' approximation of the arc. Small
+  // cells (near the tacnode's tangency, the lemniscate's node, the cusp, Example 2's large box)
+  // must not mean dense samples: each crossing of a cell face is not a sample of its own.
+  const std::vector<std::pair<std::vector<std::string>, std::vector<std::array<double, 2>>>> curves = {
+      {{"x^2/9+y^2/16+z^2/9+4*x*y-1", "x^2+y^2+x-4*z"}, {{-300, 300}, {-300, 300}, {-300, 300}}},
+      {{"(x^2+y^2)^2-2*(x^2-y^2)"}, {{-2, 2}, {-2, 2}}},
+      {{"(x^2+y^2-1)*((x-2)^2+y^2-1)"}, {{-2, 4}, {-2, 2}}},
+      {{"y^2-x^3"}, {{-1, 2}, {-2, 2}}},
+  };
+  for (const auto& [equations, box] : curves) {
+    CAPTURE(equations[0]);
+    GeometryDefinition def;
+    def.type = GeometryType::implicit_curve;
+    const char* axes[] = {"x", "y", "z"};
+    for (std::size_t i = 0; i < equations.size(); ++i)
+      def.formulas.push_back({"equations[" + std::to_string(i) + "]", equations[i]});
+    for (std::size_t k = 0; k < box.size(); ++k) def.domain.push_back({axes[k], box[k]});
+    const auto g = compile_implicit_curve(def, {});
+    const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
+    const CurveSamples& s = curve.discovery().samples;
+    double length = 0.0, turning = 0.0;
+    int links = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const std::int32_t next = s.next[i], prev = s.prev[i];
+      if (next < 0) continue;
+      const Vec3 b = s.points[static_cast<std::size_t>(next)] - s.points[i];
+      length += norm(b);
+      ++links;
+      if (prev < 0) continue;
+      const Vec3 a = s.points[i] - s.points[static_cast<std::size_t>(prev)];
+      turning += std::atan2(norm(cross(a, b)), dot(a, b));
+    }
+    const double bound =
+        2.2 * (1.01 * length / s.spacing + turning / 0.15) + 2.0 * curve.discovery().stats.pieces;
+    CHECK(links <= bound);
+    check_samples(curve);
+  }
+}

@@ -123,11 +123,13 @@ class ArcChains {
     return node.sample;
   }
 
-  // Follows the chain from node `start` along unvisited arcs, linking the samples in walking order.
+  // Follows the chain from node `start` along unvisited arcs: its points in walking order (the
+  // arcs' ends and the samples between them), thinned, then added and linked.
   void walk(std::size_t start, bool loop) {
     ++pieces_.pieces;
+    chain_.clear();
+    chain_.push_back({nodes_[start].point, static_cast<int>(start)});
     std::size_t v = start;
-    std::int32_t last = sample_of(v);
     for (;;) {
       int next = -1;
       for (int e : nodes_[v].arcs)
@@ -142,21 +144,57 @@ class ArcChains {
       const ProvedCell& cell = cells_.cells[static_cast<std::size_t>(arc.cell)];
       interior_.clear();
       between(nodes_[v].point, nodes_[w].point, cell, 0);
-      for (const Vec3& x : interior_) {
-        const std::int32_t i = samples_.add(x, SampleKind::regular);
-        samples_.link(last, i);
-        last = i;
-      }
+      for (const Vec3& x : interior_) chain_.push_back({x, -1});
+      chain_.push_back({nodes_[w].point, static_cast<int>(w)});
       if (w == start && loop) {
-        samples_.link(last, sample_of(w));
         ++pieces_.closed;
-        return;
+        break;
       }
-      const std::int32_t s = sample_of(w);
-      samples_.link(last, s);
-      last = s;
       v = w;
     }
+    thin_chain();
+    std::int32_t last = -1;
+    for (const ChainPoint& c : chain_) {
+      if (!c.kept) continue;
+      const std::int32_t i =
+          c.node >= 0 ? sample_of(static_cast<std::size_t>(c.node)) : samples_.add(c.x, SampleKind::regular);
+      if (last >= 0) samples_.link(last, i);
+      last = i;
+    }
+  }
+
+  // Keeps the chain's ends and, greedily from the first, the farthest point that the last kept one
+  // reaches within max_step while the tangents at both and at every point between stay within
+  // max_turn of the chord: the sampling's own criterion (between), over the points it replaces.
+  // The crossings of cell faces are points of the chain like the others: small cells need not
+  // mean dense samples.
+  void thin_chain() {
+    const std::size_t n = chain_.size();
+    for (ChainPoint& c : chain_) {
+      c.tangent = curve::unit_tangent(eq_.jet(c.x));
+      c.kept = false;
+    }
+    chain_.front().kept = chain_.back().kept = true;
+    std::size_t kept = 0;
+    for (std::size_t x = 2; x < n; ++x)
+      if (!reaches(kept, x)) {
+        kept = x - 1;
+        chain_[kept].kept = true;
+      }
+  }
+
+  // True when the chord from chain point a to chain point b stands for the points between them.
+  bool reaches(std::size_t a, std::size_t b) const {
+    const Vec3 chord = chain_[b].x - chain_[a].x;
+    if (!(norm(chord) <= settings_.max_step)) return false;
+    auto along = [&](std::size_t i) {
+      return dot(chain_[i].tangent, chord) < 0.0 ? -chain_[i].tangent : chain_[i].tangent;
+    };
+    const Vec3 ta = along(a), tb = along(b);
+    if (!(angle_between(ta, tb) <= settings_.max_turn)) return false;
+    for (std::size_t i = a; i <= b; ++i)
+      if (!(angle_between(along(i), chord) <= settings_.max_turn)) return false;
+    return true;
   }
 
   // The samples strictly between the arc points a and b of `cell`, in order from a to b.
@@ -195,6 +233,13 @@ class ArcChains {
   std::vector<Arc> arcs_;
   std::vector<bool> visited_;
   std::vector<Vec3> interior_;
+  struct ChainPoint {
+    Vec3 x;
+    int node = -1;  // the arc end it is, or -1 for a sample between ends
+    Vec3 tangent{};
+    bool kept = false;
+  };
+  std::vector<ChainPoint> chain_;  // the chain being walked
   ArcPieces pieces_;
 };
 

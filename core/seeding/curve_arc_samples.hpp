@@ -11,7 +11,12 @@
 // slice x_k = t meets the arc in the cell's only point of the curve on that slice (proof (a) of
 // curve_cell_proof.hpp), found by Newton in the slice, until neighbours are at most max_step
 // apart and the tangent turns by at most max_turn between them. So every arc of every proved cell
-// holds samples: no piece of the curve, however small, is left without them.
+// holds samples: no piece of the curve, however small, is left without them. A chain is then
+// thinned by the same criterion: from each kept point, the farthest point of the chain within
+// max_step whose tangent, and every tangent between, stays within max_turn of the chord is the
+// next kept (the chain's ends are always kept). The subdivision's cells are as small as its
+// proofs need, which is no measure of how densely `auto` needs samples: without the thinning a
+// curve in many small cells has a sample at every face crossing (two to five times as many).
 #pragma once
 #include "geometry/implicit_curve.hpp"
 #include "seeding/curve_cells.hpp"
