@@ -286,3 +286,25 @@ TEST_CASE("ball jets of sums of monomials (the polynomial fast path) hold the ex
     }
   }
 }
+
+TEST_CASE("ball jets' radii are never subnormal numbers") {
+  // ball.hpp's η is the smallest normal number: an exact zero (a derivative in a variable the
+  // formula does not use, a factor that vanishes at the point) gets a normal radius, so no ball
+  // operation after it takes a subnormal operand. Through the tape's ball arithmetic and through
+  // the sums of monomials.
+  const char* const texts[] = {"(u-1)^2+3", "sin(u)*(u+2)-exp(u)", "(u-1)^2+v^2-1", "u^2/9+v^2/16+4*u*v-1"};
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> U(-2.0, 2.0);
+  for (const char* text : texts) {
+    INFO(std::string(text));
+    const Program p = Program::compile({{"f", text}}, {"u", "v"}, {});
+    for (int i = 0; i < 200; ++i) {
+      const double x[2] = {i % 4 == 0 ? 1.0 : U(rng), i % 3 == 0 ? 0.0 : U(rng)};
+      BallJet1<2> b;
+      p.ball_jets1<2>(x, &b);
+      REQUIRE(b.defined);
+      CHECK(std::fpclassify(b.v.rad) != FP_SUBNORMAL);
+      for (const auto& g : b.g) CHECK(std::fpclassify(g.rad) != FP_SUBNORMAL);
+    }
+  }
+}

@@ -25,9 +25,9 @@ struct NodeForm {
 
 // An upper bound of a coefficient's error: the bound computed in round to nearest (a few roundings
 // of non-negative terms, covered by the factor) plus one rounding of the coefficient itself,
-// u |c| + η (the smallest subnormal: an underflow).
+// u |c| + η (ball.hpp's bound of an underflow).
 double error_bound(double propagated, double c) {
-  return (propagated + 0x1p-53 * std::abs(c)) * (1.0 + 0x1p-40) + 2.0 * 0x1p-1074;
+  return (propagated + 0x1p-53 * std::abs(c)) * (1.0 + 0x1p-40) + 2.0 * ball::kEta;
 }
 
 Monomial constant_term(double c) {
@@ -52,7 +52,7 @@ Monomial divided(Monomial m, double k) {
   const double q = 1.0 / k;
   const double before = std::abs(m.c), before_error = m.c_error;
   m.c *= q;
-  m.c_error = error_bound(before_error / std::abs(k) + before * (0x1p-53 * std::abs(q) + 0x1p-1074), m.c);
+  m.c_error = error_bound(before_error / std::abs(k) + before * (0x1p-53 * std::abs(q) + ball::kEta), m.c);
   return m;
 }
 
@@ -148,7 +148,7 @@ NodeForm read_node(const Node& node, const std::vector<NodeForm>& forms) {
       const double c = std::abs(m.c), e = m.c_error;
       m.c = pow_int(m.c, k);
       m.c_error = e == 0.0 ? 0.0 : error_bound(k * pow_int(c + e, k - 1) * e, 0.0) * (1.0 + 0x1p-40);
-      m.c_error = error_bound(m.c_error + (k + 1.0) * 0x1p-53 * std::abs(m.c) + k * 0x1p-1074, m.c);
+      m.c_error = error_bound(m.c_error + (k + 1.0) * 0x1p-53 * std::abs(m.c) + k * ball::kEta, m.c);
       for (auto& e : m.e) e = static_cast<std::int16_t>(e * k);
       return term_form(m);
     }
@@ -358,9 +358,9 @@ bool polynomial_ball_jets1(const PolynomialForm& poly, const double* x, BallJet1
         g_err[j] += (m.e[j] * m.c_error + kU * std::abs(ce)) * std::abs(d);
       }
     }
-    // (the error terms' own products may underflow: half the smallest subnormal each)
+    // (the error terms' own products may underflow: at most ball.hpp's η each)
     const double n = static_cast<double>(end - begin);
-    const double rel = 1.25 * (n + factors + 2) * kU, underflows = 2.0 * n * 0x1p-1074;
+    const double rel = 1.25 * (n + factors + 2) * kU, underflows = 2.0 * n * ball::kEta;
     BallJet1<N>& o = out[k];
     o.v = {v, ball::inflate(rel * v_mag + 1.25 * v_err) + underflows};
     for (int j = 0; j < N; ++j) o.g[j] = {g[j], ball::inflate(rel * g_mag[j] + 1.25 * g_err[j]) + underflows};
