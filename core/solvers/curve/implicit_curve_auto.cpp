@@ -24,6 +24,7 @@ struct Found {
   bool singular = false;     // a singular point found at discovery
   bool met = false;          // its residuals meet the tolerance
   std::int32_t sample = -1;  // the sample it was solved from
+  Summary residuals;         // at x for p (fill_residuals)
 };
 
 // What the search reads: the curve's equations and box, its samples and their k-d tree.
@@ -34,15 +35,18 @@ struct Curve {
   const CurveSampleIndex& index;
 };
 
-// The residuals of x, where a singular point found at discovery is one whatever the angle between
-// the normals says (planar curves: grad f = 0, but grad f2 = e_z).
-void fill_residuals(const Curve& curve, Vec3 p, const Found& f, Summary& s) {
-  fill_implicit_residuals(curve.equations, curve.box, p, f.x, s);
-  if (f.singular) {
-    s.location = Location::singular_point;
-    s.orthogonality = {0.0, 0.0};
-    s.on_boundary = false;
-  }
+// Residuals at a singular point: no orthogonality to measure, not on a face.
+void mark_singular(Summary& s) {
+  s.location = Location::singular_point;
+  s.orthogonality = {0.0, 0.0};
+  s.on_boundary = false;
+}
+
+// The residuals of f.x, where a singular point found at discovery is one whatever the angle
+// between the normals says (planar curves: grad f = 0, but grad f2 = e_z).
+void fill_residuals(const ImplicitEquations& equations, const Box3& box, Vec3 p, Found& f) {
+  fill_implicit_residuals(equations, box, p, f.x, f.residuals);
+  if (f.singular) mark_singular(f.residuals);
 }
 
 // The local minimum belonging to sample i.
@@ -184,8 +188,8 @@ ProjectionResult search(std::span<const DiscoveredCurve* const> factors, const B
       trace.clear();
       Found fd = solve_from(curve, p, c.index, control, options.trace ? &trace : nullptr);
       if (!fd.valid) continue;
-      Summary fs;
-      fill_residuals(curve, p, fd, fs);
+      fill_residuals(curve.equations, box, p, fd);
+      const Summary& fs = fd.residuals;
       fd.met = implicit_residuals_met(fs, fd.x, control);
       found.push_back({fd.x, fd.distance});
       if (options.all_minima) {
@@ -240,13 +244,15 @@ ProjectionResult search(std::span<const DiscoveredCurve* const> factors, const B
     if (box.contains(best.x, -margin) && refine_foot(best_on->equations, p, x) && box.contains(x, -margin)) {
       best.x = x;
       best.distance = norm(p - x);
+      fill_residuals(best_on->equations, box, p, best);
     }
   }
-  r = implicit_result(best_on->equations, box, p, best.x, "auto");
   if (factors.size() > 1 &&
-      on_another_factor(factors, best_on, p, best.x, best.distance + slack, box, control))
+      on_another_factor(factors, best_on, p, best.x, best.distance + slack, box, control)) {
     best.singular = true;
-  fill_residuals({best_on->equations, box, best_on->discovery, best_on->index}, p, best, r.summary);
+    mark_singular(best.residuals);
+  }
+  r = implicit_result(best_on->equations.planar(), p, best.x, "auto", best.residuals);
   r.summary.multiplicity = implicit_curve_multiplicity(best_on->equations, p, r, found);
   // a continuum of nearest points: the answer stands for all of them, no arbitrary sample
   if (r.summary.multiplicity.kind == Multiplicity::continuum)

@@ -77,14 +77,20 @@ bool foot_residuals_met(const ImplicitEquations& equations, Vec3 p, Vec3 x, cons
 
 ProjectionResult implicit_result(const ImplicitEquations& equations, const Box3& box, Vec3 p, Vec3 x,
                                  const char* method) {
+  Summary residuals;
+  fill_implicit_residuals(equations, box, p, x, residuals);
+  return implicit_result(equations.planar(), p, x, method, residuals);
+}
+
+ProjectionResult implicit_result(bool planar, Vec3 p, Vec3 x, const char* method, const Summary& residuals) {
   ProjectionResult r;
-  r.dim = equations.planar() ? 2 : 3;
+  r.dim = planar ? 2 : 3;
   r.num_params = 0;
-  r.foot = {x.x, x.y, equations.planar() ? 0.0 : x.z};
+  r.foot = {x.x, x.y, planar ? 0.0 : x.z};
   r.params = {0.0, 0.0};
   r.distance = norm(p - x);
+  r.summary = residuals;
   r.summary.method = method;
-  fill_implicit_residuals(equations, box, p, x, r.summary);
   return r;
 }
 

@@ -36,5 +36,7 @@ bool foot_residuals_met(const ImplicitEquations& equations, Vec3 p, Vec3 x, cons
 // A result for the foot x of p: dim, num_params 0, foot, distance and the residuals.
 ProjectionResult implicit_result(const ImplicitEquations& equations, const Box3& box, Vec3 p, Vec3 x,
                                  const char* method);
+// The same with the residuals already computed (fill_implicit_residuals for p and x).
+ProjectionResult implicit_result(bool planar, Vec3 p, Vec3 x, const char* method, const Summary& residuals);
 
 }  // namespace footpoint::curve
