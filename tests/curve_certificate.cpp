@@ -313,13 +313,13 @@ TEST_CASE("auto: a minimum just inside the box, nearer than the box-face crossin
   }
 }
 
-TEST_CASE("auto: next to a singular point, the minimum between a piece's last sample and the one before") {
-  // A piece of curve ends next to the unproved box of a singular point. Where the distance falls
-  // all along its last samples, the last one is the only candidate there, and a solve from it fell
-  // into the cusp (the Lagrange system is degenerate there), past the minimum before it: an
-  // 800-point sweep found (-0.0704164, 0.1763856) 0.046387 from the cusp of cusp_offset, the
-  // minimum being 0.046343. Points within 1/40 of the box's diagonal of each singular point,
-  // against the brute force (4 of them failed so).
+TEST_CASE("auto: next to a singular point, the minimum on the last stretch of a piece") {
+  // A piece of curve ends next to the unproved box of a singular point. Where its samples were
+  // thinned up to that end, the distance fell all along the last ones, the last was the only
+  // candidate there, and its solve fell into the cusp (the Lagrange system is degenerate there),
+  // past the minimum before it: an 800-point sweep found (-0.0704164, 0.1763856) answered 0.046387
+  // from the cusp of cusp_offset, the minimum being 0.046343. Points within 1/40 of the box's
+  // diagonal of each singular point, against the brute force (4 of them failed so).
   for (const Reference& ref : references()) {
     if (ref.id != "cusp_offset" && ref.id != "tacnode_quartic") continue;
     CAPTURE(ref.id);

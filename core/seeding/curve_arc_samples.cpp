@@ -1,6 +1,7 @@
 #include "seeding/curve_arc_samples.hpp"
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -54,6 +55,12 @@ class ArcChains {
   struct Arc {
     int from, to;  // nodes
     std::int32_t cell;
+  };
+  struct ChainPoint {
+    Vec3 x;
+    int node = -1;  // the arc end it is, or -1 for a sample between ends
+    Vec3 tangent{};
+    bool kept = false;
   };
 
   // Crossings on the box's faces are path ends; the others meet their twin across the face.
@@ -167,7 +174,10 @@ class ArcChains {
   // reaches within max_step while the tangents at both and at every point between stay within
   // max_turn of the chord: the sampling's own criterion (between), over the points it replaces.
   // The crossings of cell faces are points of the chain like the others: small cells need not
-  // mean dense samples.
+  // mean dense samples. Within max_step of an end next to an unproved box (a singular point) more
+  // are kept (keep_near_end): there the curvature may grow without bound (a cusp), beyond what the
+  // tangents at the points tell, and the distance from p along the last stretch may dip between
+  // them (a minimum that `auto` finds only from a discrete local minimum of its own).
   void thin_chain() {
     const std::size_t n = chain_.size();
     for (ChainPoint& c : chain_) {
@@ -181,6 +191,34 @@ class ArcChains {
         kept = x - 1;
         chain_[kept].kept = true;
       }
+    if (open_end(chain_.front())) keep_near_end(0, 1);
+    if (open_end(chain_.back())) keep_near_end(n - 1, -1);
+  }
+
+  // An end of a chain that is no face crossing of the box and no point of a loop.
+  bool open_end(const ChainPoint& c) const {
+    if (c.node < 0) return false;
+    const Node& node = nodes_[static_cast<std::size_t>(c.node)];
+    return !node.box_face && node.arcs.size() == 1;
+  }
+
+  // Keeps, within path length max_step of chain point `end` (walking in direction `step`), points
+  // at path lengths from it that at most double from one to the next: as near to a cusp as the
+  // chain reaches, the samples resolve a dip of the distance at every scale.
+  void keep_near_end(std::size_t end, std::ptrdiff_t step) {
+    const auto n = std::ssize(chain_);
+    const auto at = [&](std::ptrdiff_t i) { return chain_[static_cast<std::size_t>(i)].x; };
+    double length = 0.0, last = 0.0;  // path lengths from the end: of point i, of the last kept
+    for (auto i = static_cast<std::ptrdiff_t>(end) + step; i >= 0 && i < n; i += step) {
+      length += norm(at(i) - at(i - step));
+      if (length > settings_.max_step) return;
+      const double next = i + step >= 0 && i + step < n ? length + norm(at(i + step) - at(i))
+                                                        : std::numeric_limits<double>::infinity();
+      if (last == 0.0 || next > 2.0 * last) {
+        chain_[static_cast<std::size_t>(i)].kept = true;
+        last = length;
+      }
+    }
   }
 
   // True when the chord from chain point a to chain point b stands for the points between them.
@@ -233,12 +271,6 @@ class ArcChains {
   std::vector<Arc> arcs_;
   std::vector<bool> visited_;
   std::vector<Vec3> interior_;
-  struct ChainPoint {
-    Vec3 x;
-    int node = -1;  // the arc end it is, or -1 for a sample between ends
-    Vec3 tangent{};
-    bool kept = false;
-  };
   std::vector<ChainPoint> chain_;  // the chain being walked
   ArcPieces pieces_;
 };

@@ -17,6 +17,9 @@
 // next kept (the chain's ends are always kept). The subdivision's cells are as small as its
 // proofs need, which is no measure of how densely `auto` needs samples: without the thinning a
 // curve in many small cells has a sample at every face crossing (two to five times as many).
+// Within max_step of an end next to an unproved box (a singular point), points are kept at path
+// lengths from the end that at most double from one to the next: the tangents do not tell the
+// curvature there (a cusp's grows without bound).
 #pragma once
 #include "geometry/implicit_curve.hpp"
 #include "seeding/curve_cells.hpp"

@@ -184,42 +184,30 @@ ProjectionResult search(std::span<const DiscoveredCurve* const> factors, const B
       const double dc = std::sqrt(c.distance2);
       // Nothing within h/2 of this sample's stretch of curve can beat the best any more.
       if (!options.all_minima && dc - 0.5 * h > best.distance + slack) break;
-      // A regular sample with one neighbour ends its piece next to an unproved box (a singular
-      // point). A solve from it may fall into the singular point, where the Lagrange system is
-      // degenerate, past a minimum between it and its neighbour whose valley holds no sample of its
-      // own: the neighbour is a start too.
-      const auto ci = static_cast<std::size_t>(c.index);
-      const std::int32_t from[2] = {c.index,
-                                    s.kind[ci] == SampleKind::regular && (s.prev[ci] < 0) != (s.next[ci] < 0)
-                                        ? std::max(s.prev[ci], s.next[ci])
-                                        : -1};
-      for (const std::int32_t start : from) {
-        if (start < 0) continue;
-        ++starts;
-        trace.clear();
-        Found fd = solve_from(curve, p, start, control, options.trace ? &trace : nullptr);
-        if (!fd.valid) continue;
-        fill_residuals(curve.equations, box, p, fd);
-        const Summary& fs = fd.residuals;
-        fd.met = implicit_residuals_met(fs, fd.x, control);
-        found.push_back({fd.x, fd.distance});
-        if (options.all_minima) {
-          add_distinct_minimum(minima, fd.x, 1e-8 * std::max(1.0, scale),
-                               {{fd.x.x, fd.x.y, curve.equations.planar() ? 0.0 : fd.x.z},
-                                {0.0, 0.0},
-                                fd.distance,
-                                fs.location});
-        }
-        if (fd.met && fd.distance < best_met.distance) {
-          best_met = fd;
-          best_met_on = f;
-          if (options.trace) best_met_trace = trace;
-        }
-        if (fd.distance < best.distance) {
-          best = fd;
-          best_on = f;
-          if (options.trace) best_trace.swap(trace);
-        }
+      ++starts;
+      trace.clear();
+      Found fd = solve_from(curve, p, c.index, control, options.trace ? &trace : nullptr);
+      if (!fd.valid) continue;
+      fill_residuals(curve.equations, box, p, fd);
+      const Summary& fs = fd.residuals;
+      fd.met = implicit_residuals_met(fs, fd.x, control);
+      found.push_back({fd.x, fd.distance});
+      if (options.all_minima) {
+        add_distinct_minimum(minima, fd.x, 1e-8 * std::max(1.0, scale),
+                             {{fd.x.x, fd.x.y, curve.equations.planar() ? 0.0 : fd.x.z},
+                              {0.0, 0.0},
+                              fd.distance,
+                              fs.location});
+      }
+      if (fd.met && fd.distance < best_met.distance) {
+        best_met = fd;
+        best_met_on = f;
+        if (options.trace) best_met_trace = trace;
+      }
+      if (fd.distance < best.distance) {
+        best = fd;
+        best_on = f;
+        if (options.trace) best_trace.swap(trace);
       }
     }
   }
