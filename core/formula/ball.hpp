@@ -10,10 +10,9 @@
 // operation with computed result c, the exact result lies within u |c| + η of c, u = 2^-53 the
 // unit roundoff and η = 2^-1022 the smallest normal number, which bounds the underflow of products
 // and quotients (at most half the smallest subnormal, 2^-1075). The smallest subnormal would do as
-// well, but as an operand it makes every radius a subnormal number where a value is exact (a zero
-// derivative: rounding(0) = η), and an x86 core takes a microcode assist, some hundred cycles, for
-// each operation on a subnormal: ball jets of Viviani's curve ran 2.6x slower, and interval
-// products of such radii 9x;
+// well, but it would make the radius of every exact value a subnormal number (a zero derivative:
+// rounding(0) = η), and an x86 core takes a microcode assist, some hundred cycles, for each
+// operation with a subnormal operand (2.6x the time of the ball jets of Viviani's curve);
 // the propagated part is the classical midpoint-radius bound (S. M. Rump, "Fast and parallel
 // interval arithmetic", BIT 39 (1999) 534-554, Sections 2-3):
 //   {a} ± {b}:  m = fl(ma ± mb),   r = ra + rb + u|m| + η
