@@ -336,7 +336,9 @@ TEST_CASE("discovery: samples are no denser than the spacing and the turning ask
       {{"(x^2+y^2-1)*((x-2)^2+y^2-1)"}, {{-2, 4}, {-2, 2}}},
       {{"y^2-x^3"}, {{-1, 2}, {-2, 2}}},
   };
-  for (const auto& [equations, box] : curves) {
+  for (const auto& definition : curves) {
+    const std::vector<std::string>& equations = definition.first;
+    const std::vector<std::array<double, 2>>& box = definition.second;
     CAPTURE(equations[0]);
     GeometryDefinition def;
     def.type = GeometryType::implicit_curve;
