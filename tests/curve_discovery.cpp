@@ -11,6 +11,7 @@
 #include <string>
 
 #include "compiled/implicit_curve_geometry.hpp"
+#include "implicit_fixtures.hpp"
 #include "seeding/curve_enclosure.hpp"
 
 using namespace footpoint;
@@ -338,15 +339,8 @@ TEST_CASE("discovery: samples are no denser than the spacing and the turning ask
   };
   for (const auto& definition : curves) {
     const std::vector<std::string>& equations = definition.first;
-    const std::vector<std::array<double, 2>>& box = definition.second;
     CAPTURE(equations[0]);
-    GeometryDefinition def;
-    def.type = GeometryType::implicit_curve;
-    const char* axes[] = {"x", "y", "z"};
-    for (std::size_t i = 0; i < equations.size(); ++i)
-      def.formulas.push_back({"equations[" + std::to_string(i) + "]", equations[i]});
-    for (std::size_t k = 0; k < box.size(); ++k) def.domain.push_back({axes[k], box[k]});
-    const auto g = compile_implicit_curve(def, {});
+    const auto g = test::implicit_curve(equations, definition.second);
     const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
     const CurveSamples& s = curve.discovery().samples;
     double length = 0.0, turning = 0.0;
