@@ -58,8 +58,8 @@ class ArcChains {
   };
   struct ChainPoint {
     Vec3 x;
-    int node = -1;  // the arc end it is, or -1 for a sample between ends
-    Vec3 tangent{};
+    int node = -1;   // the arc end it is, or -1 for a sample between ends
+    Vec3 tangent{};  // unit, either orientation
     bool kept = false;
   };
 
@@ -135,7 +135,7 @@ class ArcChains {
   void walk(std::size_t start, bool loop) {
     ++pieces_.pieces;
     chain_.clear();
-    chain_.push_back({nodes_[start].point, static_cast<int>(start)});
+    chain_.push_back(chain_point(nodes_[start].point, static_cast<int>(start)));
     std::size_t v = start;
     for (;;) {
       int next = -1;
@@ -149,10 +149,9 @@ class ArcChains {
       const Arc& arc = arcs_[static_cast<std::size_t>(next)];
       const auto w = static_cast<std::size_t>(arc.from == static_cast<int>(v) ? arc.to : arc.from);
       const ProvedCell& cell = cells_.cells[static_cast<std::size_t>(arc.cell)];
-      interior_.clear();
-      between(nodes_[v].point, nodes_[w].point, cell, 0);
-      for (const Vec3& x : interior_) chain_.push_back({x, -1});
-      chain_.push_back({nodes_[w].point, static_cast<int>(w)});
+      const ChainPoint end = chain_point(nodes_[w].point, static_cast<int>(w));
+      between(chain_.back(), end, cell, 0);
+      chain_.push_back(end);
       if (w == start && loop) {
         ++pieces_.closed;
         break;
@@ -180,10 +179,7 @@ class ArcChains {
   // them (a minimum that `auto` finds only from a discrete local minimum of its own).
   void thin_chain() {
     const std::size_t n = chain_.size();
-    for (ChainPoint& c : chain_) {
-      c.tangent = curve::unit_tangent(eq_.jet(c.x));
-      c.kept = false;
-    }
+    for (ChainPoint& c : chain_) c.kept = false;
     chain_.front().kept = chain_.back().kept = true;
     std::size_t kept = 0;
     for (std::size_t x = 2; x < n; ++x)
@@ -235,11 +231,15 @@ class ArcChains {
     return true;
   }
 
-  // The samples strictly between the arc points a and b of `cell`, in order from a to b.
-  void between(Vec3 a, Vec3 b, const ProvedCell& cell, int depth) {
+  // A point of the chain with its unit tangent (node: the arc end it is, or -1).
+  ChainPoint chain_point(Vec3 x, int node) const { return {x, node, curve::unit_tangent(eq_.jet(x))}; }
+
+  // Appends to the chain the samples strictly between its arc points a and b of `cell`, in order
+  // from a to b.
+  void between(ChainPoint a, ChainPoint b, const ProvedCell& cell, int depth) {
     CompileBudget::check();
-    const Vec3 chord = b - a;
-    Vec3 ta = curve::unit_tangent(eq_.jet(a)), tb = curve::unit_tangent(eq_.jet(b));
+    const Vec3 chord = b.x - a.x;
+    Vec3 ta = a.tangent, tb = b.tangent;
     if (dot(ta, chord) < 0.0) ta = -ta;
     if (dot(tb, chord) < 0.0) tb = -tb;
     if (norm(chord) <= settings_.max_step && angle_between(ta, tb) <= settings_.max_turn &&
@@ -247,7 +247,7 @@ class ArcChains {
       return;
     if (depth >= kMaxDepth) return;
     const int k = cell.axis;
-    Vec3 y = 0.5 * (a + b);
+    Vec3 y = 0.5 * (a.x + b.x);
     Vec3 normal{};
     normal[k] = 1.0;
     Vec3 m;
@@ -255,9 +255,10 @@ class ArcChains {
     if (!curve::correct_in_normal_plane(eq_, y, normal, m, iterations) ||
         !cell.box.contains(m, 1e-12 * std::max(1.0, norm(m))))
       return;
-    between(a, m, cell, depth + 1);
-    interior_.push_back(m);
-    between(m, b, cell, depth + 1);
+    const ChainPoint middle = chain_point(m, -1);
+    between(a, middle, cell, depth + 1);
+    chain_.push_back(middle);
+    between(middle, b, cell, depth + 1);
   }
 
   const ImplicitEquations& eq_;
@@ -270,7 +271,6 @@ class ArcChains {
   std::vector<Node> nodes_;
   std::vector<Arc> arcs_;
   std::vector<bool> visited_;
-  std::vector<Vec3> interior_;
   std::vector<ChainPoint> chain_;  // the chain being walked
   ArcPieces pieces_;
 };
