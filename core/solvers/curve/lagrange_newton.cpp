@@ -4,6 +4,7 @@
 
 #include "geometry/dense_solve.hpp"
 #include "geometry/implicit_curve_differentials.hpp"
+#include "geometry/lagrange_step.hpp"
 
 namespace footpoint::curve {
 namespace {
@@ -31,21 +32,16 @@ LocalMinimum lagrange_newton(const ImplicitEquations& equations, Vec3 p, Vec3 x0
   double previous = kInfinity;
   int shortened = 0;
   for (int n = 0; n < control.max_iterations; ++n) {
-    Matrix<5> a{};
-    Vector<5> b{};
-    const Vec3 g = out.x - p + l1 * j.grad[0] + l2 * j.grad[1];
-    for (int r = 0; r < 3; ++r) {
+    Mat3 a;
+    for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c)
         a[r][c] = (r == c ? 1.0 : 0.0) + l1 * j.hess[0][r][c] + l2 * j.hess[1][r][c];
-      a[r][3] = a[3][r] = j.grad[0][r];
-      a[r][4] = a[4][r] = j.grad[1][r];
-      b[r] = -g[r];
-    }
-    b[3] = -j.f[0];
-    b[4] = -j.f[1];
-    if (!dense_solve<5>(a, b)) return out;
-    Vec3 dx{b[0], b[1], b[2]};
-    double dl1 = b[3], dl2 = b[4];
+    LagrangeStep step;
+    if (!lagrange_step(a, j.grad[0], j.grad[1], out.x - p + l1 * j.grad[0] + l2 * j.grad[1], j.f[0], j.f[1],
+                       step))
+      return out;
+    Vec3 dx = step.dx;
+    double dl1 = step.dl1, dl2 = step.dl2;
     const double length = norm(dx);
     if (length > max_step) {
       // A long step leaves the neighbourhood the sample vouches for: shorten it, and give up

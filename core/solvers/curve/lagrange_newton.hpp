@@ -2,8 +2,9 @@
 // min |p - X|^2 / 2 subject to f1(X) = f2(X) = 0,
 //   X - p + l1 grad f1(X) + l2 grad f2(X) = 0,   f1(X) = 0,   f2(X) = 0,
 // with the 5 x 5 Jacobian [[I + l1 F2 + l2 G2, grad f1, grad f2], [grad f1^T, 0, 0],
-// [grad f2^T, 0, 0]] (F2, G2 the exact Hessians). Quadratic convergence from a nearby curve point;
-// the multipliers start at the least-squares solution of p - X = l1 grad f1 + l2 grad f2.
+// [grad f2^T, 0, 0]] (F2, G2 the exact Hessians), each step solved by the null-space method
+// (geometry/lagrange_step.hpp). Quadratic convergence from a nearby curve point; the multipliers
+// start at the least-squares solution of p - X = l1 grad f1 + l2 grad f2.
 #pragma once
 #include "geometry/implicit_curve.hpp"
 #include "solvers/curve/iteration_control.hpp"
