@@ -324,7 +324,9 @@ TEST_CASE("next_up and next_down are the neighbouring doubles") {
   CHECK(next_up(inf) == inf);
   CHECK(next_down(-inf) == -inf);
   CHECK(next_up(-inf) == -std::numeric_limits<double>::max());
+  CHECK(next_down(inf) == std::numeric_limits<double>::max());
   CHECK(std::isnan(next_up(std::numeric_limits<double>::quiet_NaN())));
+  CHECK(std::isnan(next_down(-std::numeric_limits<double>::quiet_NaN())));
 }
 
 TEST_CASE("point enclosures of powers and of the C library's functions hold the long double value") {

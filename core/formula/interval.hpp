@@ -32,11 +32,14 @@ struct Interval {
 
 // The next double above x (the successor), exactly: next_up(+inf) = +inf, next_up(-inf) is the
 // most negative double (a value rounded to -inf by overflow is above -inf), NaN stays NaN.
+// Below +inf the bit pattern of x, read as a signed integer b, is one step from its successor's:
+// b + 1 for x >= +0, b - 1 for x < 0 (the magnitude shrinks), i.e. b + 1 + 2 (b >> 63); x + 0
+// turns -0 into +0, whose successor is the least subnormal. No branch on the sign: products of
+// intervals round bounds of either sign, which a predictor cannot guess.
 inline double next_up(double x) {
   if (!(x < std::numeric_limits<double>::infinity())) return x;  // +inf, NaN
-  if (x == 0.0) return std::numeric_limits<double>::denorm_min();
-  const auto bits = std::bit_cast<std::uint64_t>(x);
-  return std::bit_cast<double>(x > 0.0 ? bits + 1 : bits - 1);
+  const auto bits = std::bit_cast<std::int64_t>(x + 0.0);
+  return std::bit_cast<double>(bits + 1 + 2 * (bits >> 63));
 }
 // The next double below x (the predecessor), exactly.
 inline double next_down(double x) { return -next_up(-x); }
