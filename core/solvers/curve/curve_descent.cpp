@@ -53,6 +53,7 @@ LocalMinimum curve_descent(const ImplicitEquations& equations, Vec3 p, Vec3 x0, 
       const Vec3 tx = unit_tangent(jx);
       Vec3 cx;
       if (norm2(tx) > 0.0 && curvature_vector(jx, cx)) out.second_variation = 1.0 + dot(out.x - p, cx);
+      out.jet = jx;
       out.converged = true;
       return out;
     }

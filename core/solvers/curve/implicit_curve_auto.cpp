@@ -24,6 +24,7 @@ struct Found {
   bool singular = false;     // a singular point found at discovery
   bool met = false;          // its residuals meet the tolerance
   std::int32_t sample = -1;  // the sample it was solved from
+  ImplicitJet jet;           // at x
   Summary residuals;         // at x for p (fill_residuals)
 };
 
@@ -42,10 +43,10 @@ void mark_singular(Summary& s) {
   s.on_boundary = false;
 }
 
-// The residuals of f.x, where a singular point found at discovery is one whatever the angle
-// between the normals says (planar curves: grad f = 0, but grad f2 = e_z).
+// The residuals of f.x from its jets, where a singular point found at discovery is one whatever
+// the angle between the normals says (planar curves: grad f = 0, but grad f2 = e_z).
 void fill_residuals(const ImplicitEquations& equations, const Box3& box, Vec3 p, Found& f) {
-  fill_implicit_residuals(equations, box, p, f.x, f.residuals);
+  fill_implicit_residuals(f.jet, equations.planar(), box, p, f.x, f.residuals);
   if (f.singular) mark_singular(f.residuals);
 }
 
@@ -60,6 +61,7 @@ Found solve_from(const Curve& curve, Vec3 p, std::int32_t i, const IterationCont
   const SampleKind kind = s.kind[static_cast<std::size_t>(i)];
   if (kind == SampleKind::box_face || kind == SampleKind::singular_point) {
     f.x = start;
+    f.jet = curve.equations.jet(start);
     f.distance = start_distance;
     f.valid = true;
     f.singular = kind == SampleKind::singular_point;
@@ -90,6 +92,7 @@ Found solve_from(const Curve& curve, Vec3 p, std::int32_t i, const IterationCont
     return f;  // the crossing stays the answer
   }
   f.x = m.x;
+  f.jet = m.jet;
   f.distance = norm(p - m.x);
   f.iterations = m.iterations;
   f.step = m.step;
@@ -243,6 +246,7 @@ ProjectionResult search(std::span<const DiscoveredCurve* const> factors, const B
     Vec3 x = best.x;
     if (box.contains(best.x, -margin) && refine_foot(best_on->equations, p, x) && box.contains(x, -margin)) {
       best.x = x;
+      best.jet = best_on->equations.jet(x);
       best.distance = norm(p - x);
       fill_residuals(best_on->equations, box, p, best);
     }
@@ -253,7 +257,7 @@ ProjectionResult search(std::span<const DiscoveredCurve* const> factors, const B
     mark_singular(best.residuals);
   }
   r = implicit_result(best_on->equations.planar(), p, best.x, "auto", best.residuals);
-  r.summary.multiplicity = implicit_curve_multiplicity(best_on->equations, p, r, found);
+  r.summary.multiplicity = implicit_curve_multiplicity(best.jet, p, r, found);
   // a continuum of nearest points: the answer stands for all of them, no arbitrary sample
   if (r.summary.multiplicity.kind == Multiplicity::continuum)
     minima.assign(1, {r.foot, r.params, r.distance, r.summary.location});

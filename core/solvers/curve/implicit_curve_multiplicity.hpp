@@ -23,7 +23,8 @@ struct ImplicitMinimum {
   double distance;
 };
 
-AnswerMultiplicity implicit_curve_multiplicity(const ImplicitEquations& equations, Vec3 p,
+// at_answer: the jets at r's foot.
+AnswerMultiplicity implicit_curve_multiplicity(const ImplicitJet& at_answer, Vec3 p,
                                                const ProjectionResult& r,
                                                const std::vector<ImplicitMinimum>& found);
 

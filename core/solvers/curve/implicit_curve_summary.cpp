@@ -21,7 +21,11 @@ std::pair<int, int> face_of(const Box3& box, Vec3 x, bool planar) {
 
 void fill_implicit_residuals(const ImplicitEquations& equations, const Box3& box, Vec3 p, Vec3 x,
                              Summary& summary) {
-  const ImplicitJet j = equations.jet(x);
+  fill_implicit_residuals(equations.jet(x), equations.planar(), box, p, x, summary);
+}
+
+void fill_implicit_residuals(const ImplicitJet& j, bool planar, const Box3& box, Vec3 p, Vec3 x,
+                             Summary& summary) {
   const double n1 = norm(j.grad[0]);
   const double n2 = norm(j.grad[1]);
   summary.equation_residual[0] = n1 > 0.0 ? std::fabs(j.f[0]) / n1 : std::fabs(j.f[0]);
@@ -38,7 +42,7 @@ void fill_implicit_residuals(const ImplicitEquations& equations, const Box3& box
   const Vec3 d = p - x;
   const double denominator = std::max(norm(d), 1e-3 * std::max(1.0, norm(x))) * tn;
   const double along = dot(d, t);  // eq. (7): F(X) = <T, P - X>
-  const auto [axis, side] = face_of(box, x, equations.planar());
+  const auto [axis, side] = face_of(box, x, planar);
   if (axis >= 0 && std::fabs(t[axis]) > 1e-12 * tn) {
     // The curve crosses the face: the admissible direction is the tangent pointing into the box.
     // X is a minimum of the distance on the part in the box when that direction does not lead

@@ -21,6 +21,9 @@ inline constexpr double kSingularSine = 1e-7;
 // measured against max(|p - X|, 1e-3 max(1, |X|)), since the direction p - X is then undefined.
 void fill_implicit_residuals(const ImplicitEquations& equations, const Box3& box, Vec3 p, Vec3 x,
                              Summary& summary);
+// The same from the jets j at x, already evaluated (planar: a planar curve's, which has no z faces).
+void fill_implicit_residuals(const ImplicitJet& j, bool planar, const Box3& box, Vec3 p, Vec3 x,
+                             Summary& summary);
 
 // True when the residuals in `summary` meet the control's tolerance at the point x (the equation
 // residuals relative to max(1, |x|)); `with_orthogonality` false for Algorithm 1, which only aims

@@ -66,6 +66,7 @@ LocalMinimum lagrange_newton(const ImplicitEquations& equations, Vec3 p, Vec3 x0
     }
   }
   if (out.converged) {
+    out.jet = j;
     const Vec3 t = unit_tangent(j);
     // Multipliers at the solution, for the second variation.
     multipliers(j, p - out.x, l1, l2);

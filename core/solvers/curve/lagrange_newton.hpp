@@ -19,6 +19,7 @@ struct LocalMinimum {
   // Second variation of |p - X|^2 / 2 along the unit tangent, T^T (I + l1 F2 + l2 G2) T: a
   // minimum along the curve needs it >= 0.
   double second_variation = 0.0;
+  ImplicitJet jet;  // at x, when converged: the last evaluation, for the residuals and what follows
 };
 
 // From the curve point x0; each step is shortened to at most max_step (the sample spacing: the
