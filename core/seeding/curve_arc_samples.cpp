@@ -58,9 +58,10 @@ class ArcChains {
   };
   struct ChainPoint {
     Vec3 x;
-    int node = -1;   // the arc end it is, or -1 for a sample between ends
-    Vec3 tangent{};  // unit, either orientation
-    bool kept = false;
+    int node = -1;           // the arc end it is, or -1 for a sample between ends
+    Vec3 tangent{};          // unit, either orientation
+    std::int32_t cell = -1;  // the cell of the arc from the chain's previous point to this one
+    bool forced = false;     // kept whatever the thinning says
   };
 
   // Crossings on the box's faces are path ends; the others meet their twin across the face.
@@ -150,8 +151,10 @@ class ArcChains {
       const auto w = static_cast<std::size_t>(arc.from == static_cast<int>(v) ? arc.to : arc.from);
       const ProvedCell& cell = cells_.cells[static_cast<std::size_t>(arc.cell)];
       const ChainPoint end = chain_point(nodes_[w].point, static_cast<int>(w));
+      const std::size_t arc_first = chain_.size();
       between(chain_.back(), end, cell, 0);
       chain_.push_back(end);
+      for (std::size_t i = arc_first; i < chain_.size(); ++i) chain_[i].cell = arc.cell;
       if (w == start && loop) {
         ++pieces_.closed;
         break;
@@ -160,8 +163,7 @@ class ArcChains {
     }
     thin_chain();
     std::int32_t last = -1;
-    for (const ChainPoint& c : chain_) {
-      if (!c.kept) continue;
+    for (const ChainPoint& c : thinned_) {
       const std::int32_t i =
           c.node >= 0 ? sample_of(static_cast<std::size_t>(c.node)) : samples_.add(c.x, SampleKind::regular);
       if (last >= 0) samples_.link(last, i);
@@ -173,22 +175,71 @@ class ArcChains {
   // reaches within max_step while the tangents at both and at every point between stay within
   // max_turn of the chord: the sampling's own criterion (between), over the points it replaces.
   // The crossings of cell faces are points of the chain like the others: small cells need not
-  // mean dense samples. Within max_step of an end next to an unproved box (a singular point) more
-  // are kept (keep_near_end): there the curvature may grow without bound (a cusp), beyond what the
-  // tangents at the points tell, and the distance from p along the last stretch may dip between
-  // them (a minimum that `auto` finds only from a discrete local minimum of its own).
+  // mean dense samples. Where the farthest point in reach falls short of max_step by more than
+  // a tenth and the next one is too far, a point of the curve on the stretch between them is
+  // kept instead, at 0.97 max_step from the last kept (place_on_stretch): the chain's points are
+  // no finer grid of the curve than its cells, and keeping only them would leave chords of about
+  // two thirds of max_step. Within max_step of an end next to an unproved box (a singular point)
+  // more are kept (keep_near_end): there the curvature may grow without bound (a cusp), beyond
+  // what the tangents at the points tell, and the distance from p along the last stretch may dip
+  // between them (a minimum that `auto` finds only from a discrete local minimum of its own).
   void thin_chain() {
     const std::size_t n = chain_.size();
-    for (ChainPoint& c : chain_) c.kept = false;
-    chain_.front().kept = chain_.back().kept = true;
-    std::size_t kept = 0;
-    for (std::size_t x = 2; x < n; ++x)
-      if (!reaches(kept, x)) {
-        kept = x - 1;
-        chain_[kept].kept = true;
-      }
+    for (ChainPoint& c : chain_) c.forced = false;
+    chain_.front().forced = chain_.back().forced = true;
     if (open_end(chain_.front())) keep_near_end(0, 1);
     if (open_end(chain_.back())) keep_near_end(n - 1, -1);
+    thinned_.assign(1, chain_.front());
+    std::size_t first = 1;  // the chain's points after thinned_.back()
+    for (std::size_t x = 1; x < n;) {
+      if (reaches(thinned_.back(), first, x, chain_[x])) {
+        if (chain_[x].forced) {
+          thinned_.push_back(chain_[x]);
+          first = x + 1;
+        }
+        ++x;
+        continue;
+      }
+      if (x == first) {
+        // Not even the next point is in reach (the bisection in between() stopped short).
+        thinned_.push_back(chain_[x]);
+        first = ++x;
+        continue;
+      }
+      ChainPoint m;
+      thinned_.push_back(place_on_stretch(thinned_.back(), first, x, m) ? m : chain_[x - 1]);
+      first = x;
+    }
+  }
+
+  // A point m of the curve on the stretch from chain point x - 1 to x (one arc of one cell) at
+  // about 0.97 max_step from `from`, which the chord from `from` reaches over the chain's points
+  // [first, x - 1]; false when x - 1 is already within a tenth of max_step of that, when x is not
+  // beyond max_step (the turn, not the length, stops the chord), or when the point is not found
+  // inside the stretch.
+  bool place_on_stretch(const ChainPoint& from, std::size_t first, std::size_t x, ChainPoint& m) const {
+    const ChainPoint& a = chain_[x - 1];
+    const ChainPoint& b = chain_[x];
+    const double reach = 0.97 * settings_.max_step;
+    const Vec3 u = a.x - from.x, v = b.x - a.x;
+    if (!(norm(u) < 0.9 * settings_.max_step && norm(u + v) > settings_.max_step) || b.cell < 0) return false;
+    // |u + lambda v| = reach, the root in (0, 1): |u| < reach < |u + v|.
+    const double vv = dot(v, v), uv = dot(u, v);
+    const double lambda = (-uv + std::sqrt(std::fmax(0.0, uv * uv - vv * (dot(u, u) - reach * reach)))) / vv;
+    if (!(lambda > 0.0 && lambda < 1.0)) return false;
+    const ProvedCell& cell = cells_.cells[static_cast<std::size_t>(b.cell)];
+    const int k = cell.axis;
+    Vec3 normal{};
+    normal[k] = 1.0;
+    Vec3 z;
+    int iterations = 0;
+    if (!curve::correct_in_normal_plane(eq_, a.x + lambda * v, normal, z, iterations) ||
+        !cell.box.contains(z, 1e-12 * std::max(1.0, norm(z))) ||
+        !(std::fmin(a.x[k], b.x[k]) < z[k] && z[k] < std::fmax(a.x[k], b.x[k])))
+      return false;
+    m = chain_point(z, -1);
+    m.cell = b.cell;
+    return reaches(from, first, x, m);
   }
 
   // An end of a chain that is no face crossing of the box and no point of a loop.
@@ -211,23 +262,23 @@ class ArcChains {
       const double next = i + step >= 0 && i + step < n ? length + norm(at(i + step) - at(i))
                                                         : std::numeric_limits<double>::infinity();
       if (last == 0.0 || next > 2.0 * last) {
-        chain_[static_cast<std::size_t>(i)].kept = true;
+        chain_[static_cast<std::size_t>(i)].forced = true;
         last = length;
       }
     }
   }
 
-  // True when the chord from chain point a to chain point b stands for the points between them.
-  bool reaches(std::size_t a, std::size_t b) const {
-    const Vec3 chord = chain_[b].x - chain_[a].x;
+  // True when the chord from a to b stands for the chain's points [first, end) between them.
+  bool reaches(const ChainPoint& a, std::size_t first, std::size_t end, const ChainPoint& b) const {
+    const Vec3 chord = b.x - a.x;
     if (!(norm(chord) <= settings_.max_step)) return false;
-    auto along = [&](std::size_t i) {
-      return dot(chain_[i].tangent, chord) < 0.0 ? -chain_[i].tangent : chain_[i].tangent;
-    };
+    auto along = [&](const ChainPoint& c) { return dot(c.tangent, chord) < 0.0 ? -c.tangent : c.tangent; };
     const Vec3 ta = along(a), tb = along(b);
-    if (!(angle_between(ta, tb) <= settings_.max_turn)) return false;
-    for (std::size_t i = a; i <= b; ++i)
-      if (!(angle_between(along(i), chord) <= settings_.max_turn)) return false;
+    if (!(angle_between(ta, tb) <= settings_.max_turn) || !(angle_between(ta, chord) <= settings_.max_turn) ||
+        !(angle_between(tb, chord) <= settings_.max_turn))
+      return false;
+    for (std::size_t i = first; i < end; ++i)
+      if (!(angle_between(along(chain_[i]), chord) <= settings_.max_turn)) return false;
     return true;
   }
 
@@ -271,7 +322,8 @@ class ArcChains {
   std::vector<Node> nodes_;
   std::vector<Arc> arcs_;
   std::vector<bool> visited_;
-  std::vector<ChainPoint> chain_;  // the chain being walked
+  std::vector<ChainPoint> chain_;    // the chain being walked
+  std::vector<ChainPoint> thinned_;  // its points kept, in order
   ArcPieces pieces_;
 };
 

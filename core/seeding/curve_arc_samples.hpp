@@ -14,7 +14,9 @@
 // holds samples: no piece of the curve, however small, is left without them. A chain is then
 // thinned by the same criterion: from each kept point, the farthest point of the chain within
 // max_step whose tangent, and every tangent between, stays within max_turn of the chord is the
-// next kept (the chain's ends are always kept). The subdivision's cells are as small as its
+// next kept (the chain's ends are always kept); where that point falls short of max_step by more
+// than a tenth because the next is too far, a point of the curve placed on the stretch between
+// them at 0.97 max_step is kept instead. The subdivision's cells are as small as its
 // proofs need, which is no measure of how densely `auto` needs samples: without the thinning a
 // curve in many small cells has a sample at every face crossing (two to five times as many).
 // Within max_step of an end next to an unproved box (a singular point), points are kept at path
