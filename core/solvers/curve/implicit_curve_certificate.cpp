@@ -139,22 +139,22 @@ class Certifier {
         return;
       }
       case CellItemKind::proved_cell:
-        if (!arcs_far_enough(static_cast<std::size_t>(it.index)))
-          near_cell(static_cast<std::size_t>(it.index));
+        if (!arcs_far_enough(static_cast<std::size_t>(it.index))) near_cell(it);
         return;
     }
   }
 
   // A proved cell its capsules do not rule out: kept until the walk has met the foot's cell (the
   // first whose box holds the foot point), or bounded at once when there is no room left.
-  void near_cell(std::size_t index) {
-    if (!foot_cell_ && d_.cells.cells[index].box.contains(foot_)) foot_cell_ = &d_.cells.cells[index];
+  void near_cell(const CellItem& it) {
+    const ProvedCell& cell = d_.cells.cells[static_cast<std::size_t>(it.index)];
+    if (!foot_cell_ && cell.box.contains(foot_)) foot_cell_ = &cell;
     if (!near_bounded_ && near_count_ < near_cells_.size()) {
-      near_cells_[near_count_++] = index;
+      near_cells_[near_count_++] = &it;
       return;
     }
     bound_near_cells();
-    proved(index);
+    proved(it);
   }
 
   // The kept cells, after Krawczyk's test over the foot cell's enlarged box, which may settle
@@ -166,7 +166,7 @@ class Certifier {
       foot_cell_edge_ = foot_cell_->box.max_edge();
       foot_enlarged();
     }
-    for (std::size_t i = 0; i < near_count_; ++i) proved(near_cells_[i]);
+    for (std::size_t i = 0; i < near_count_; ++i) proved(*near_cells_[i]);
   }
 
   IVec3 from_p(const Box3& b) const { return ivec::sub(ivec::of_point(p_), ivec::of_box(b)); }
@@ -220,15 +220,18 @@ class Certifier {
   }
 
   // Every zero of G in `box` lies in the returned box (empty: none), by Krawczyk's test about m.
-  // False when the test does not contract (‖I - Y G'‖ >= 1).
+  // False when the test does not contract (‖I - Y G'‖ >= 1, then written to *contraction).
   bool zeros_about(const Box3& box, Vec3 m, const IntervalVector<3>& gm, const IntervalMatrix<3>& jac,
-                   Box3& zeros) {
+                   Box3& zeros, double* contraction = nullptr) {
     const KrawczykResult<3> k = krawczyk<3>(as_vector(ivec::of_box(box)), {m.x, m.y, m.z}, gm, jac);
     if (k.verdict == KrawczykVerdict::no_zero) {
       zeros = {{1, 1, 1}, {0, 0, 0}};
       return true;
     }
-    if (!(k.contraction < 1.0)) return false;
+    if (!(k.contraction < 1.0)) {
+      if (contraction) *contraction = k.contraction;
+      return false;
+    }
     zeros = around(m, k.radius, box);
     return true;
   }
@@ -261,14 +264,20 @@ class Certifier {
   }
 
   // The box about the foot point in which Krawczyk's test with fresh interval jets proved every
-  // zero of G to lie within a few ulps of the foot: radius half the edge of the foot's cell, halved
-  // while the test does not contract (computed once per point, when first needed).
+  // zero of G to lie within a few ulps of the foot (computed once per point, when first needed).
+  // Its radius is half the edge of the foot's cell, halved while the test does not contract; where
+  // the test over the foot cell's enlarged box (2 edges wide) found ‖I - Y J‖ = c >= 1, the first
+  // radius is 0.9 / c edges instead (at most one edge): c grows about in proportion to the box's
+  // width, and the widest box that contracts settles the most of the cells next to the foot.
   bool foot_box() {
     if (!foot_box_tried_) {
       foot_box_tried_ = true;
       IntervalVector<3> g{};
+      const double first = enlarged_contraction_ >= 1.0 && enlarged_contraction_ < 16.0
+                               ? std::fmin(1.0, 0.9 / enlarged_contraction_)
+                               : 0.5;
       if (foot_cell_edge_ > 0.0 && foot_values(g))
-        for (double radius = 0.5 * foot_cell_edge_; radius >= 0.06 * foot_cell_edge_ && !foot_box_ok_;
+        for (double radius = first * foot_cell_edge_; radius >= 0.06 * foot_cell_edge_ && !foot_box_ok_;
              radius *= 0.5) {
           const Box3 b = around(foot_, radius, box_);
           ++boxes_;
@@ -307,7 +316,7 @@ class Certifier {
     const IntervalMatrix<3> jac =
         jacobian(e.grad, gradient_of_f(e.tangent, e.tangent_derivatives, from_p(e.box)));
     Box3 zeros;
-    if (!zeros_about(e.box, foot_, g, jac, zeros)) return;
+    if (!zeros_about(e.box, foot_, g, jac, zeros, &enlarged_contraction_)) return;
     foot_region_ = e.box;
     foot_region_zeros_ = tightened(zeros);
     foot_region_ok_ = true;
@@ -366,13 +375,16 @@ class Certifier {
     return true;
   }
 
-  void proved(std::size_t index) {
+  // A proved cell (its item: the cell and the part of it its arcs' capsules reach).
+  void proved(const CellItem& it) {
+    const auto index = static_cast<std::size_t>(it.index);
     const ProvedCell& cell = d_.cells.cells[index];
     const CellBounds& b = cell.bounds;
-    // Inside the foot's region every zero of G is the foot point's, whose box is all there is to
-    // bound (the box comparison first: cheaper than F's range).
-    if (foot_region_ok_ && foot_region_.contains(cell.box))
-      return contribute_zeros(intersection(foot_region_zeros_, cell.box));
+    // Where the foot's region holds every arc of the cell, every zero of G there is the foot
+    // point's, whose box is all there is to bound (the box comparison first: cheaper than F's
+    // range).
+    if (foot_region_ok_ && foot_region_.contains(it.box))
+      return contribute_zeros(intersection(foot_region_zeros_, it.box));
     const IVec3 pb = from_p(cell.box);
     if (ivec::dot(b.tangent, pb).excludes_zero()) return;
     const IVec3 offset = ivec::sub(ivec::of_box(cell.box), ivec::of_point(b.center));
@@ -380,6 +392,9 @@ class Certifier {
     const Interval f_center = ivec::dot(b.tangent_center, from_p({b.center, b.center}));
     if (iv::add(f_center, ivec::dot(grad_f, offset)).excludes_zero()) return;
     if (enlarged(cell, f_center)) return;
+    // Without a foot region, the foot box may hold every arc of the cell.
+    if (!foot_region_ok_ && foot_box() && foot_box_.contains(it.box))
+      return contribute_zeros(intersection(foot_zeros_, it.box));
     const IntervalMatrix<3> jac = jacobian(b.grad, grad_f);
     IntervalVector<3> g{};
     Box3 zeros = cell.box;
@@ -388,7 +403,7 @@ class Certifier {
       if (zeros_about(cell.box, foot_, g, jac, zeros)) return contribute_zeros(tightened(zeros));
     } else if (zeros_about(cell.box, b.center, {b.f_center[0], b.f_center[1], f_center}, jac, zeros)) {
       if (zeros.empty() || distance_lower_bound(p_, zeros) >= threshold_) return contribute_zeros(zeros);
-      if (foot_box() && foot_box_.contains(zeros)) return contribute_zeros(foot_zeros_);
+      if (foot_box() && foot_box_.contains(intersection(zeros, it.box))) return contribute_zeros(foot_zeros_);
       // A critical point of its own (a farther local minimum, a maximum): about its Newton point,
       // enclosed by fresh interval jets, the box shrinks to rounding.
       Vec3 x = zeros.center();
@@ -566,8 +581,9 @@ class Certifier {
   bool foot_box_tried_ = false, foot_box_ok_ = false;
   Box3 foot_box_, foot_zeros_;
   double foot_cell_edge_ = 0.0;
-  const ProvedCell* foot_cell_ = nullptr;   // a proved cell holding the foot point, if one is near
-  std::array<std::size_t, 64> near_cells_;  // [0, near_count_) written before read
+  double enlarged_contraction_ = 0.0;           // ‖I - Y J‖ over the foot cell's enlarged box, where >= 1
+  const ProvedCell* foot_cell_ = nullptr;       // a proved cell holding the foot point, if one is near
+  std::array<const CellItem*, 64> near_cells_;  // [0, near_count_) written before read
   std::size_t near_count_ = 0;
   bool near_bounded_ = false;
   bool foot_region_ok_ = false;
