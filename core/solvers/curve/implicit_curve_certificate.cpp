@@ -391,7 +391,9 @@ class Certifier {
     const IVec3 grad_f = gradient_of_f(b.tangent, b.tangent_derivatives, pb);
     const Interval f_center = ivec::dot(b.tangent_center, from_p({b.center, b.center}));
     if (iv::add(f_center, ivec::dot(grad_f, offset)).excludes_zero()) return;
-    if (enlarged(cell, f_center)) return;
+    // The foot cell's own enlarged test is foot_enlarged()'s, which settled the cell above or
+    // failed.
+    if (&cell != foot_cell_ && enlarged(cell, f_center)) return;
     // Without a foot region, the foot box may hold every arc of the cell.
     if (!foot_region_ok_ && foot_box() && foot_box_.contains(it.box))
       return contribute_zeros(intersection(foot_zeros_, it.box));
