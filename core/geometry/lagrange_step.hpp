@@ -15,8 +15,9 @@
 // a 5 x 5 Gaussian elimination (geometry/dense_solve.hpp) costs several times more, most of it in
 // its data-dependent branches. The system is singular exactly where t = 0 (parallel gradients:
 // a singular point of the curve) or t.A t = 0 (a degenerate second variation along the curve);
-// the step is refused where either is below 64 eps of its scale (as dense_solve's pivots) or the
-// result is not finite.
+// the step is refused where either is below 64 eps of its scale (|t| against |g1| |g2|, t.A t
+// against max |A_ij| |t|^2: the tolerance dense_solve uses for its pivots, taken relative to
+// each) or the result is not finite.
 #pragma once
 #include <algorithm>
 #include <cmath>

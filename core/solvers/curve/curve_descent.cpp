@@ -49,7 +49,7 @@ LocalMinimum curve_descent(const ImplicitEquations& equations, Vec3 p, Vec3 x0, 
     out.iterations = n + 1;
     if (!moved) out.step = 0.0;
     if (!moved || control.stop(out.step, norm(out.x), previous)) {
-      const ImplicitJet jx = equations.jet(out.x);
+      const ImplicitJet jx = moved ? equations.jet(out.x) : j;  // not moved: this iteration's
       const Vec3 tx = unit_tangent(jx);
       Vec3 cx;
       if (norm2(tx) > 0.0 && curvature_vector(jx, cx)) out.second_variation = 1.0 + dot(out.x - p, cx);
