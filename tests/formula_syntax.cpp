@@ -105,6 +105,9 @@ TEST_CASE("each fault: its kind, its character position, its suggestion, in our 
       {"1e", K::syntax, 0, "", "number '1e' at position 0 has an exponent without digits"},
       {"u+2e+v", K::syntax, 2, "", ""},
       {"u+1e400", K::syntax, 2, "", "beyond the largest double"},
+      // exponents beyond a long: their sign still decides (a fuzzer's input overflowed the sum)
+      {"u+1e9223372036854775807", K::syntax, 2, "", "beyond the largest double"},
+      {"u+10e99999999999999999999", K::syntax, 2, "", "beyond the largest double"},
       {"1.5.3", K::syntax, 3, "", ""},
       {"u.v", K::syntax, 1, "", ""},
   };
@@ -126,14 +129,15 @@ TEST_CASE("each fault: its kind, its character position, its suggestion, in our 
 
 TEST_CASE("what the reader accepts compiles to what the formula says") {
   const std::vector<std::pair<std::string, double>> cases = {
-      {"sin (u)", std::sin(0.5)},  // a space before a call's '(' is allowed
-      {"min ( u , v , 1 )", 0.5},  // and anywhere between tokens
-      {"u?v?1:2:3", 1.0},          // nested conditionals
-      {"-u^2", -0.25},             // ^ binds tighter than the sign
-      {"2^-1", 0.5},               // a sign after an operator
-      {"u--v", 1.0},               // a binary and a unary minus
-      {"1e-400+u", 0.5},           // below the smallest double: 0, as muparser reads it
-      {".5+5.+1.e1", 15.5},        // number forms
+      {"sin (u)", std::sin(0.5)},          // a space before a call's '(' is allowed
+      {"min ( u , v , 1 )", 0.5},          // and anywhere between tokens
+      {"u?v?1:2:3", 1.0},                  // nested conditionals
+      {"-u^2", -0.25},                     // ^ binds tighter than the sign
+      {"2^-1", 0.5},                       // a sign after an operator
+      {"u--v", 1.0},                       // a binary and a unary minus
+      {"1e-400+u", 0.5},                   // below the smallest double: 0, as muparser reads it
+      {"1e-99999999999999999999+u", 0.5},  // an exponent beyond a long, too
+      {".5+5.+1.e1", 15.5},                // number forms
       {"_pi-_e", std::numbers::pi - std::numbers::e},
       {"log(_e)", 1.0},              // natural logarithm
       {"u<v || u>=v && u==v", 1.0},  // comparisons and logic (&& before ||)

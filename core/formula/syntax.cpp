@@ -320,9 +320,15 @@ class Reader {
     }
     const auto mark = text_.find_first_of("eE", i);
     if (mark != std::string::npos && mark < e) {
+      // The written exponent saturates at ±10^9, beyond any double's and any formula's digits:
+      // one too long for a long (from_chars: out of range) keeps its sign, and the sum cannot
+      // overflow.
+      constexpr long kSaturated = 1000000000;
+      const char* first = text_.data() + mark + 1 + (text_[mark + 1] == '+');
       long written = 0;
-      std::from_chars(text_.data() + mark + 1 + (text_[mark + 1] == '+'), text_.data() + e, written);
-      exponent += written;
+      if (std::from_chars(first, text_.data() + e, written).ec == std::errc::result_out_of_range)
+        written = *first == '-' ? -kSaturated : kSaturated;
+      exponent += std::clamp(written, -kSaturated, kSaturated);
     }
     return exponent > 0;
   }
