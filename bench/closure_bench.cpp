@@ -1,5 +1,5 @@
-// The closure checks (geometry/surface_closure.hpp, geometry/curve_closure.hpp) per geometry:
-// medians of the thread's CPU time of one detection, beside the time of compiling the whole
+// The closure checks (parametric/geometry/surface_closure.hpp, parametric/geometry/curve_closure.hpp) per
+// geometry: medians of the thread's CPU time of one detection, beside the time of compiling the whole
 // geometry (which includes it). Target: well under 1 ms for the papers' surfaces.
 #include <algorithm>
 #include <cstdio>
@@ -8,8 +8,8 @@
 
 #include "compiled/compiled_geometry.hpp"
 #include "cpu_time.hpp"
-#include "geometry/curve_closure.hpp"
-#include "geometry/surface_closure.hpp"
+#include "parametric/geometry/curve_closure.hpp"
+#include "parametric/geometry/surface_closure.hpp"
 
 using namespace footpoint;
 

@@ -25,9 +25,9 @@ import tempfile
 # Bottom to top: a layer and the folders (relative to the source directory) it is made of.
 LAYERS = [
     ("formula", ["core/formula"]),
-    ("geometry", ["core/geometry"]),
-    ("seeding", ["core/seeding"]),
-    ("solvers", ["core/solvers"]),
+    ("geometry", ["core/geometry", "core/parametric/geometry", "core/implicit/geometry"]),
+    ("seeding", ["core/seeding", "core/parametric/seeding", "core/implicit/seeding"]),
+    ("solvers", ["core/solvers", "core/parametric/solvers", "core/implicit/solvers"]),
     ("compiled", ["core/compiled"]),
     ("batch/cache/mesh", ["core/batch", "core/cache", "core/mesh"]),
     ("server", ["server"]),
@@ -148,11 +148,11 @@ def self_test(root, libraries):
         ok &= report("self-test: the copied tree is clean", check_includes(tmp))
         plants = [
             # (file, line to add, what the finding must say)
-            ("core/seeding/curve_cells.hpp", '#include "solvers/curve/implicit_curve_auto.hpp"\n',
+            ("core/implicit/seeding/curve_cells.hpp", '#include "implicit/solvers/implicit_curve_auto.hpp"\n',
              "seeding includes"),
             ("core/geometry/vec.hpp", '#include "compiled/compiled_geometry.hpp"\n', "geometry includes"),
             ("core/batch/batch.cpp", '#include "api.hpp"\n', "batch/cache/mesh includes"),
-            ("core/solvers/surface/gsa.cpp", "#include <nlohmann/json.hpp>\n", "belongs to server only"),
+            ("core/parametric/solvers/gsa.cpp", "#include <nlohmann/json.hpp>\n", "belongs to server only"),
         ]
         for file, line, expected in plants:
             path = os.path.join(tmp, file)

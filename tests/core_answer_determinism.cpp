@@ -1,6 +1,6 @@
 // An answer depends on the geometry, the point and the options only: not on the points projected
 // before it, their order, or the threads of a batch. Surface auto keeps sub-boxes its certificates
-// bounded for later points (seeding/surface_refinement.hpp) and picks one parameter copy of a foot
+// bounded for later points (parametric/seeding/surface_refinement.hpp) and picks one parameter copy of a foot
 // on a self-covering parametrisation: both must leave every answer as it would be alone. On the
 // [GSA] Example 1 surface over [-25,25]^2 (it covers itself ~16 times), in order, in reverse order
 // and as a batch on two threads, each on a fresh compile: the same foot, parameters, distance and

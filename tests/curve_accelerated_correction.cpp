@@ -1,11 +1,11 @@
-// solvers/curve/accelerated_correction: the Newton steps of [Curve] eqs. (19)-(20) in closed form on
+// implicit/solvers/accelerated_correction: the Newton steps of [Curve] eqs. (19)-(20) in closed form on
 // the circle of implicit_fixtures.hpp, and Algorithm 3 converging from a curve point to the foot point.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
+#include "implicit/solvers/accelerated_correction.hpp"
 #include "implicit_fixtures.hpp"
-#include "solvers/curve/accelerated_correction.hpp"
 
 using namespace footpoint;
 using namespace footpoint::test;

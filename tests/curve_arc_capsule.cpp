@@ -1,4 +1,4 @@
-// The capsules that bound the arcs of proved cells (seeding/curve_cell_proof: ArcCapsule) and the
+// The capsules that bound the arcs of proved cells (implicit/seeding/curve_cell_proof: ArcCapsule) and the
 // rigorous distance to a segment they are measured with (geometry/segment_distance): the segment
 // distance against closed forms and a long double evaluation; every capsule holding its arc,
 // against the parametrisations of Viviani's curve and of an ellipse, sampled densely through every
@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "geometry/segment_distance.hpp"
+#include "implicit/seeding/curve_discovery.hpp"
 #include "implicit_fixtures.hpp"
-#include "seeding/curve_discovery.hpp"
 
 using namespace footpoint;
 using namespace footpoint::test;

@@ -1,9 +1,9 @@
-// solvers/curve/auto_result: how the curve searches keep distinct minima and finish their answer.
+// solvers/auto_result: how the curve searches keep distinct minima and finish their answer.
 #include <doctest/doctest.h>
 
 #include <vector>
 
-#include "solvers/curve/auto_result.hpp"
+#include "solvers/auto_result.hpp"
 
 using namespace footpoint;
 

@@ -1,4 +1,4 @@
-// seeding/curve_cell_proof: what one cell holds, against the closed forms of the circle, two
+// implicit/seeding/curve_cell_proof: what one cell holds, against the closed forms of the circle, two
 // circles 1e-3 apart and the lemniscate: one monotone arc with its two ends on the faces, two
 // arcs in one cell, empty cells (by an equation's range, or by no crossing at all), and no proof
 // at a singular point (T = 0) or where the enclosures are looser than asked.
@@ -6,8 +6,8 @@
 
 #include <cmath>
 
+#include "implicit/seeding/curve_cell_proof.hpp"
 #include "implicit_fixtures.hpp"
-#include "seeding/curve_cell_proof.hpp"
 
 using namespace footpoint;
 using namespace footpoint::test;

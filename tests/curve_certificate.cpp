@@ -1,4 +1,4 @@
-// The certificates of `auto` on implicit curves (solvers/curve/implicit_curve_certificate) against
+// The certificates of `auto` on implicit curves (implicit/solvers/implicit_curve_certificate) against
 // a dense brute force over a parametrisation of each reference curve (the classes of issue 16:
 // tiny ovals and loops in 2-D and 3-D at a grid corner, on a cell's edge and at a cell's centre,
 // a tacnode, a cusp, nodes, circles 1e-3 apart, nearly tangent spheres; and Viviani's curve, an
@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "compiled/implicit_curve_geometry.hpp"
-#include "solvers/curve/implicit_curve_certificate.hpp"
+#include "implicit/solvers/implicit_curve_certificate.hpp"
 #include "sweep_length.hpp"
 
 using namespace footpoint;

@@ -1,12 +1,12 @@
-// solvers/curve/curve_descent, implicit `auto`'s fallback: a monotone descent of the distance along
+// implicit/solvers/curve_descent, implicit `auto`'s fallback: a monotone descent of the distance along
 // the circle of implicit_fixtures.hpp, from the far side of the circle to its nearest point.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <vector>
 
+#include "implicit/solvers/curve_descent.hpp"
 #include "implicit_fixtures.hpp"
-#include "solvers/curve/curve_descent.hpp"
 
 using namespace footpoint;
 using namespace footpoint::test;

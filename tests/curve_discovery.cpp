@@ -1,4 +1,4 @@
-// What `auto` precomputes for implicit curves (seeding/curve_discovery): the pieces, box-face
+// What `auto` precomputes for implicit curves (implicit/seeding/curve_discovery): the pieces, box-face
 // crossings and singular points found, against the oracle's (tests/data/curve_*_cases.json,
 // curve_info), and the sample spacing that the global search relies on.
 #include <doctest/doctest.h>
@@ -11,8 +11,8 @@
 #include <string>
 
 #include "compiled/implicit_curve_geometry.hpp"
+#include "implicit/seeding/curve_enclosure.hpp"
 #include "implicit_fixtures.hpp"
-#include "seeding/curve_enclosure.hpp"
 
 using namespace footpoint;
 using nlohmann::json;

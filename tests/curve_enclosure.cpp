@@ -1,4 +1,4 @@
-// seeding/curve_enclosure: the interval enclosure keeps every cell that holds a point of the curve
+// implicit/seeding/curve_enclosure: the interval enclosure keeps every cell that holds a point of the curve
 // (checked against the curve's points in closed form) and drops cells the curve stays away from.
 #include <doctest/doctest.h>
 
@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "geometry/geometry_error.hpp"
+#include "implicit/seeding/curve_cells.hpp"
+#include "implicit/seeding/curve_enclosure.hpp"
 #include "implicit_fixtures.hpp"
-#include "seeding/curve_cells.hpp"
-#include "seeding/curve_enclosure.hpp"
 
 using namespace footpoint;
 using namespace footpoint::test;

@@ -1,12 +1,12 @@
-// seeding/face_crossings: the points of a curve on a face of a cell, each alone in a small box,
+// implicit/seeding/face_crossings: the points of a curve on a face of a cell, each alone in a small box,
 // against closed forms: the unit circle on vertical faces (one point, two points, none), a curve
 // touching the face (undecided), a spatial circle crossing a face; the cache answers a face once.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
+#include "implicit/seeding/face_crossings.hpp"
 #include "implicit_fixtures.hpp"
-#include "seeding/face_crossings.hpp"
 
 using namespace footpoint;
 using namespace footpoint::test;

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "compiled/implicit_curve_geometry.hpp"
+#include "implicit/solvers/implicit_curve_certificate.hpp"
 #include "implicit_fixtures.hpp"
-#include "solvers/curve/implicit_curve_certificate.hpp"
 
 using namespace footpoint;
 

@@ -1,12 +1,12 @@
-// solvers/curve/foot_point_march: [Curve] Algorithm 2's foot point Q in closed form, and the march
+// implicit/solvers/foot_point_march: [Curve] Algorithm 2's foot point Q in closed form, and the march
 // that alternates it with Algorithm 1, on the circle of implicit_fixtures.hpp.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <vector>
 
+#include "implicit/solvers/foot_point_march.hpp"
 #include "implicit_fixtures.hpp"
-#include "solvers/curve/foot_point_march.hpp"
 
 using namespace footpoint;
 using namespace footpoint::test;

@@ -1,4 +1,4 @@
-// Foot points on a curve cut by two nearly tangent surfaces (solvers/curve/foot_refinement.hpp,
+// Foot points on a curve cut by two nearly tangent surfaces (implicit/solvers/foot_refinement.hpp,
 // the certificate's accurate values at the foot): two unit spheres whose centres are 1.9999
 // apart meet at ~0.01 rad in a circle of radius ~0.01. Within 0.05 of it, `auto`'s distance
 // against the closed form (the circle in the plane x = 1.9999 / 2, long double), to 1e-15 where
@@ -8,8 +8,8 @@
 #include <cmath>
 #include <random>
 
+#include "implicit/solvers/foot_refinement.hpp"
 #include "implicit_fixtures.hpp"
-#include "solvers/curve/foot_refinement.hpp"
 
 using namespace footpoint;
 

@@ -1,11 +1,11 @@
-// solvers/curve/implicit_curve_summary: the residuals and location of a foot point on an implicit
+// implicit/solvers/implicit_curve_summary: the residuals and location of a foot point on an implicit
 // curve, at an interior point, where the curve crosses a face of the box, and at a singular point.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
+#include "implicit/solvers/implicit_curve_summary.hpp"
 #include "implicit_fixtures.hpp"
-#include "solvers/curve/implicit_curve_summary.hpp"
 
 using namespace footpoint;
 using namespace footpoint::test;

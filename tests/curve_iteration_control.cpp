@@ -1,10 +1,10 @@
-// solvers/curve/iteration_control: how a step is classified (converged, at the rounding floor,
+// solvers/iteration_control: how a step is classified (converged, at the rounding floor,
 // running) and how Options become a control.
 #include <doctest/doctest.h>
 
 #include <vector>
 
-#include "solvers/curve/iteration_control.hpp"
+#include "solvers/iteration_control.hpp"
 
 using namespace footpoint;
 using curve::IterationControl;

@@ -1,4 +1,4 @@
-// solvers/curve/lagrange_newton, the local solver of implicit `auto`, on a circle whose foot points
+// implicit/solvers/lagrange_newton, the local solver of implicit `auto`, on a circle whose foot points
 // are known in closed form: Newton on the Lagrange system converges to the stationary point next to
 // its start (the nearest point, or the farthest with a negative second variation).
 #include <doctest/doctest.h>
@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "implicit/solvers/lagrange_newton.hpp"
 #include "implicit_fixtures.hpp"
-#include "solvers/curve/lagrange_newton.hpp"
 
 using namespace footpoint;
 using namespace footpoint::test;

@@ -1,4 +1,4 @@
-// solvers/curve/paper_iteration: the loop of the spatial-curve paper's methods and the result it
+// implicit/solvers/paper_iteration: the loop of the spatial-curve paper's methods and the result it
 // ends in, driven by maps whose behaviour is known (a contraction to a chosen point, a blow-up, a
 // NaN, no step), on the circle of implicit_fixtures.hpp.
 #include <doctest/doctest.h>
@@ -8,8 +8,8 @@
 #include <optional>
 #include <vector>
 
+#include "implicit/solvers/paper_iteration.hpp"
 #include "implicit_fixtures.hpp"
-#include "solvers/curve/paper_iteration.hpp"
 
 using namespace footpoint;
 using namespace footpoint::test;

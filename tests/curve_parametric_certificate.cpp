@@ -1,4 +1,4 @@
-// The certificate of a parametric curve's answer (solvers/curve/parametric_curve_certificate.hpp):
+// The certificate of a parametric curve's answer (parametric/solvers/parametric_curve_certificate.hpp):
 //  - an answer given as it is (a local method's with options.certify): a local minimum that is
 //    not the global one is never certified and is refuted by a nearer point; the global one is
 //    certified - on a helix, whose windings give many local minima;
@@ -12,7 +12,7 @@
 
 #include "compiled/compiled_geometry.hpp"
 #include "compiled/parametric_curve_geometry.hpp"
-#include "solvers/curve/parametric_curve_certificate.hpp"
+#include "parametric/solvers/parametric_curve_certificate.hpp"
 
 using namespace footpoint;
 

@@ -1,4 +1,4 @@
-// solvers/curve/parametric_curve_summary: the residuals and location of a foot point on a
+// parametric/solvers/parametric_curve_summary: the residuals and location of a foot point on a
 // parametric curve, the first-order conditions at the ends of the interval, and the local methods'
 // start.
 #include <doctest/doctest.h>
@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "formula/program.hpp"
-#include "seeding/curve_parametric_samples.hpp"
-#include "solvers/curve/parametric_curve_summary.hpp"
+#include "parametric/seeding/curve_parametric_samples.hpp"
+#include "parametric/solvers/parametric_curve_summary.hpp"
 
 using namespace footpoint;
 

@@ -1,4 +1,4 @@
-// solvers/curve/parametric_newton and parametric_iteration: Newton on <c - p, c'> = 0, the shared
+// parametric/solvers/parametric_newton and parametric_iteration: Newton on <c - p, c'> = 0, the shared
 // loop's stopping rules, and the bracketed Newton of `auto`, against roots known in closed form or
 // computed with mpmath (50 digits).
 #include <doctest/doctest.h>
@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "formula/program.hpp"
-#include "seeding/curve_parametric_samples.hpp"
-#include "solvers/curve/parametric_iteration.hpp"
-#include "solvers/curve/parametric_newton.hpp"
+#include "parametric/seeding/curve_parametric_samples.hpp"
+#include "parametric/solvers/parametric_iteration.hpp"
+#include "parametric/solvers/parametric_newton.hpp"
 
 using namespace footpoint;
 

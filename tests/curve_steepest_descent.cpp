@@ -1,12 +1,12 @@
-// solvers/curve/steepest_descent: [Curve] Algorithm 1, eq. (9), lands a point near the curve on it
+// implicit/solvers/steepest_descent: [Curve] Algorithm 1, eq. (9), lands a point near the curve on it
 // (it does not look for the foot point), and stops where the formulas stop being finite.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <vector>
 
+#include "implicit/solvers/steepest_descent.hpp"
 #include "implicit_fixtures.hpp"
-#include "solvers/curve/steepest_descent.hpp"
 
 using namespace footpoint;
 using namespace footpoint::test;

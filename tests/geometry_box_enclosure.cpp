@@ -1,4 +1,4 @@
-// The enclosures of a surface over a sub-box (geometry/box_enclosure.hpp) that the certificates'
+// The enclosures of a surface over a sub-box (parametric/geometry/box_enclosure.hpp) that the certificates'
 // refinement keeps: the interval enclosure, the one derived from an ancestor's second derivatives,
 // and their intersection, against dense sampling of the sub-box. Where the ancestor is not smooth
 // (a kink of abs inside it) nothing can be derived: the derived enclosure holds nothing and the
@@ -9,8 +9,8 @@
 #include <cmath>
 #include <random>
 
-#include "geometry/box_enclosure.hpp"
-#include "geometry/parametric_surface.hpp"
+#include "parametric/geometry/box_enclosure.hpp"
+#include "parametric/geometry/parametric_surface.hpp"
 
 using namespace footpoint;
 

@@ -1,4 +1,4 @@
-// minimize_on_box (geometry/box_quadratic.hpp): the exact minimum of a 2-D quadratic over a
+// minimize_on_box (parametric/geometry/box_quadratic.hpp): the exact minimum of a 2-D quadratic over a
 // rectangle (for a positive definite one only the edges its minimiser is beyond are tried),
 // against a dense grid of the rectangle, for positive definite, indefinite and singular H.
 #include <doctest/doctest.h>
@@ -8,7 +8,7 @@
 #include <limits>
 #include <random>
 
-#include "geometry/box_quadratic.hpp"
+#include "parametric/geometry/box_quadratic.hpp"
 
 using namespace footpoint;
 

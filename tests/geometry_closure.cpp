@@ -1,5 +1,5 @@
-// geometry/surface_closure and geometry/curve_closure: seams and poles of surfaces, closed curves.
-// The references are what each shape is in closed form: a torus closes both ways, a sphere's
+// parametric/geometry/surface_closure and parametric/geometry/curve_closure: seams and poles of surfaces,
+// closed curves. The references are what each shape is in closed form: a torus closes both ways, a sphere's
 // longitude closes and its latitude ends in two poles, a cylinder closes one way with two
 // boundary circles, a cone's apex is a pole, a Möbius band closes with its width reversed, a
 // teardrop's profile closes with a crease; a plane and the papers' surfaces do not close, and edges
@@ -10,9 +10,9 @@
 #include <numbers>
 #include <string>
 
-#include "geometry/curve_closure.hpp"
 #include "geometry/geometry_error.hpp"
-#include "geometry/surface_closure.hpp"
+#include "parametric/geometry/curve_closure.hpp"
+#include "parametric/geometry/surface_closure.hpp"
 
 using namespace footpoint;
 

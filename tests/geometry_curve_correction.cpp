@@ -1,10 +1,10 @@
-// geometry/curve_correction: Newton onto an implicit curve (minimum norm, in a normal plane, onto a
+// implicit/geometry/curve_correction: Newton onto an implicit curve (minimum norm, in a normal plane, onto a
 // face of the box), on a circle whose points in closed form are the references.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
-#include "geometry/curve_correction.hpp"
+#include "implicit/geometry/curve_correction.hpp"
 #include "implicit_fixtures.hpp"
 
 using namespace footpoint;

@@ -1,4 +1,4 @@
-// The distance bounds (geometry/distance_bound.hpp) over parameter boxes of surfaces and curves,
+// The distance bounds (parametric/geometry/distance_bound.hpp) over parameter boxes of surfaces and curves,
 // against dense sampling of the same boxes: every lower bound is at most the least sampled value
 // (the true minimum lies between the two); the Hessian bound is at most the smallest eigenvalue
 // of the point Hessian anywhere sampled; and the bound from the minimiser itself, where the box
@@ -10,9 +10,9 @@
 #include <random>
 #include <string>
 
-#include "geometry/distance_bound.hpp"
-#include "geometry/parametric_curve.hpp"
-#include "geometry/parametric_surface.hpp"
+#include "parametric/geometry/distance_bound.hpp"
+#include "parametric/geometry/parametric_curve.hpp"
+#include "parametric/geometry/parametric_surface.hpp"
 
 using namespace footpoint;
 

@@ -1,4 +1,4 @@
-// geometry/implicit_curve: the enclosures of the equations over boxes hold the point jets (values,
+// implicit/geometry/implicit_curve: the enclosures of the equations over boxes hold the point jets (values,
 // gradients, Hessians) at points of the box; interval_gradient gives the same values and gradients
 // without Hessians; planar curves carry f2 = z exactly; the tangent's enclosure and its
 // derivatives hold those of T = ∇f1 × ∇f2 at points of the box.
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "geometry/implicit_curve.hpp"
+#include "implicit/geometry/implicit_curve.hpp"
 #include "implicit_fixtures.hpp"
 
 using namespace footpoint;

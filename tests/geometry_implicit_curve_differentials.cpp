@@ -1,11 +1,11 @@
-// geometry/implicit_curve_differentials: the tangent, the curvature vector of [Curve] eq. (16) and
+// implicit/geometry/implicit_curve_differentials: the tangent, the curvature vector of [Curve] eq. (16) and
 // the orthogonality function F of eq. (7) with its gradient, on a circle where all three are known
 // in closed form, and at a singular point where they are not defined.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
-#include "geometry/implicit_curve_differentials.hpp"
+#include "implicit/geometry/implicit_curve_differentials.hpp"
 #include "implicit_fixtures.hpp"
 
 using namespace footpoint;

@@ -1,4 +1,4 @@
-// geometry/lagrange_step: the null-space solve of the 5 x 5 Lagrange system against systems whose
+// implicit/geometry/lagrange_step: the null-space solve of the 5 x 5 Lagrange system against systems whose
 // solutions are known exactly, against Gaussian elimination of the whole system (an independent
 // solve) on random well-conditioned systems, and the systems it must refuse.
 #include <doctest/doctest.h>
@@ -8,7 +8,7 @@
 #include <random>
 
 #include "geometry/dense_solve.hpp"
-#include "geometry/lagrange_step.hpp"
+#include "implicit/geometry/lagrange_step.hpp"
 
 using namespace footpoint;
 

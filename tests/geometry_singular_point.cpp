@@ -1,11 +1,11 @@
-// geometry/singular_point: Newton on grad f1 = mu grad f2, f2 = 0 refines a start near a singular
+// implicit/geometry/singular_point: Newton on grad f1 = mu grad f2, f2 = 0 refines a start near a singular
 // point onto it; the references are the known singular points of Viviani's curve, the lemniscate
 // and the cusp.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
-#include "geometry/singular_point.hpp"
+#include "implicit/geometry/singular_point.hpp"
 #include "implicit_fixtures.hpp"
 
 using namespace footpoint;

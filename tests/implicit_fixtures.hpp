@@ -10,7 +10,7 @@
 
 #include "compiled/compiled_geometry.hpp"
 #include "formula/program.hpp"
-#include "geometry/implicit_curve.hpp"
+#include "implicit/geometry/implicit_curve.hpp"
 
 namespace footpoint::test {
 

@@ -2,7 +2,7 @@
 // |p - s(u, v)| found by a dense parameter grid (every grid point whose distance is a local
 // minimum among its 8 neighbours, within a few grid steps of the grid's best, starts a local
 // projected Newton solve) - a different search from `auto`'s cell tree, so a rule of its that
-// prunes a basin it should not (seeding/surface_cells.hpp, solvers/surface/surface_auto.hpp)
+// prunes a basin it should not (parametric/seeding/surface_cells.hpp, parametric/solvers/surface_auto.hpp)
 // shows as `auto` farther than the reference. On the Open CASCADE comparison's S1, S2, S3, a
 // torus, A1 ([GSA] Example 1 folded over [-25,25]^2), two sheets folded along curves
 // and six more shapes, with points uniform in the box
@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "solvers/surface/projected_newton.hpp"
-#include "solvers/surface/surface_convergence.hpp"
+#include "parametric/solvers/projected_newton.hpp"
+#include "parametric/solvers/surface_convergence.hpp"
 #include "surface_fixtures.hpp"
 
 using namespace footpoint;
@@ -100,7 +100,7 @@ TEST_CASE("auto is never farther than a brute-force grid search on random points
        "0.5*sin(v)"},
       {"A1", {-25, 25}, {-25, 25}, "u+v", "sin(u)+2*cos(v)", "sin(u+v)"},
       // a torus over a box of about four periods, not aligned with them: no seam, but 2π-translates
-      // (geometry/self_covering.hpp) that leave an L-shaped strip of cells
+      // (parametric/geometry/self_covering.hpp) that leave an L-shaped strip of cells
       {"torus_covered",
        {-1, 12},
        {0.5, 13.5},
@@ -123,7 +123,7 @@ TEST_CASE("auto is never farther than a brute-force grid search on random points
        "sin(v)"},
       {"saddle", {-2, 2}, {-2, 2}, "u", "v", "u*u*u-3*u*v*v+0.5*sin(4*u*v)"},
       {"enneper", {-2, 2}, {-2, 2}, "u-u^3/3+u*v^2", "v-v^3/3+v*u^2", "u^2-v^2"},
-      // a kink along the circle u^2 + v^2 = 1/2 (solvers/surface/kink_minimum.hpp)
+      // a kink along the circle u^2 + v^2 = 1/2 (parametric/solvers/surface_kink_minimum.hpp)
       {"kinked", {-1, 1}, {-1, 1}, "u", "v", "abs(u^2+v^2-0.5)"},
       // a kink along u = v^2, which meets the box at its corners (1, ±1)
       {"kinked_corners", {-1, 1}, {-1, 1}, "u", "v", "abs(u-v^2)"},
@@ -177,7 +177,7 @@ TEST_CASE("auto is never farther than a brute-force grid search on random points
         }
       CHECK(farther == 0);
       MESSAGE(std::string(spec.name) << ": " << certified << " of " << 2 * points << " answers certified");
-      // The share certified within the default budget (solvers/surface/surface_certificate.hpp);
+      // The share certified within the default budget (parametric/solvers/surface_certificate.hpp);
       // on the kinked surfaces 95 %: a box across its kink has no second-order bound (the formulas
       // are not smooth there), only its interval box, which closes near the kink only when small
       const double share = std::string(spec.name).starts_with("kinked") ? 0.95 : 0.99;

@@ -1,4 +1,4 @@
-// The certificate of a surface answer given as it is (solvers/surface/surface_certificate.hpp:
+// The certificate of a surface answer given as it is (parametric/solvers/surface_certificate.hpp:
 // certify_answer, what a paper's method gets with options.certify): a local minimum that is not
 // the global one is never certified - the check can fail - and is mostly refuted outright (a
 // point nearer by more than the gap found); the global answer is certified, with a lower bound
@@ -9,9 +9,9 @@
 #include <cmath>
 #include <vector>
 
-#include "solvers/surface/projected_newton.hpp"
-#include "solvers/surface/surface_certificate.hpp"
-#include "solvers/surface/surface_convergence.hpp"
+#include "parametric/solvers/projected_newton.hpp"
+#include "parametric/solvers/surface_certificate.hpp"
+#include "parametric/solvers/surface_convergence.hpp"
 #include "surface_fixtures.hpp"
 
 using namespace footpoint;

@@ -1,11 +1,11 @@
-// The local solve's early stop (solvers/surface/projected_newton.hpp): a solve is abandoned when
+// The local solve's early stop (parametric/solvers/projected_newton.hpp): a solve is abandoned when
 // Newton's model proves its basin to be a known minimiser's, or to hold nothing nearer than the
 // cutoff - and not otherwise.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
-#include "solvers/surface/projected_newton.hpp"
+#include "parametric/solvers/projected_newton.hpp"
 #include "surface_fixtures.hpp"
 
 using namespace footpoint;

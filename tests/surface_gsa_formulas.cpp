@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "solvers/surface/gsa.hpp"
+#include "parametric/solvers/gsa.hpp"
 #include "surface_fixtures.hpp"
 
 using namespace footpoint;

@@ -1,5 +1,5 @@
 // auto on a surface whose nearest point lies on a kink curve of its formulas
-// (solvers/surface/kink_minimum.hpp): converged, location kink, residual 0, against minima worked
+// (parametric/solvers/surface_kink_minimum.hpp): converged, location kink, residual 0, against minima worked
 // out by hand; a kink that is no minimum of the distance is not claimed.
 #include <doctest/doctest.h>
 
@@ -100,7 +100,8 @@ TEST_CASE("a nearest point on a kink circle, the certificate's sub-boxes across 
   // From p below the circle u^2 + v^2 = 0.5, z = 0, the nearest point is on it (the surface rises
   // on both sides): sqrt((|(p_x, p_y)| - sqrt(0.5))^2 + p_z^2). Found by the stress sweep: the
   // answer was certified at 0.01510 while the circle comes within 0.01498 (the refinement's
-  // sub-boxes across the kink got y and z enclosed at 0, geometry/box_enclosure's derive_enclosure).
+  // sub-boxes across the kink got y and z enclosed at 0, parametric/geometry/box_enclosure's
+  // derive_enclosure).
   const auto g = make_surface("u", "v", "abs(u^2+v^2-0.5)", {-1, 1}, {-1, 1});
   const Vec3 p{-0.70476978587683492, -0.035880447308576681, -0.014915859307670719};
   const double reference = std::hypot(std::hypot(p.x, p.y) - std::sqrt(0.5), p.z);

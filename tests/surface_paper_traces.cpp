@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "solvers/surface/surface_convergence.hpp"
+#include "parametric/solvers/surface_convergence.hpp"
 #include "surface_fixtures.hpp"
 
 using namespace footpoint;

@@ -1,4 +1,4 @@
-// The local solve's answer (solvers/surface/projected_newton.cpp): the jet a solve ends with - its
+// The local solve's answer (parametric/solvers/projected_newton.cpp): the jet a solve ends with - its
 // foot point, its tangents, what the answer, its residuals and its certificate are made of - is
 // the formulas' own at the solve's parameters, evaluated there, never extrapolated from an earlier
 // step (a Taylor expansion is no evaluation where the formulas have a kink: z = |u|).
@@ -8,7 +8,7 @@
 #include <limits>
 #include <random>
 
-#include "solvers/surface/projected_newton.hpp"
+#include "parametric/solvers/projected_newton.hpp"
 #include "surface_fixtures.hpp"
 
 using namespace footpoint;

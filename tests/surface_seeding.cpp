@@ -1,4 +1,4 @@
-// The seeding of `auto` (seeding/surface_cells.hpp): the cell budget adapts to the surface, the
+// The seeding of `auto` (parametric/seeding/surface_cells.hpp): the cell budget adapts to the surface, the
 // memory cap holds and is reported, and `auto` stays right when the cap leaves cells unresolved.
 #include <doctest/doctest.h>
 

@@ -28,7 +28,7 @@ struct GeometryDefinition {
   // Parameter domain (surfaces: u, v; curves: t) or box (implicit: x, y[, z]), in that order.
   std::vector<std::pair<std::string, std::array<double, 2>>> domain;
   std::map<std::string, double> constants;
-  // Parameters declared periodic (geometry/surface_closure.hpp, curve_closure.hpp): "u", "v" of a
+  // Parameters declared periodic (parametric/geometry/surface_closure.hpp, curve_closure.hpp): "u", "v" of a
   // surface, "t" of a curve; none for implicit curves. Any order; repeats count once.
   std::vector<std::string> periodic;
   // `periodic` sorted, each name once: as the canonical form and the JSON form list them.

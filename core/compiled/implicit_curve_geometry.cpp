@@ -3,14 +3,14 @@
 #include <cmath>
 #include <string>
 
-#include "solvers/curve/accelerated_correction.hpp"
-#include "solvers/curve/complete_projection.hpp"
-#include "solvers/curve/foot_point_march.hpp"
-#include "solvers/curve/implicit_curve_auto.hpp"
-#include "solvers/curve/implicit_curve_certificate.hpp"
-#include "solvers/curve/simplified_projection.hpp"
-#include "solvers/curve/steepest_descent.hpp"
-#include "solvers/curve/tangent_foot.hpp"
+#include "implicit/solvers/accelerated_correction.hpp"
+#include "implicit/solvers/complete_projection.hpp"
+#include "implicit/solvers/foot_point_march.hpp"
+#include "implicit/solvers/implicit_curve_auto.hpp"
+#include "implicit/solvers/implicit_curve_certificate.hpp"
+#include "implicit/solvers/simplified_projection.hpp"
+#include "implicit/solvers/steepest_descent.hpp"
+#include "implicit/solvers/tangent_foot.hpp"
 
 namespace footpoint {
 
@@ -31,7 +31,7 @@ ProjectionResult in_box(const ImplicitCurve& c, Vec3 p, const Options& o) {
 
 // The method table of implicit curves: `auto` for both, the planar iteration of [Curve]'s
 // introduction for planar curves, its Algorithms 1-5 for spatial ones.
-// What the papers' iteration reports (solvers/curve/paper_iteration.cpp); not_orthogonal only for
+// What the papers' iteration reports (implicit/solvers/paper_iteration.cpp); not_orthogonal only for
 // Algorithm 1 alone, which lands on the curve without seeking the foot point.
 constexpr std::uint32_t kPaperStatuses = statuses(
     {Status::converged, Status::max_iterations, Status::diverged, Status::non_finite, Status::degenerate,

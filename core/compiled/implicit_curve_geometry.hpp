@@ -1,5 +1,5 @@
-// The compiled implicit curve: its equations and box (geometry/implicit_curve.hpp), what `auto`
-// precomputes (seeding/curve_discovery: the proved cells with their enclosures and tree, the
+// The compiled implicit curve: its equations and box (implicit/geometry/implicit_curve.hpp), what `auto`
+// precomputes (implicit/seeding/curve_discovery: the proved cells with their enclosures and tree, the
 // samples of every piece with their k-d tree), and projection by method name.
 // Three forms of the equations:
 //  - as written, which the papers' methods iterate on;
@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
-#include "geometry/implicit_curve.hpp"
-#include "seeding/discovered_curve.hpp"
+#include "implicit/geometry/implicit_curve.hpp"
+#include "implicit/seeding/discovered_curve.hpp"
 
 namespace footpoint {
 

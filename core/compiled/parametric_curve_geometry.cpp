@@ -3,11 +3,11 @@
 #include <cmath>
 #include <string>
 
-#include "seeding/curve_parametric_samples.hpp"
-#include "solvers/curve/curvature_circle.hpp"
-#include "solvers/curve/parametric_curve_auto.hpp"
-#include "solvers/curve/parametric_curve_certificate.hpp"
-#include "solvers/curve/parametric_newton.hpp"
+#include "parametric/seeding/curve_parametric_samples.hpp"
+#include "parametric/solvers/curvature_circle.hpp"
+#include "parametric/solvers/parametric_curve_auto.hpp"
+#include "parametric/solvers/parametric_curve_certificate.hpp"
+#include "parametric/solvers/parametric_newton.hpp"
 
 namespace footpoint {
 namespace {
@@ -23,7 +23,7 @@ ProjectionResult on_samples(const ParametricCurve& c, Vec3 p, const Options& o) 
   return r;
 }
 
-// What the local iteration reports (solvers/curve/parametric_iteration.hpp and
+// What the local iteration reports (parametric/solvers/parametric_iteration.hpp and
 // parametric_curve_summary.cpp).
 constexpr std::uint32_t kLocalStatuses =
     statuses({Status::converged, Status::max_iterations, Status::non_finite, Status::degenerate,

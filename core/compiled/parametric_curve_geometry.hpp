@@ -1,16 +1,16 @@
-// The compiled parametric curve: its formulas and parameter interval (geometry/parametric_curve.hpp),
-// whether it closes, the dense samples `auto` precomputes with their k-d tree, and projection by
-// method name.
+// The compiled parametric curve: its formulas and parameter interval
+// (parametric/geometry/parametric_curve.hpp), whether it closes, the dense samples `auto` precomputes with
+// their k-d tree, and projection by method name.
 #pragma once
 #include <cstddef>
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
-#include "geometry/curve_closure.hpp"
-#include "geometry/parametric_curve.hpp"
+#include "parametric/geometry/curve_closure.hpp"
+#include "parametric/geometry/parametric_curve.hpp"
+#include "parametric/seeding/parametric_curve_cells.hpp"
 #include "seeding/curve_sample_index.hpp"
 #include "seeding/curve_samples.hpp"
-#include "seeding/parametric_curve_cells.hpp"
 
 namespace footpoint {
 

@@ -3,12 +3,12 @@
 #include <cmath>
 #include <string>
 
-#include "solvers/surface/first_order.hpp"
-#include "solvers/surface/gsa.hpp"
-#include "solvers/surface/hybrid.hpp"
-#include "solvers/surface/newton.hpp"
-#include "solvers/surface/surface_auto.hpp"
-#include "solvers/surface/surface_certificate.hpp"
+#include "parametric/solvers/first_order.hpp"
+#include "parametric/solvers/gsa.hpp"
+#include "parametric/solvers/hybrid.hpp"
+#include "parametric/solvers/newton.hpp"
+#include "parametric/solvers/surface_auto.hpp"
+#include "parametric/solvers/surface_certificate.hpp"
 
 namespace footpoint {
 
@@ -26,7 +26,7 @@ ProjectionResult from_start(const ParametricSurface& s, Vec3 p, const Options& o
   return r;
 }
 
-// What the papers' iteration reports (solvers/surface/paper_iteration.hpp): it stops converged, on
+// What the papers' iteration reports (parametric/solvers/surface_paper_iteration.hpp): it stops converged, on
 // its budget, on a growing, non-finite or degenerate step, or converged outside the domain.
 constexpr std::uint32_t kPaperStatuses =
     statuses({Status::converged, Status::max_iterations, Status::diverged, Status::non_finite,

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
-#include "geometry/parametric_surface.hpp"
-#include "geometry/surface_closure.hpp"
-#include "seeding/surface_cells.hpp"
+#include "parametric/geometry/parametric_surface.hpp"
+#include "parametric/geometry/surface_closure.hpp"
+#include "parametric/seeding/surface_cells.hpp"
 
 namespace footpoint {
 
@@ -31,7 +31,7 @@ class ParametricSurface final : public CompiledGeometry {
   // Where the domain meets itself: seams (closed directions) and poles, found at compile time.
   const SurfaceClosure& closure() const { return closure_; }
   const SurfaceCells& cells() const { return cells_; }
-  // Translations under which the formulas repeat within the box (geometry/self_covering.hpp).
+  // Translations under which the formulas repeat within the box (parametric/geometry/self_covering.hpp).
   const SelfCovering& self_covering() const { return self_covering_; }
 
  private:

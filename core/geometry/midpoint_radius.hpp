@@ -4,7 +4,7 @@
 // covers the propagated radii and the rounding of the centre. A few times cheaper than interval
 // products rounded outwards one by one (formula/interval.hpp), and as tight where the intervals
 // are narrow against their midpoints. Used by Krawczyk's test (geometry/krawczyk.hpp) and the
-// curve certificates' gradients of F (solvers/curve/implicit_curve_certificate).
+// curve certificates' gradients of F (implicit/solvers/implicit_curve_certificate).
 //
 // The allowance: a dot product of at most 15 terms (and roundings) computed in round to nearest
 // is within γ_15 / (1 - γ_15) < 15.1 u of the exact one, relative to the computed sum S of its

@@ -8,7 +8,7 @@
 // Rounding. Each of w, v, z and of the sums of products below is computed in round to nearest, a
 // few roundings per term; a computed sum of products is within 64 u (the sum of the magnitudes of
 // its terms) of the exact one (N. J. Higham, Accuracy and Stability of Numerical Algorithms, 2nd
-// ed., SIAM 2002, Section 3.1, γ_n with n <= 32; the same allowance as geometry/distance_bound).
+// ed., SIAM 2002, Section 3.1, γ_n with n <= 32; the same allowance as parametric/geometry/distance_bound).
 // A case is taken only when its sign test holds beyond that allowance, each component of w × v is
 // lowered in magnitude by its allowance, and the quotient, its square root and their own roundings
 // are covered by a final factor 1 - 2^-44 and the square root rounded down.

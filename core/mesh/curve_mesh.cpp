@@ -51,7 +51,7 @@ double distance_to_segment(Vec3 x, Vec3 a, Vec3 b) {
 
 // Joins the singular point `s` to a piece: put at an open end within kStallSpacings of it (the
 // pieces of discovery end next to the small unproved box around a singular point,
-// seeding/curve_cells.hpp), else spliced between the two samples of each passage of the piece
+// implicit/seeding/curve_cells.hpp), else spliced between the two samples of each passage of the piece
 // within half a spacing of it.
 void join_singular_point(const CurveSamples& samples, std::int32_t s, Piece& piece) {
   const auto point = [&](std::int32_t i) { return samples.points[static_cast<std::size_t>(i)]; };
@@ -102,7 +102,7 @@ void join_singular_point(const CurveSamples& samples, std::int32_t s, Piece& pie
 // The open pieces that end at the singular point s are joined through it, two at a time, each
 // end with the one leaving s most nearly opposite to it (a branch goes straight through a
 // crossing); a piece whose two ends are so joined closes. The pieces of discovery end next to the
-// small unproved box around a singular point (seeding/curve_cells.hpp), and join_singular_point put
+// small unproved box around a singular point (implicit/seeding/curve_cells.hpp), and join_singular_point put
 // s at those ends.
 void join_through(const CurveSamples& samples, std::int32_t s, std::vector<Piece>& pieces) {
   struct End {

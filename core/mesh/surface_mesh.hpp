@@ -13,7 +13,7 @@ namespace footpoint {
 
 // Cells along the direction with the larger share of the measure: `resolution`; along the other
 // its share of it, at least 2. Seams and poles are stitched as the surface's closure (found at
-// compile time, geometry/surface_closure.hpp) names them: the grid lines of a periodic
+// compile time, parametric/geometry/surface_closure.hpp) names them: the grid lines of a periodic
 // direction's two edges share their vertices, a pole is one vertex with a fan of triangles around
 // it, so a closed surface gives a closed mesh (a torus V - E + F = 0, a sphere 2). A reversed seam
 // (a Möbius band) is left open: no consistent normals could cross it.

@@ -1,0 +1,13 @@
+// [Curve] Algorithm 4, the complete algorithm: Algorithm 1 from the start
+// (X0 = P - (0.1, 0.1, 0.1)), five rounds of Algorithm 2 (foot point Q) followed by Algorithm 1
+// (Q back onto the curve), then Algorithm 3 (eq. (19)) until the iterates stop moving.
+#pragma once
+#include "geometry/projection_result.hpp"
+#include "implicit/geometry/implicit_curve.hpp"
+
+namespace footpoint::curve {
+
+ProjectionResult complete_projection(const ImplicitEquations& equations, const Box3& box, Vec3 p,
+                                     const Options& options);
+
+}  // namespace footpoint::curve

@@ -1,0 +1,36 @@
+#include "implicit/solvers/implicit_curve_multiplicity.hpp"
+
+#include <cmath>
+
+#include "geometry/certificate.hpp"
+#include "implicit/geometry/implicit_curve_differentials.hpp"
+
+namespace footpoint::curve {
+
+namespace {
+constexpr double kFlat = 1e-8;  // φ'' (arc length) against its value 1 at a straight curve
+}  // namespace
+
+AnswerMultiplicity implicit_curve_multiplicity(const ImplicitJet& at_answer, Vec3 p,
+                                               const ProjectionResult& r,
+                                               const std::vector<ImplicitMinimum>& found) {
+  AnswerMultiplicity m;
+  m.computed = true;
+  const Vec3 answer{r.foot[0], r.foot[1], r.foot[2]};
+  Vec3 kappa;
+  if (r.summary.location == Location::interior && r.distance > 0.0 && curvature_vector(at_answer, kappa) &&
+      std::abs(1.0 + dot(kappa, answer - p)) <= kFlat) {
+    m.kind = Multiplicity::continuum;
+    return m;
+  }
+  const double gap =
+      std::fmax(Certificate::kRelativeGap * r.distance, Certificate::absolute_gap_at(p, answer));
+  m.feet.push_back(r.foot);
+  for (const ImplicitMinimum& f : found)
+    if (std::abs(f.distance - r.distance) <= gap)
+      m.add_distinct({f.foot.x, f.foot.y, f.foot.z}, kDistinctFoot * (1.0 + norm(f.foot)));
+  m.settle();
+  return m;
+}
+
+}  // namespace footpoint::curve

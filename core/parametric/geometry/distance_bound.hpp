@@ -1,0 +1,85 @@
+// Rigorous lower bounds on the distance from a point p to a parametric surface (N = 2) or curve
+// (N = 1) over a parameter box B, from a BoxEnclosure of B (parametric/geometry/box_enclosure.hpp):
+//
+//  - zero order: the distance from p to the box holding s(B);
+//  - second order, from one point q of B with s(q), ∂s(q) enclosed (PointEnclosure): for
+//    f(t) = ½|s(t) - p|^2, Taylor's theorem on the segment from q to t (inside B, B convex) gives
+//      f(q + δ) = f(q) + ∇f(q)·δ + ½ δᵀ ∇²f(ξ) δ,
+//      ∇f = Jᵀ (s - p),   ∇²f = JᵀJ + Σ_k (s_k - p_k) ∇²s_k,
+//    and with the entries of ∇²f enclosed over B (HessianBounds: a lower bound of each diagonal
+//    entry, an interval for the off-diagonal one), δᵀ ∇²f(ξ) δ >= Σ_i h_ii δ_i^2 + 2 h_01 δ_0 δ_1
+//    where h_01 is the interval's lower end where δ_0 δ_1 >= 0 and its upper end where
+//    δ_0 δ_1 <= 0. In each quadrant of δ around q (where also the gradient's enclosure has its worst
+//    sign) the right side is a fixed quadratic, whose minimum over the quadrant's rectangle is
+//    bounded from below exactly (quadratic_lower_bound). Where q is the minimiser of f and ∇²f
+//    is positive definite on B, the bound is f(q) less the rounding: the certificate of a foot
+//    point. Where q is any other point (a cell's centre), it bounds the cell from below.
+//
+// Rounding. The enclosures are rigorous; the arithmetic combining them here is in round to
+// nearest, and each bound is lowered by a bound on its own rounding: every quantity below is a
+// sum of at most a few dozen products of enclosed numbers, whose computed value is within
+// 64 u (the sum of the magnitudes of its terms) of the exact one (N. J. Higham, Accuracy and
+// Stability of Numerical Algorithms, 2nd ed., SIAM 2002, Section 3.1, γ_n with n <= 32).
+#pragma once
+#include <array>
+#include <limits>
+#include <type_traits>
+
+#include "geometry/vec.hpp"
+#include "parametric/geometry/box_enclosure.hpp"
+
+namespace footpoint {
+
+// Parameters (deduced from the enclosures' N, never from these arrays).
+template <int N>
+using Params = std::type_identity_t<std::array<double, N>>;
+
+// The relative rounding allowance of a computed bound (see above): 64 u.
+inline constexpr double kBoundRounding = 64.0 * 0x1p-53;
+
+// A lower bound of the squared distance from p to the box s_mid ± s_rad.
+double box_distance2_lower(const Vec3& s_mid, const Vec3& s_rad, const Vec3& p);
+
+// ∇²f over a box: h_ii >= diagonal_lo[i]; off_lo <= h_01 <= off_hi (N = 2). Not `valid` unless
+// the enclosure is smooth.
+template <int N>
+struct HessianBounds {
+  std::array<double, N> diagonal_lo{};
+  double off_lo = 0.0, off_hi = 0.0;
+  bool valid = false;
+  // A lower bound of the smallest eigenvalue of every matrix these entries allow (-inf if not
+  // valid): the smallest eigenvalue of [a b; b c] grows with a and c and falls with |b|.
+  double smallest_eigenvalue() const;
+};
+template <int N>
+HessianBounds<N> hessian_bounds(const BoxEnclosure<N>& box, const Vec3& p);
+
+// f(q) and ∇f(q) enclosed: f(q) >= f_lo, and |∇f(q)_i - g_i| <= g_rad_i.
+template <int N>
+struct GradientEnclosure {
+  double f_lo = 0.0;
+  std::array<double, N> g{}, g_rad{};
+};
+template <int N>
+GradientEnclosure<N> enclose_gradient(const PointEnclosure<N>& q, const Vec3& p);
+
+// A lower bound of f over the box [lo, hi], which holds q: the second-order form above.
+// -inf where the Hessian bounds are not valid. A bound of at least `enough` is returned as soon as
+// one is found (the separable bound with the smallest eigenvalue is tried first).
+template <int N>
+double second_order_lower_bound(const GradientEnclosure<N>& at_q, const Params<N>& q, const Params<N>& lo,
+                                const Params<N>& hi, const HessianBounds<N>& hessian,
+                                double enough = std::numeric_limits<double>::infinity());
+
+// A lower bound of min over lo <= δ <= hi of g·δ + ½ δᵀ H δ (H symmetric, N = 1 or 2), lo <= 0 <= hi
+// not required. For a positive semidefinite H, the value at an approximate minimiser δ̂ plus
+// min over the box of ∇(δ̂)·(δ - δ̂) (convexity: the tangent plane lies below); otherwise the
+// minimum is on the boundary, and the same for each edge's one-dimensional quadratic.
+double quadratic_lower_bound(const std::array<double, 2>& g, const std::array<std::array<double, 2>, 2>& H,
+                             const std::array<double, 2>& lo, const std::array<double, 2>& hi);
+double quadratic_lower_bound_1d(double g, double h, double lo, double hi);
+
+// The distance that a lower bound of f = ½ d^2 gives: sqrt(2 f), rounded down (0 for f <= 0).
+double distance_from_f_lower(double f_lower);
+
+}  // namespace footpoint
