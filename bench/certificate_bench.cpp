@@ -1,0 +1,107 @@
+// The price of the proof: certified `auto` against `certify: false` on the same points, per point,
+// interleaved point by point (each point is answered both ways, in alternating order, so that the
+// machine's noise falls on both alike). Single thread, the thread's CPU time per call.
+// Surfaces: S1, S2, S3 (bench/occt/surfaces.json), torus, sphere, [GSA] Example 1 over
+// [-25,25]^2 (A1). Point sets as bench/surface_bench.cpp makes them: box points uniform in twice
+// the surface's bounding box, near points within 1 % of its diagonal.
+// Each set is answered twice in full: the first pass is what a new batch of distinct points costs
+// (the refinement keeps sub-boxes the certificates bisect, for later points), the second the same
+// points again. Printed per set and pass: the certified share, the mean certificate boxes (run-time
+// sub-boxes bounded), mean, median and p99 per point of both, and the ratio of the means.
+//
+// Usage: certificate_bench [points per set, default 1000] [--near | --box] [surface names ...]
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "compiled_surface.hpp"
+#include "cpu_time.hpp"
+#include "surface_points.hpp"
+
+using namespace footpoint;
+
+namespace {
+
+double mean(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
+void run_set(const ParametricSurface& g, const char* surface, const char* set,
+             const std::vector<Vec3>& points, double overhead) {
+  const GeometryMethod m = g.method("auto").value();
+  Options certified, plain;
+  plain.certify = false;
+  for (int pass = 1; pass <= 2; ++pass) {
+    std::vector<double> tc, tp;
+    double boxes = 0.0;
+    int share = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double p[3] = {points[i].x, points[i].y, points[i].z};
+      double c = 0.0, u = 0.0;
+      ProjectionResult r;
+      for (int order = 0; order < 2; ++order) {
+        const bool cert_now = ((i + static_cast<std::size_t>(order)) % 2) == 0;
+        const double t0 = bench::thread_cpu_ns();
+        ProjectionResult q = m.project(p, cert_now ? certified : plain);
+        const double t1 = std::max(0.0, bench::thread_cpu_ns() - t0 - overhead);
+        if (cert_now) {
+          c = t1;
+          r = std::move(q);
+        } else {
+          u = t1;
+        }
+      }
+      tc.push_back(c);
+      tp.push_back(u);
+      boxes += r.summary.certificate.boxes;
+      share += r.summary.certificate.certified ? 1 : 0;
+    }
+    const double mc = mean(tc), mp = mean(tp);
+    std::printf(
+        "%-7s %-5s pass %d  certified %5.1f %%  boxes %6.1f  certified mean %7.2f p50 %7.2f p99 %8.2f µs"
+        "  | certify:false mean %6.2f p99 %7.2f µs  | ratio %5.2f\n",
+        surface, set, pass, 100.0 * share / static_cast<double>(points.size()),
+        boxes / static_cast<double>(points.size()), mc / 1e3, bench::percentile(tc, 0.5) / 1e3,
+        bench::percentile(tc, 0.99) / 1e3, mp / 1e3, bench::percentile(tp, 0.99) / 1e3, mc / mp);
+    std::fflush(stdout);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int n = 1000;
+  bool near = true, box = true;
+  std::vector<std::string> names;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
+      std::printf(
+          "usage: certificate_bench [points per set, default 1000] [--near | --box] [surface ...]\n"
+          "surfaces: S1 S2 S3 torus sphere A1 (default: all)\n");
+      return 0;
+    }
+    if (!std::strcmp(argv[i], "--near"))
+      box = false;
+    else if (!std::strcmp(argv[i], "--box"))
+      near = false;
+    else if (argv[i][0] >= '0' && argv[i][0] <= '9')
+      n = std::atoi(argv[i]);
+    else
+      names.emplace_back(argv[i]);
+  }
+  const double overhead = bench::timer_overhead_ns();
+  for (const bench::SurfaceSpec& s : bench::kSurfaces) {
+    if (!names.empty() && std::find(names.begin(), names.end(), s.name) == names.end()) continue;
+    const auto g = bench::compile_surface(s.x, s.y, s.z, s.u, s.v);
+    const bench::SurfacePoints ps = bench::make_surface_points(*g, n, n, 12345);
+    if (near) run_set(*g, s.name.c_str(), "near", ps.near, overhead);
+    if (box) run_set(*g, s.name.c_str(), "box", ps.box, overhead);
+  }
+  return 0;
+}
