@@ -29,11 +29,15 @@ struct SubBox {
   mutable std::atomic<const SubBoxPair*> halves{nullptr};
 
   SubBox() = default;
-  // [lo, hi] inside the box of `ancestor` (its compiled cell's enclosure): an interval jet over the
-  // box and a ball jet at its centre, and the tighter of the two enclosures they give
-  // (parametric/geometry/box_enclosure.hpp: enclose_box, derive_enclosure)
+  // [lo, hi] inside the box of `ancestor` (the enclosure of the box it was halved from): the
+  // centred form from the ancestor and a ball jet at the box's centre (parametric/geometry/
+  // box_enclosure.hpp: derive_enclosure), which costs no evaluation over the box and tightens with
+  // it (s in O(h^2) and s_u, s_v in O(h) about the centre, the ancestor's second derivatives);
+  // with `evaluate`, or where the ancestor is not smooth (a kink of the formulas crosses it, and the
+  // smaller box may be smooth), also an interval jet over the box (enclose_box), and the tighter
+  // of the two enclosures.
   SubBox(const formula::Program& program, const BoxEnclosure<2>& ancestor, const std::array<double, 2>& lo,
-         const std::array<double, 2>& hi);
+         const std::array<double, 2>& hi, bool evaluate);
   SubBox(const SubBox&) = delete;
   SubBox& operator=(const SubBox&) = delete;
   ~SubBox();
@@ -42,7 +46,7 @@ struct SubBox {
 struct SubBoxPair {
   // [lo, hi] halved along u (split_u) or v
   SubBoxPair(const formula::Program& program, const BoxEnclosure<2>& ancestor,
-             const std::array<double, 2>& lo, const std::array<double, 2>& hi, bool split_u);
+             const std::array<double, 2>& lo, const std::array<double, 2>& hi, bool split_u, bool evaluate);
   SubBox half[2];
 };
 
@@ -55,17 +59,27 @@ class SurfaceRefinement {
 
   // Where the halves of compiled cell `cell` are published.
   std::atomic<const SubBoxPair*>& cell_slot(std::size_t cell) const { return cell_halves_[cell]; }
-  // The halves of [lo, hi] split along u (split_u) or v: published under `slot`, computed first if
-  // need be; past the cap computed into `scratch`.
+  // The halves of [lo, hi] split along u (split_u) or v, each inside `ancestor`'s box (the box
+  // halved, `of_cell` when it is a compiled cell): published under `slot`, computed first if need
+  // be; past the cap computed into `scratch`. Each half's enclosure is the centred form from the
+  // ancestor (SubBox), with an interval jet over the half as well for the halves of a compiled cell
+  // and wherever the formulas are not a sum of monomials. A sum of monomials has its ball jets
+  // from the table of powers (formula/polynomial.hpp), cheap beside an interval jet of the tape
+  // over a box, and the centred form's second derivatives, the cell halves', are kept tight by the
+  // evaluation at the first level; for other formulas (elementary functions) the interval jet's
+  // second derivatives over the small box are what the Hessian bounds of far points need
+  // (Σ (s_k - p_k) ∂²s_k grows with the distance). The choice depends on the box and the formulas
+  // only, never on the point: a certificate does not depend on the points answered before it.
   const SubBoxPair& halves(std::atomic<const SubBoxPair*>& slot, const BoxEnclosure<2>& ancestor,
                            const std::array<double, 2>& lo, const std::array<double, 2>& hi, bool split_u,
-                           std::unique_ptr<SubBoxPair>& scratch) const;
+                           bool of_cell, std::unique_ptr<SubBoxPair>& scratch) const;
   // What the refinement may take: the cap's worth of pairs (reserved, reported up front).
   std::size_t reserved_bytes() const { return max_pairs_ * sizeof(SubBoxPair); }
   std::size_t pairs() const { return pairs_.load(std::memory_order_relaxed); }
 
  private:
   formula::Program program_;
+  bool sum_of_monomials_;
   std::size_t cells_;
   std::size_t max_pairs_;
   std::unique_ptr<std::atomic<const SubBoxPair*>[]> cell_halves_;

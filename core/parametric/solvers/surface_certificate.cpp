@@ -24,7 +24,7 @@ struct OpenBox {
   Params2 lo, hi;
   std::int32_t cell = -1;                            // the compiled cell, or -1 (a sub-box)
   std::atomic<const SubBoxPair*>* halves = nullptr;  // where its halves are published
-  const BoxEnclosure<2>* ancestor = nullptr;         // its compiled cell's enclosure
+  const BoxEnclosure<2>* ancestor = nullptr;         // its own enclosure (a cell's, a sub-box's)
   double lb = 0.0;                                   // the best lower bound of the distance over it so far
   HessianBounds<2> hessian;                          // ∇²f over it
   bool split_u = true;  // bisect along u (the box is longer along u on the surface)
@@ -269,10 +269,10 @@ class Certifier {
     if (!(mid > b.lo[axis] && mid < b.hi[axis])) return note_unclosed(b);  // no room left
     std::unique_ptr<SubBoxPair> scratch;
     const SubBoxPair& pair =
-        cells_.refinement().halves(*b.halves, *b.ancestor, b.lo, b.hi, b.split_u, scratch);
+        cells_.refinement().halves(*b.halves, *b.ancestor, b.lo, b.hi, b.split_u, b.cell >= 0, scratch);
     if (scratch) scratch_.push_back(std::move(scratch));
     for (const SubBox& half : pair.half) {
-      OpenBox child = bound_sub_box(half, b.ancestor);
+      OpenBox child = bound_sub_box(half, &half.enclosure);
       if (ledger_.refuted()) return note_unclosed(child);
       if (child.lb >= ledger_.target())
         close(child.lb);
