@@ -1,23 +1,26 @@
 // The price of the proof: certified `auto` against `certify: false` on the same points, per point,
 // interleaved point by point (each point is answered both ways, in alternating order, so that the
 // machine's noise falls on both alike). Single thread, the thread's CPU time per call.
-// Surfaces: S1, S2, S3 (bench/occt/surfaces.json), torus, sphere, [GSA] Example 1 over
-// [-25,25]^2 (A1). Point sets as bench/surface_bench.cpp makes them: box points uniform in twice
-// the surface's bounding box, near points within 1 % of its diagonal.
-// Each set is answered twice in full: the first pass is what a new batch of distinct points costs
-// (the refinement keeps sub-boxes the certificates bisect, for later points), the second the same
-// points again. Printed per set and pass: the certified share, the mean certificate boxes (run-time
-// sub-boxes bounded), mean, median and p99 per point of both, and the ratio of the means.
+// Surfaces: S1, S2, S3 (bench/occt/surfaces.json), [GSA] Example 1 over [-25,25]^2 (A1), torus,
+// sphere (bench/surface_points.hpp); parametric curves: a helix and a trefoil. Point sets as
+// bench/surface_bench.cpp makes them: box points uniform in twice the surface's bounding box, near points
+// within 1 % of its diagonal. Each set is answered twice in full: the first pass is what a new batch of
+// distinct points costs (the refinement keeps sub-boxes the certificates bisect, for later points), the
+// second the same points again. Printed per set and pass: the certified share, the mean certificate boxes
+// (run-time sub-boxes bounded), mean, median and p99 per point of both, and the ratio of the means.
 //
 // Usage: certificate_bench [points per set, default 1000] [--near | --box] [surface names ...]
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <random>
 #include <string>
 #include <vector>
 
+#include "compiled/parametric_curve_geometry.hpp"
 #include "compiled_surface.hpp"
 #include "cpu_time.hpp"
 #include "surface_points.hpp"
@@ -32,8 +35,8 @@ double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : s / static_cast<double>(v.size());
 }
 
-void run_set(const ParametricSurface& g, const char* surface, const char* set,
-             const std::vector<Vec3>& points, double overhead) {
+void run_set(const CompiledGeometry& g, const char* surface, const char* set, const std::vector<Vec3>& points,
+             double overhead) {
   const GeometryMethod m = g.method("auto").value();
   Options certified, plain;
   plain.certify = false;
@@ -73,6 +76,40 @@ void run_set(const ParametricSurface& g, const char* surface, const char* set,
   }
 }
 
+struct CurveSpec {
+  const char *name, *x, *y, *z;
+  double t1;
+};
+
+// Parametric curves on [0, t1]: box points uniform in [-4, 4]^3, near points within 1 % of the
+// box's diagonal of a point at a uniformly random parameter (as the surfaces' near points).
+const CurveSpec kCurves[] = {
+    {"helix", "cos(t)", "sin(t)", "0.2*t", 4.0 * 3.141592653589793},
+    {"trefoil", "sin(t)+2*sin(2*t)", "cos(t)-2*cos(2*t)", "-sin(3*t)", 2.0 * 3.141592653589793},
+};
+
+void run_curve(const CurveSpec& c, int n, double overhead) {
+  GeometryDefinition def;
+  def.type = GeometryType::parametric_curve;
+  def.formulas = {{"x", c.x}, {"y", c.y}, {"z", c.z}};
+  def.domain = {{"t", {0.0, c.t1}}};
+  const auto g = compile_parametric_curve(def, {});
+  const auto& curve = dynamic_cast<const ParametricCurve&>(*g);
+  std::mt19937_64 rng(12345);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  std::normal_distribution<double> N(0.0, 1.0);
+  std::vector<Vec3> box, near;
+  for (int i = 0; i < n; ++i) box.push_back({8.0 * U(rng) - 4.0, 8.0 * U(rng) - 4.0, 8.0 * U(rng) - 4.0});
+  const double size = std::sqrt(3.0) * 8.0;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 s = curve.formulas().point(c.t1 * U(rng));
+    const Vec3 d{N(rng), N(rng), N(rng)};
+    near.push_back(s + d * (0.01 * size * U(rng) / norm(d)));
+  }
+  run_set(*g, c.name, "near", near, overhead);
+  run_set(*g, c.name, "box", box, overhead);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -83,7 +120,7 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
       std::printf(
           "usage: certificate_bench [points per set, default 1000] [--near | --box] [surface ...]\n"
-          "surfaces: S1 S2 S3 torus sphere A1 (default: all)\n");
+          "geometries: S1 S2 S3 A1 torus sphere helix trefoil (default: all)\n");
       return 0;
     }
     if (!std::strcmp(argv[i], "--near"))
@@ -103,5 +140,8 @@ int main(int argc, char** argv) {
     if (near) run_set(*g, s.name.c_str(), "near", ps.near, overhead);
     if (box) run_set(*g, s.name.c_str(), "box", ps.box, overhead);
   }
+  for (const CurveSpec& c : kCurves)
+    if (names.empty() || std::find(names.begin(), names.end(), c.name) != names.end())
+      run_curve(c, n, overhead);
   return 0;
 }
