@@ -25,7 +25,13 @@ fail() {
 cmake --install "$build" --prefix "$tmp/prefix" --component development > "$tmp/install.log" ||
   { cat "$tmp/install.log"; fail "cmake --install --component development"; }
 [ -f "$tmp/prefix/lib/cmake/footpoint/footpointConfig.cmake" ] || fail "no footpointConfig.cmake installed"
+[ -f "$tmp/prefix/include/footpoint/footpoint.hpp" ] || fail "the public header footpoint.hpp is not installed"
 [ -f "$tmp/prefix/include/footpoint/compiled/compiled_geometry.hpp" ] || fail "the public headers are not installed"
+# internal headers stay in the source tree: a solver's, a seeding structure's
+for internal in parametric/solvers/surface_certificate.hpp parametric/seeding/surface_cells.hpp \
+  implicit/solvers/implicit_curve_auto.hpp compiled/parametric_surface_geometry.hpp; do
+  [ ! -e "$tmp/prefix/include/footpoint/$internal" ] || fail "the internal header $internal is installed"
+done
 [ ! -e "$tmp/prefix/bin" ] || fail "the development component installs the server too"
 echo "ok: installed $(find "$tmp/prefix" -type f | wc -l) files into a temporary prefix"
 

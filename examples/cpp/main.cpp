@@ -4,9 +4,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "batch/batch.hpp"
-#include "batch/thread_pool.hpp"
-#include "compiled/compiled_geometry.hpp"
+#include "footpoint.hpp"
 
 using namespace footpoint;
 
