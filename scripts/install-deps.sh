@@ -29,6 +29,9 @@ test_packages=(
   clang-format clang-tidy shellcheck         # scripts/check_format.sh, scripts/check_tidy.sh, deploy_shellcheck
   chromium python3-websocket                 # the browser pages in headless chromium (tests/ui_playground_browser.py)
 )
+# tests/openapi_lint.sh: Redocly's linter (pinned by tests/tools/redocly/package-lock.json) needs
+# npm; Debian's, unless an npm is already there (e.g. with another Node.js distribution).
+command -v npm >/dev/null || test_packages+=(npm)
 extra=()
 for arg in "$@"; do
   if [ "$arg" = "--test" ]; then packages+=("${test_packages[@]}"); else extra+=("$arg"); fi

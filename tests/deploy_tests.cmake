@@ -30,6 +30,11 @@ if(FOOTPOINT_SHELLCHECK)
   add_test(NAME deploy_shellcheck
            COMMAND ${FOOTPOINT_SHELLCHECK} ${CMAKE_SOURCE_DIR}/deploy/check_layout.sh
                    ${CMAKE_SOURCE_DIR}/examples/project_csv.sh ${FOOTPOINT_SCRIPTS} ${CMAKE_SOURCE_DIR}/.ci/run
-                   ${CMAKE_SOURCE_DIR}/tests/check_installed_package.sh ${CMAKE_SOURCE_DIR}/tests/server_security_e2e.sh)
+                   ${CMAKE_SOURCE_DIR}/tests/check_installed_package.sh ${CMAKE_SOURCE_DIR}/tests/openapi_lint.sh
+                   ${CMAKE_SOURCE_DIR}/tests/server_security_e2e.sh)
 endif()
 
+# openapi.yaml through Redocly's linter with its recommended rules (tests/openapi_lint.sh installs
+# the version tests/tools/redocly/package-lock.json pins; skipped without npm).
+add_test(NAME openapi_lint COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/openapi_lint.sh ${CMAKE_SOURCE_DIR})
+set_tests_properties(openapi_lint PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300)
