@@ -147,12 +147,13 @@ int main(int argc, char** argv) {
       configure_from_command_line(static_cast<int>(args.size()), args.data(), "echo_server_bench", config);
   if (exit_code >= 0) return exit_code;
   HttpServer* self = nullptr;
-  HttpServer server(config, [&self, &config, &replays](const RouteMatch& m, std::string_view method,
-                                                       std::string_view body, std::string_view query) {
-    if (m.route == Route::project || m.route == Route::geometry_project)
-      return echo(m, body, config.max_points, replays);
-    return self->api().handle(m, method, body, query);
-  });
+  HttpServer server(
+      config, [&self, &config, &replays](const RouteMatch& m, std::string_view method, std::string_view body,
+                                         std::string_view query, const Caller& caller) {
+        if (m.route == Route::project || m.route == Route::geometry_project)
+          return echo(m, body, config.max_points, replays);
+        return self->api().handle(m, method, body, query, caller);
+      });
   self = &server;
   try {
     std::printf("echo_server_bench listening on %s:%d\n", config.host.c_str(), server.bind());

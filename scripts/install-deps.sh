@@ -12,6 +12,7 @@ packages=(
   libcpp-httplib-dev nlohmann-json3-dev libmuparser-dev libspdlog-dev
   libnanoflann-dev   # k-d tree over cached samples (auto methods' seeding)
   libhiredis-dev     # the shared geometry registry's Redis client (run time: libhiredis0.14)
+  libssl-dev         # HTTPS (cpp-httplib's SSLServer), API keys' SHA-256 (run time: libssl3)
   libjs-three        # three.js and its orbit controls, embedded in the server for the pages (ui/)
 )
 # The test suite, the benchmarks and the checks CI runs.
@@ -22,11 +23,15 @@ test_packages=(
   python3 python3-yaml python3-jsonschema    # openapi / manifest checks in the tests
   python3-numpy python3-scipy python3-sympy python3-mpmath  # tests/tools/ reference generators
   curl jq                                    # deploy checks, examples/project_csv.sh
+  openssl                                    # the TLS tests make their certificate at test time
   wrk                                        # bench/http_bench.sh
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev  # bench/occt/
   clang-format clang-tidy shellcheck         # scripts/check_format.sh, scripts/check_tidy.sh, deploy_shellcheck
   chromium python3-websocket                 # the browser pages in headless chromium (tests/ui_playground_browser.py)
 )
+# tests/openapi_lint.sh: Redocly's linter (pinned by tests/tools/redocly/package-lock.json) needs
+# npm; Debian's, unless an npm is already there (e.g. with another Node.js distribution).
+command -v npm >/dev/null || test_packages+=(npm)
 extra=()
 for arg in "$@"; do
   if [ "$arg" = "--test" ]; then packages+=("${test_packages[@]}"); else extra+=("$arg"); fi

@@ -106,6 +106,7 @@ ApiResponse Api::error_response(const ApiError& error) {
   ApiResponse r = json_response(error.status, error_body(error));
   r.error_code = error.code;
   if (error.code == "overloaded" || error.code == "registry_unavailable") r.retry_after_s = 1;
+  if (error.retry_after_s > 0) r.retry_after_s = error.retry_after_s;
   return r;
 }
 
@@ -122,7 +123,7 @@ Metrics::Gauges Api::gauges() const {
 }
 
 ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::string_view body,
-                        std::string_view query) {
+                        std::string_view query, const Caller& caller) {
   try {
     switch (match.route) {
       case Route::healthz:
@@ -141,11 +142,11 @@ ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::s
         return create_geometry(body);
       }
       case Route::geometry:
-        if (method == "DELETE") return delete_geometry(match.id);
+        if (method == "DELETE") return delete_geometry(match.id, caller);
         return get_geometry(match.id);  // HEAD: the HTTP layer drops the body
       case Route::geometry_project: {
         InFlight counted(in_flight_);
-        return project(match.id, body);
+        return project(match.id, body, caller);
       }
       case Route::geometry_mesh: {
         InFlight counted(in_flight_);
@@ -153,11 +154,11 @@ ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::s
       }
       case Route::geometry_evaluate: {
         InFlight counted(in_flight_);
-        return evaluate(match.id, body);
+        return evaluate(match.id, body, caller);
       }
       case Route::project: {
         InFlight counted(in_flight_);
-        return project({}, body);
+        return project({}, body, caller);
       }
       case Route::ui_playground:
       case Route::ui_docs:
@@ -415,7 +416,7 @@ ApiResponse Api::get_geometry(std::string_view id) {
   return json_response(200, w.take());
 }
 
-ApiResponse Api::delete_geometry(std::string_view id) {
+ApiResponse Api::delete_geometry(std::string_view id, const Caller& caller) {
   check_geometry_id(id);
   bool held = false;
   if (registry_) {
@@ -429,6 +430,11 @@ ApiResponse Api::delete_geometry(std::string_view id) {
     }
   }
   held = cache_.erase(std::string(id)) || held;
+  // The audit line: who deleted what (the log line's ts says when), whether or not it was held.
+  log_event(spdlog::level::info, "geometry deleted",
+            {{"key", caller.key.empty() ? std::string_view("-") : caller.key},
+             {"geometry_id", id},
+             {"held", held}});
   if (!held) throw ApiError(404, "geometry_not_found", "geometry " + std::string(id) + " is not held", "id");
   ApiResponse r;
   r.status = 204;
@@ -436,7 +442,7 @@ ApiResponse Api::delete_geometry(std::string_view id) {
   return r;
 }
 
-ApiResponse Api::project(std::string_view id, std::string_view body) {
+ApiResponse Api::project(std::string_view id, std::string_view body, const Caller& caller) {
   const bool inline_geometry = id.empty();
   std::shared_ptr<const CompiledGeometry> geometry;
   if (!inline_geometry) {
@@ -445,6 +451,7 @@ ApiResponse Api::project(std::string_view id, std::string_view body) {
   ProjectRequest request = read_project_request(body, inline_geometry, config_.max_points);
   if (inline_geometry) geometry = compile(*request.geometry, "geometry.").geometry;
   const GeometryMethod method = check_project_request(request, *geometry);
+  if (caller.charge) caller.charge(request.count);
   const PointsReservation reserved(in_flight_points_, request.count, config_.max_inflight_points);
 
   BatchRequest batch{method};
@@ -487,9 +494,10 @@ ApiResponse Api::mesh(std::string_view id, std::string_view query) {
   return r;
 }
 
-ApiResponse Api::evaluate(std::string_view id, std::string_view body) {
+ApiResponse Api::evaluate(std::string_view id, std::string_view body, const Caller& caller) {
   const auto geometry = geometry_by_id(id);
   const EvaluateRequest request = read_evaluate_request(body, config_.max_points);
+  if (caller.charge) caller.charge(request.count);
   const PointsReservation reserved(in_flight_points_, request.count, config_.max_inflight_points);
   ApiResponse r = json_response(200, evaluate_response(*geometry, request));
   r.points = request.count;

@@ -5,6 +5,7 @@
 #pragma once
 #include <atomic>
 #include <cstddef>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <string_view>
@@ -32,6 +33,14 @@ struct ApiResponse {
   std::string error_code;  // the error's code when this answers one (for the request log)
 };
 
+// Who is calling, for what the Api decides once a body is read. Empty: no keys, no limit.
+struct Caller {
+  std::string_view key;  // the API key's name ("" without keys): the audit log names it
+  // Takes a request's points from the caller's rate limit; throws ApiError (429 rate_limited,
+  // with Retry-After) when they are not there. Empty: no limit.
+  std::function<void(std::size_t points)> charge;
+};
+
 class Api {
  public:
   // `registry`: the shared level 2 under `cache` (nullptr: one process, the cache alone).
@@ -42,7 +51,7 @@ class Api {
   // after '?' (empty when there is none). Never throws: every failure becomes a JSON error
   // response with its status.
   ApiResponse handle(const RouteMatch& match, std::string_view method, std::string_view body,
-                     std::string_view query = {});
+                     std::string_view query = {}, const Caller& caller = {});
 
   // While shutting down, /readyz answers 503 (the HTTP layer refuses new API requests).
   void set_shutting_down() { shutting_down_.store(true); }
@@ -65,10 +74,11 @@ class Api {
   ApiResponse list_geometries(std::string_view query);
   static constexpr long long kDefaultListLimit = 100, kMaxListLimit = 1000;
   ApiResponse get_geometry(std::string_view id);
-  ApiResponse delete_geometry(std::string_view id);
-  ApiResponse project(std::string_view id, std::string_view body);  // id empty: inline geometry
+  ApiResponse delete_geometry(std::string_view id, const Caller& caller);
+  // id empty: inline geometry
+  ApiResponse project(std::string_view id, std::string_view body, const Caller& caller);
   ApiResponse mesh(std::string_view id, std::string_view query);
-  ApiResponse evaluate(std::string_view id, std::string_view body);
+  ApiResponse evaluate(std::string_view id, std::string_view body, const Caller& caller);
   ApiResponse ui(const RouteMatch& match) const;
 
   formula::CompileLimits compile_limits() const;

@@ -27,6 +27,7 @@ struct ApiError : std::runtime_error {
   std::string field;       // empty when the error is not about one field
   long position;           // -1 when there is no position
   std::string suggestion;  // empty when there is none
+  int retry_after_s = 0;   // the Retry-After header's seconds (429, 503), 0: none
 };
 
 // A JSON reading problem at `field` as a 400: malformed_json (syntax; no field), wrong_type or

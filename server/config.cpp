@@ -32,6 +32,7 @@ struct Setting {
   const char* help;
   void (*set)(ServerConfig&, const std::string& name, const std::string& value);
   std::string (*show)(const ServerConfig&);
+  bool switch_flag = false;  // given alone (--name) it means "on"
 };
 
 constexpr std::size_t kMaxSize = std::size_t{1} << 40;
@@ -215,6 +216,33 @@ const std::vector<Setting>& settings() {
          c.registry_ttl = std::chrono::seconds(parse_integer<long>(n, v, 0, 10L * 365 * 86400));
        },
        [](const ServerConfig& c) { return std::to_string(c.registry_ttl.count()); }},
+      {"tls-cert", "FOOTPOINT_TLS_CERT", "PEM certificate (chain) to serve HTTPS with (with --tls-key)",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.tls_cert = v; },
+       [](const ServerConfig& c) { return c.tls_cert.empty() ? std::string("\"\"") : c.tls_cert; }},
+      {"tls-key", "FOOTPOINT_TLS_KEY", "PEM private key of --tls-cert",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.tls_key = v; },
+       [](const ServerConfig& c) { return c.tls_key.empty() ? std::string("\"\"") : c.tls_key; }},
+      {"api-keys", "FOOTPOINT_API_KEYS",
+       "API keys file, NAME SCOPES SHA256HEX per line (\"\": no authentication)",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.api_keys = v; },
+       [](const ServerConfig& c) { return c.api_keys.empty() ? std::string("\"\"") : c.api_keys; }},
+      {"metrics-key-free", "FOOTPOINT_METRICS_KEY_FREE", "on: /metrics needs no key (off: the admin scope)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         if (v != "on" && v != "off") throw ConfigError(n + ": expected on or off, got '" + v + "'");
+         c.metrics_key_free = v == "on";
+       },
+       [](const ServerConfig& c) { return std::string(c.metrics_key_free ? "on" : "off"); }, true},
+      {"rate-limit", "FOOTPOINT_RATE_LIMIT", "points a second per API key (0: no limit)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.rate_limit = parse_integer<std::size_t>(n, v, 0, kMaxSize);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.rate_limit); }},
+      {"rate-burst", "FOOTPOINT_RATE_BURST",
+       "points a key may use at once above its rate (0: the larger of rate-limit and max-points)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.rate_burst = parse_integer<std::size_t>(n, v, 0, kMaxSize);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.rate_burst); }},
   };
   return table;
 }
@@ -249,7 +277,9 @@ ServerConfig load_config(int argc, const char* const* argv,
     }
     const Setting* s = find_flag(name);
     if (!s) throw ConfigError("unknown flag --" + name + " (see --help)");
-    if (!has_value) {
+    if (!has_value && s->switch_flag) {
+      value = "on";
+    } else if (!has_value) {
       if (i + 1 >= argc) throw ConfigError("--" + name + " needs a value");
       value = argv[++i];
     }
@@ -257,6 +287,8 @@ ServerConfig load_config(int argc, const char* const* argv,
   }
   if (config.effective_max_inflight() > config.connection_threads)
     throw ConfigError("--max-inflight must not exceed --connection-threads");
+  if (config.tls_cert.empty() != config.tls_key.empty())
+    throw ConfigError("--tls-cert and --tls-key go together (HTTPS), or neither (plain HTTP)");
   if (!config.registry_password_file.empty()) {
     if (!config.registry_password.empty())
       throw ConfigError("set FOOTPOINT_REGISTRY_PASSWORD or --registry-password-file, not both");
@@ -291,6 +323,7 @@ std::string effective_settings_json(const ServerConfig& config) {
   ServerConfig effective = config;
   if (effective.threads == 0) effective.threads = std::max(1u, std::thread::hardware_concurrency());
   effective.max_inflight = config.effective_max_inflight();
+  if (effective.rate_limit > 0) effective.rate_burst = config.effective_rate_burst();
   if (effective.compile_deadline.count() == 0) effective.compile_deadline = effective.deadline;
   JsonWriter w;
   w.begin_object();

@@ -1,6 +1,7 @@
 // Everything an operator can set, with its default. Each field is read from a command-line flag
 // and an environment variable; the flag wins over the variable, the variable over the default.
 #pragma once
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <functional>
@@ -88,6 +89,28 @@ struct ServerConfig {
   // --registry-ttl-s / FOOTPOINT_REGISTRY_TTL_S: an entry unused on every replica for this long
   // expires; 0: never (bound Redis by maxmemory with allkeys-lru instead).
   std::chrono::seconds registry_ttl{604800};
+
+  // Exposure (docs/security.md). --tls-cert / FOOTPOINT_TLS_CERT and --tls-key /
+  // FOOTPOINT_TLS_KEY: PEM files (the certificate, then any intermediates; the private key). Both
+  // given: HTTPS only, TLS 1.2 and 1.3, the files read again on SIGHUP. Neither: plain HTTP.
+  std::string tls_cert;
+  std::string tls_key;
+  // --api-keys / FOOTPOINT_API_KEYS: the keys file (server/access.hpp: NAME SCOPES SHA256HEX per
+  // line), read again on SIGHUP. Empty: no authentication.
+  std::string api_keys;
+  // --metrics-key-free / FOOTPOINT_METRICS_KEY_FREE: /metrics answers without a key (else it
+  // needs the admin scope when keys are on).
+  bool metrics_key_free = false;
+  // --rate-limit / FOOTPOINT_RATE_LIMIT: points a second each key may have projected or
+  // evaluated (any other API request counts one point); 0: no limit. Without keys every client
+  // shares one bucket.
+  std::size_t rate_limit = 0;
+  // --rate-burst / FOOTPOINT_RATE_BURST: the bucket's size in points; 0: the larger of
+  // --rate-limit and --max-points, so that every admissible request can pass.
+  std::size_t rate_burst = 0;
+  std::size_t effective_rate_burst() const {
+    return rate_burst ? rate_burst : std::max(rate_limit, max_points);
+  }
 };
 
 struct ConfigError : std::runtime_error {

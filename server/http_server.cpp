@@ -21,12 +21,6 @@
 
 namespace footpoint::server {
 
-// httplib keeps the listening socket protected; the backlog is set on it after binding.
-class HttpServer::Listener : public httplib::Server {
- public:
-  int listening_socket() const { return svr_sock_; }
-};
-
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -41,6 +35,7 @@ struct RequestContext {
   std::size_t points = 0;
   std::string error_code;  // the code of the error answered, for the log line
   bool admitted = false;   // already checked when the client asked "Expect: 100-continue"
+  std::string key;         // the API key's name, "" without keys or before authentication
 };
 thread_local RequestContext t_request;
 
@@ -135,6 +130,52 @@ std::unique_ptr<GeometryRegistry> start_registry(const ServerConfig& config, Geo
   return std::make_unique<GeometryRegistry>(std::move(options), cache);
 }
 
+// The keys file the configuration names, read (nullptr: no authentication).
+std::shared_ptr<const KeyRing> load_keys(const ServerConfig& config) {
+  if (config.api_keys.empty()) return nullptr;
+  return std::make_shared<const KeyRing>(KeyRing::load(config.api_keys));
+}
+
+std::unique_ptr<TlsCredentials> load_tls(const ServerConfig& config) {
+  if (config.tls_cert.empty()) return nullptr;
+  return std::make_unique<TlsCredentials>(config.tls_cert, config.tls_key);
+}
+
+// httplib's HTTPS server when there are credentials, its plain one otherwise.
+std::unique_ptr<httplib::Server> make_listener(TlsCredentials* tls) {
+  if (!tls) return std::make_unique<httplib::Server>();
+  auto server = std::make_unique<httplib::SSLServer>([tls](SSL_CTX& ctx) { return tls->configure(ctx); });
+  if (!server->is_valid()) throw std::runtime_error("OpenSSL refused the TLS settings");
+  return server;
+}
+
+// The secret of "Authorization: Bearer SECRET" (RFC 6750 section 2.1; the scheme's case is free),
+// or "" when the header is absent or of another scheme.
+std::string_view bearer_token(const std::string& authorization) {
+  constexpr std::string_view scheme = "bearer ";
+  if (authorization.size() <= scheme.size() || lower(authorization.substr(0, scheme.size())) != scheme)
+    return {};
+  std::string_view token = std::string_view(authorization).substr(scheme.size());
+  const auto b = token.find_first_not_of(' '), e = token.find_last_not_of(' ');
+  return b == std::string_view::npos ? std::string_view() : token.substr(b, e - b + 1);
+}
+
+// 429 for a request whose points the bucket of `key` ("": the one shared without keys) lacks.
+ApiError rate_limited(const std::string& key, std::size_t points, std::size_t rate,
+                      const RateLimiter::Decision& decision) {
+  ApiError error(429, "rate_limited",
+                 "the request's " + std::to_string(points) + (points == 1 ? " point is" : " points are") +
+                     " over the rate limit of " +
+                     (key.empty() ? std::string("this server") : "the key " + key) + " (--rate-limit " +
+                     std::to_string(rate) + " points/s): retry after the Retry-After seconds");
+  error.retry_after_s = decision.retry_after_s;
+  return error;
+}
+
+bool counts_points(Route r) {
+  return r == Route::project || r == Route::geometry_project || r == Route::geometry_evaluate;
+}
+
 }  // namespace
 
 HttpServer::HttpServer(ServerConfig config, Handler handler)
@@ -144,22 +185,37 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       pool_(config_.threads),
       api_(config_, cache_, pool_, metrics_, registry_.get()),
       handler_(std::move(handler)),
-      http_(std::make_unique<Listener>()),
+      tls_(load_tls(config_)),
+      keys_(load_keys(config_)),
+      limiter_(config_.rate_limit
+                   ? std::make_unique<RateLimiter>(static_cast<double>(config_.rate_limit),
+                                                   static_cast<double>(config_.effective_rate_burst()))
+                   : nullptr),
+      http_(make_listener(tls_.get())),
       busy_ports_(std::make_unique<std::atomic<int>[]>(config_.connection_threads)) {
   init_logging(config_.log_level);
+  if (keys_)
+    log_event(spdlog::level::info, "API keys loaded", {{"file", config_.api_keys}, {"keys", keys_->size()}});
+  else
+    log_event(spdlog::level::warn, "no authentication: every client may call every route (see --api-keys)");
+  if (tls_) log_event(spdlog::level::info, "TLS certificate loaded", {{"certificate", tls_->describe()}});
   if (!handler_)
     handler_ = [this](const RouteMatch& m, std::string_view method, std::string_view body,
-                      std::string_view query) { return api_.handle(m, method, body, query); };
-  Listener& http = *http_;
+                      std::string_view query,
+                      const Caller& caller) { return api_.handle(m, method, body, query, caller); };
+  httplib::Server& http = *http_;
 
   const unsigned connection_threads = config_.connection_threads;
   http.new_task_queue = [connection_threads] { return new httplib::ThreadPool(connection_threads); };
   http.set_tcp_nodelay(true);
   // SO_REUSEADDR only: restarts need not wait for TIME_WAIT, but unlike httplib's default
   // SO_REUSEPORT a second instance cannot bind the same port and silently share it.
-  http.set_socket_options([](socket_t fd) {
+  // httplib calls this for the listening socket only (each address it tries; the last is kept):
+  // the backlog is set on it after binding.
+  http.set_socket_options([this](socket_t fd) {
     int yes = 1;
     ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    listen_fd_ = fd;
   });
   http.set_keep_alive_max_count(config_.keep_alive_max);
   http.set_keep_alive_timeout(config_.keep_alive_timeout_s);
@@ -232,7 +288,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
               has_body);
         res.status = 204;
         res.set_header("Access-Control-Allow-Methods", match.allow);
-        res.set_header("Access-Control-Allow-Headers", "Content-Type, X-Request-Id");
+        res.set_header("Access-Control-Allow-Headers", "Authorization, Content-Type, X-Request-Id");
         res.set_header("Access-Control-Max-Age", "600");
         return httplib::Server::HandlerResponse::Handled;
       }
@@ -244,6 +300,47 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
                              req.method + " is not allowed on " + route_template(match.route) +
                                  " (allowed: " + match.allow + ")"),
                     has_body);
+    }
+    // Who calls, and may they: the key's scope for the route (RFC 6750 section 3 for the
+    // WWW-Authenticate values), then their rate limit's bucket.
+    const Scope scope = required_scope(match.route, req.method, config_.metrics_key_free);
+    if (const auto keys = this->keys(); keys && scope != kScopeNone) {
+      const std::string authorization = req.get_header_value("Authorization");
+      const std::string_view secret = bearer_token(authorization);
+      const ApiKey* key = keys->authenticate(secret);
+      if (!key) {
+        res.set_header("WWW-Authenticate", secret.empty()
+                                               ? R"(Bearer realm="footpoint")"
+                                               : R"(Bearer realm="footpoint", error="invalid_token")");
+        return reject(res,
+                      secret.empty()
+                          ? ApiError(401, "missing_api_key",
+                                     "this route needs an API key: send Authorization: Bearer SECRET")
+                          : ApiError(401, "invalid_api_key", "the API key is not known to this server"),
+                      has_body);
+      }
+      ctx.key = key->name;
+      if (!key->allows(scope)) {
+        res.set_header("WWW-Authenticate",
+                       std::string(R"(Bearer realm="footpoint", error="insufficient_scope", scope=")") +
+                           scope_name(scope) + "\"");
+        return reject(
+            res,
+            ApiError(403, "insufficient_scope",
+                     "the API key " + key->name + " lacks the scope " + scope_name(scope) +
+                         " (or admin) that " + req.method + " " + route_template(match.route) + " needs"),
+            has_body);
+      }
+    }
+    if (limiter_ && required_scope(match.route, req.method, false) != kScopeNone &&
+        match.route != Route::metrics) {
+      // Point-counting requests take their points once the body is read (Caller::charge); the
+      // others take one point now.
+      const auto decision =
+          counts_points(match.route) ? limiter_->check(ctx.key) : limiter_->take(ctx.key, 1.0);
+      if (!decision.allowed) {
+        return reject(res, rate_limited(ctx.key, 1, config_.rate_limit, decision), has_body);
+      }
     }
     if (chunked)
       return reject(res,
@@ -302,7 +399,23 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     const std::string_view query = question == std::string::npos
                                        ? std::string_view()
                                        : std::string_view(req.target).substr(question + 1);
-    ApiResponse r = handler_(match, req.method, req.body, query);
+    Caller caller;
+    caller.key = t_request.key;
+    if (limiter_ && counts_points(match.route))
+      caller.charge = [this](std::size_t points) {
+        const std::string& key = t_request.key;
+        if (static_cast<double>(points) > limiter_->burst())
+          throw ApiError(413, "points_over_burst",
+                         "the request has " + std::to_string(points) +
+                             " points, more than the rate limit's burst of " +
+                             std::to_string(config_.effective_rate_burst()) +
+                             " (--rate-burst): split it into smaller requests",
+                         "points");
+        const auto decision = limiter_->take(key, static_cast<double>(points));
+        if (decision.allowed) return;
+        throw rate_limited(key, points, config_.rate_limit, decision);
+      };
+    ApiResponse r = handler_(match, req.method, req.body, query, caller);
     t_request.points = r.points;
     set_response(res, std::move(r));
     // A request answered while the server shuts down is the connection's last.
@@ -344,6 +457,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
           ctx.active ? std::chrono::duration<double>(Clock::now() - ctx.start).count() : 0.0;
       const Route route = ctx.active ? ctx.route : Route::none;
       metrics_.observe_request(route, res.status, seconds);
+      if (ctx.active && !ctx.key.empty()) metrics_.observe_key(ctx.key, res.status);
       RequestRecord record;
       record.request_id = ctx.active ? std::string_view(ctx.request_id) : std::string_view("-");
       record.method = req.method;
@@ -355,8 +469,10 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       record.points = ctx.active ? ctx.points : 0;
       record.body_bytes = req.body.size();
       record.duration_ms = seconds * 1e3;
+      record.key = ctx.active ? std::string_view(ctx.key) : std::string_view();
       log_request(record);
       ctx.active = false;
+      ctx.key.clear();
       ctx.error_code.clear();
       mark_idle();
     } catch (...) {
@@ -374,7 +490,7 @@ int HttpServer::bind() {
                              std::strerror(errno));
   // httplib listens with a backlog of 5: connection bursts beyond it would be refused or
   // retried by the kernel, so listen again with the configured length.
-  if (::listen(http_->listening_socket(), config_.backlog) != 0)
+  if (listen_fd_ < 0 || ::listen(listen_fd_, config_.backlog) != 0)
     throw std::runtime_error(std::string("listen() failed: ") + std::strerror(errno));
   port_ = port;
   return port;
@@ -386,6 +502,41 @@ void HttpServer::run() {
   run_state_.store(RunState::starting);
   if (!api_.shutting_down() && port_ >= 0) http_->listen_after_bind();
   run_state_.store(RunState::finished);
+}
+
+std::shared_ptr<const KeyRing> HttpServer::keys() const {
+  std::lock_guard lock(keys_mutex_);
+  return keys_;
+}
+
+bool HttpServer::reload() {
+  bool ok = true;
+  if (!config_.api_keys.empty()) {
+    try {
+      auto fresh = load_keys(config_);
+      const std::size_t count = fresh->size();
+      {
+        std::lock_guard lock(keys_mutex_);
+        keys_ = std::move(fresh);
+      }
+      log_event(spdlog::level::info, "API keys reloaded", {{"file", config_.api_keys}, {"keys", count}});
+    } catch (const std::exception& e) {
+      ok = false;
+      log_event(spdlog::level::err, "API keys not reloaded: the previous keys stay in use",
+                {{"error", e.what()}});
+    }
+  }
+  if (tls_) {
+    try {
+      tls_->reload();
+      log_event(spdlog::level::info, "TLS certificate reloaded", {{"certificate", tls_->describe()}});
+    } catch (const std::exception& e) {
+      ok = false;
+      log_event(spdlog::level::err, "TLS certificate not reloaded: the previous one stays in use",
+                {{"error", e.what()}});
+    }
+  }
+  return ok;
 }
 
 void HttpServer::shutdown() {

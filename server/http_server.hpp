@@ -10,6 +10,11 @@
 // connections at once (httplib alone would wait out their keep-alive timeout), answer 503 to a request
 // that arrives on an open connection meanwhile, let in-flight requests finish (their responses say
 // Connection: close); run() returns when every connection is closed.
+// Exposure (docs/security.md): with --tls-cert/--tls-key the server speaks HTTPS only (tls.hpp);
+// with --api-keys every API request needs `Authorization: Bearer SECRET` of a key with the
+// route's scope (401, 403 from pre-routing, access.hpp), and --rate-limit takes each request's
+// points from its key's token bucket (429 with Retry-After). reload() (SIGHUP) reads the keys and
+// the TLS files again.
 #pragma once
 #include <atomic>
 #include <functional>
@@ -17,12 +22,18 @@
 #include <mutex>
 #include <string_view>
 
+#include "access.hpp"
 #include "api.hpp"
 #include "batch/thread_pool.hpp"
 #include "cache/geometry_cache.hpp"
 #include "config.hpp"
 #include "geometry_registry.hpp"
 #include "metrics.hpp"
+#include "tls.hpp"
+
+namespace httplib {
+class Server;
+}
 
 namespace footpoint::server {
 
@@ -31,7 +42,7 @@ class HttpServer {
   // Answers a request whose route and method passed the pre-routing checks. The default is the
   // Api; benchmarks substitute their own (e.g. an echo) to measure the HTTP and JSON layers.
   using Handler = std::function<ApiResponse(const RouteMatch&, std::string_view method, std::string_view body,
-                                            std::string_view query)>;
+                                            std::string_view query, const Caller& caller)>;
 
   explicit HttpServer(ServerConfig config, Handler handler = nullptr);
   ~HttpServer();
@@ -43,6 +54,9 @@ class HttpServer {
   int bind();
   // Serves until shutdown(); returns once in-flight requests are answered.
   void run();
+  // Reads the API keys file and the TLS certificate and key again (SIGHUP). What cannot be read
+  // is logged and the previous keys or credentials stay in use. Returns false then.
+  bool reload();
   // Starts a graceful shutdown and returns at once: no new connection is accepted and the idle
   // ones are closed. Thread-safe; later calls do nothing.
   void shutdown();
@@ -52,10 +66,11 @@ class HttpServer {
   Api& api() { return api_; }
   GeometryCache& cache() { return cache_; }
   GeometryRegistry* registry() { return registry_.get(); }
-
-  class Listener;  // the httplib server
+  bool tls() const { return tls_ != nullptr; }
 
  private:
+  // The keys in use (nullptr: no authentication).
+  std::shared_ptr<const KeyRing> keys() const;
   // Which connections are answering a request: one slot per connection thread holding the remote
   // port of the request it answers (0: between requests). shutdown() closes every connection of
   // this server whose port is in no slot.
@@ -70,7 +85,12 @@ class HttpServer {
   ThreadPool pool_;
   Api api_;
   Handler handler_;
-  std::unique_ptr<Listener> http_;
+  std::unique_ptr<TlsCredentials> tls_;  // nullptr: plain HTTP
+  mutable std::mutex keys_mutex_;
+  std::shared_ptr<const KeyRing> keys_;
+  std::unique_ptr<RateLimiter> limiter_;  // nullptr: no rate limit
+  std::unique_ptr<httplib::Server> http_;
+  int listen_fd_ = -1;  // the listening socket, seen by httplib's socket options callback
   int port_ = -1;
   enum class RunState { idle, starting, finished };
   std::atomic<RunState> run_state_{RunState::idle};

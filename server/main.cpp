@@ -1,5 +1,6 @@
 // footpoint-server: the HTTP/JSON service. Flags and environment variables: see --help
-// (server/config.hpp). Exits 0 after a graceful shutdown on SIGTERM or SIGINT.
+// (server/config.hpp). Exits 0 after a graceful shutdown on SIGTERM or SIGINT; SIGHUP reads the
+// API keys and the TLS certificate and key again.
 #include <pthread.h>
 #include <csignal>
 
@@ -45,7 +46,7 @@ int main(int argc, char** argv) {
 
     std::atomic<bool> signalled{false};
     std::thread signals([&server, &signalled] {
-      const int sig = wait_for_shutdown_signal();
+      const int sig = wait_for_shutdown_signal([&server] { server.reload(); });
       signalled.store(true);
       log_event(spdlog::level::info, "shutting down", {{"signal", sig == SIGTERM ? "SIGTERM" : "SIGINT"}});
       server.shutdown();

@@ -54,6 +54,11 @@ void Metrics::observe_request(Route route, int status, double seconds) {
   durations_[r].observe(kRequestBuckets, seconds);
 }
 
+void Metrics::observe_key(const std::string& key, int status) {
+  std::lock_guard lock(keys_mutex_);
+  ++by_key_[{key, status}];
+}
+
 void Metrics::observe_compile(double seconds) { compile_.observe(kCompileBuckets, seconds); }
 
 void Metrics::add_projections(const std::array<std::uint64_t, kStatusCount>& by_status) {
@@ -90,6 +95,16 @@ std::string Metrics::render(const Gauges& g) const {
     histogram_lines(out, "footpoint_http_request_duration_seconds",
                     std::string("route=\"") + route_template(static_cast<Route>(r)) + "\"", durations_[r],
                     kRequestBuckets);
+  }
+  {
+    std::lock_guard lock(keys_mutex_);
+    if (!by_key_.empty()) {
+      header(out, "footpoint_api_key_requests_total", "counter", "HTTP requests by API key name and status.");
+      for (const auto& [key_status, n] : by_key_)
+        line(out, "footpoint_api_key_requests_total",
+             "key=\"" + key_status.first + "\",status=\"" + std::to_string(key_status.second) + "\"",
+             static_cast<double>(n));
+    }
   }
   header(out, "footpoint_http_requests_in_flight", "gauge", "API requests being answered now.");
   line(out, "footpoint_http_requests_in_flight", "", static_cast<double>(g.in_flight));

@@ -3,6 +3,7 @@
 //   process_*                                                the process's (process_metrics.hpp)
 //   footpoint_http_requests_total{route,status}              counter
 //   footpoint_http_request_duration_seconds{route}           histogram
+//   footpoint_api_key_requests_total{key,status}             counter (with --api-keys)
 //   footpoint_http_requests_in_flight                        gauge
 //   footpoint_points_in_flight                               gauge
 //   footpoint_points_projected_total                         counter
@@ -19,7 +20,10 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <map>
+#include <mutex>
 #include <string>
+#include <utility>
 
 #include "cache/geometry_cache.hpp"
 #include "geometry/projection_result.hpp"
@@ -33,6 +37,8 @@ class Metrics {
  public:
   // One answered request: its route, status and duration from the first header byte read.
   void observe_request(Route route, int status, double seconds);
+  // One request that named a known API key (the key's name, never its secret).
+  void observe_key(const std::string& key, int status);
   void observe_compile(double seconds);
   // The statuses of the points of one request (indexed by Status).
   static constexpr int kStatusCount = static_cast<int>(Status::deadline_exceeded) + 1;
@@ -57,8 +63,8 @@ class Metrics {
 
  private:
   // Statuses counted by name; anything else lands in "other".
-  static constexpr std::array<int, 17> kHttpStatuses{200, 201, 204, 400, 403, 404, 405, 408, 411,
-                                                     413, 414, 415, 416, 422, 500, 503, 0};
+  static constexpr std::array<int, 19> kHttpStatuses{200, 201, 204, 400, 401, 403, 404, 405, 408, 411,
+                                                     413, 414, 415, 416, 422, 429, 500, 503, 0};
   static int status_index(int status);
 
   std::array<std::array<std::atomic<std::uint64_t>, kHttpStatuses.size()>, kRouteCount> requests_{};
@@ -66,6 +72,9 @@ class Metrics {
   Histogram<kCompileBuckets.size()> compile_{};
   std::array<std::atomic<std::uint64_t>, kStatusCount> projections_{};
   std::atomic<std::uint64_t> points_{0};
+  // Requests by key name and status: as many names as the keys file holds.
+  mutable std::mutex keys_mutex_;
+  std::map<std::pair<std::string, int>, std::uint64_t> by_key_;
 };
 
 }  // namespace footpoint::server

@@ -110,6 +110,10 @@ void log_request(const RequestRecord& r) {
   s += ",\"body_bytes\":" + std::to_string(r.body_bytes);
   s += ",\"duration_ms\":";
   append_shortest(s, to_microseconds(r.duration_ms));
+  if (!r.key.empty()) {
+    s += ",\"key\":";
+    append_json_string(s, r.key);
+  }
   s += ",\"remote\":";
   append_json_string(s, r.remote_addr);
   spdlog::info("{}", s);

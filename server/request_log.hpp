@@ -63,8 +63,10 @@ struct RequestRecord {
   std::size_t points = 0;
   std::size_t body_bytes = 0;
   double duration_ms = 0.0;
+  std::string_view key;  // the API key's name ("" without keys: not logged)
 };
-// The one line logged per request (duration_ms rounded to microseconds; "code" only for errors).
+// The one line logged per request (duration_ms rounded to microseconds; "code" only for errors,
+// "key" only for a request that named a known key).
 void log_request(const RequestRecord& record);
 
 }  // namespace footpoint::server

@@ -54,7 +54,7 @@ TEST_CASE("CORS for configured origins: preflight, responses and errors readable
   CHECK(r->body.empty());
   CHECK(r->get_header_value("Access-Control-Allow-Origin") == kApp);
   CHECK(r->get_header_value("Access-Control-Allow-Methods") == "POST");
-  CHECK(r->get_header_value("Access-Control-Allow-Headers") == "Content-Type, X-Request-Id");
+  CHECK(r->get_header_value("Access-Control-Allow-Headers") == "Authorization, Content-Type, X-Request-Id");
   CHECK(r->get_header_value("Access-Control-Max-Age") == "600");
   CHECK(r->get_header_value("Vary") == "Origin");
   r = preflight(*c, "/v1/geometries", "http://localhost:3000");

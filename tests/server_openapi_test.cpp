@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "access.hpp"
 #include "server_support.hpp"
 
 using namespace footpoint::server;
@@ -284,6 +285,42 @@ TEST_CASE("every response matches openapi.yaml") {
       R"J({"geometry":{"type":"parametric_curve","x":"t","y":"t","domain":{"t":[1,0]}},"point":[1,2]})J");  // 422
   record("DELETE", geometry, c->Delete("/v1/geometries/" + id));  // 204
   record("DELETE", geometry, c->Delete("/v1/geometries/" + id));  // 404
+
+  {
+    // With API keys and a rate limit: 401 (no key, an unknown one), 403 (a key without the
+    // scope), 429 (the key's points spent).
+    const std::string keys_file = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") +
+                                  "/footpoint_openapi_keys_" + std::to_string(s.port());
+    auto hex = [](const std::string& secret) {
+      std::string h;
+      char buf[3];
+      for (const unsigned char byte : sha256(secret)) {
+        std::snprintf(buf, sizeof buf, "%02x", byte);
+        h += buf;
+      }
+      return h;
+    };
+    std::ofstream(keys_file) << "reader project " << hex("readsecret") << "\n";
+    ServerConfig keyed_config;
+    keyed_config.api_keys = keys_file;
+    keyed_config.rate_limit = 1;
+    keyed_config.rate_burst = 3;
+    TestServer keyed(keyed_config);
+    std::remove(keys_file.c_str());
+    auto k = keyed.client();
+    const httplib::Headers reader{{"Authorization", "Bearer readsecret"}};
+    record("GET", "/v1/methods", k->Get("/v1/methods"));
+    record("GET", "/v1/methods", k->Get("/v1/methods", {{"Authorization", "Bearer nosuchkey"}}));
+    record("GET", "/metrics", k->Get("/metrics", reader));
+    record("GET", "/metrics", k->Get("/metrics"));
+    record("POST", "/v1/geometries", k->Post("/v1/geometries", reader, planar, "application/json"), planar);
+    const std::string inline_body = R"J({"geometry":)J" + planar + R"J(,"points":[[2,2],[0,0]]})J";
+    record("POST", "/v1/project", k->Post("/v1/project", reader, inline_body, "application/json"),
+           inline_body);
+    record("POST", "/v1/project", k->Post("/v1/project", reader, inline_body, "application/json"),
+           inline_body);
+    CHECK(samples.back().status == 429);
+  }
 
   // 503 while shutting down: what a request that arrives on an open connection meanwhile gets
   // (the idle connections themselves are closed at once, so the Api answers it here).

@@ -60,6 +60,18 @@ class TestServer {
     return c;
   }
 
+  // An HTTPS client (--tls-cert servers) that trusts only the certificates in `ca_file` and checks
+  // that the certificate names 127.0.0.1.
+  std::unique_ptr<httplib::SSLClient> tls_client(const std::string& ca_file) const {
+    auto c = std::make_unique<httplib::SSLClient>("127.0.0.1", port_);
+    c->set_ca_cert_path(ca_file.c_str());
+    c->enable_server_certificate_verification(true);
+    c->set_read_timeout(120, 0);
+    c->set_write_timeout(120, 0);
+    c->set_tcp_nodelay(true);
+    return c;
+  }
+
  private:
   HttpServer server_;
   int port_ = -1;
