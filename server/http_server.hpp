@@ -44,7 +44,8 @@ class HttpServer {
   // Serves until shutdown(); returns once in-flight requests are answered.
   void run();
   // Starts a graceful shutdown and returns at once: no new connection is accepted and the idle
-  // ones are closed. Thread-safe; later calls do nothing.
+  // ones are closed (once the streamed answers admitted have started: the time to read their
+  // bodies). Thread-safe; later calls do nothing.
   void shutdown();
 
   int port() const { return port_; }
@@ -62,6 +63,8 @@ class HttpServer {
   void mark_busy(int remote_port);
   void mark_idle();
   void close_idle_connections();
+  // The request on this connection thread has started its streamed answer, or ended without one.
+  void stream_started();
 
   ServerConfig config_;
   Metrics metrics_;
@@ -70,12 +73,14 @@ class HttpServer {
   ThreadPool pool_;
   Api api_;
   Handler handler_;
+  bool custom_handler_;  // handler_ was given (tests, benches): it sees no RequestFormat
   std::unique_ptr<Listener> http_;
   int port_ = -1;
   enum class RunState { idle, starting, finished };
   std::atomic<RunState> run_state_{RunState::idle};
   std::mutex stop_mutex_;
   bool stopped_ = false;
+  std::atomic<int> streams_starting_{0};            // streamed answers admitted and not yet started
   std::unique_ptr<std::atomic<int>[]> busy_ports_;  // config_.connection_threads slots
   std::atomic<unsigned> slots_taken_{0};
 };
