@@ -26,6 +26,7 @@ test_packages=(
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev  # bench/occt/
   clang-format clang-tidy shellcheck         # scripts/check_format.sh, scripts/check_tidy.sh, deploy_shellcheck
   chromium python3-websocket                 # the browser pages in headless chromium (tests/ui_playground_browser.py)
+  python3-matplotlib                         # examples/inspection/: the deviation colour map and histogram
 )
 extra=()
 for arg in "$@"; do
