@@ -28,6 +28,7 @@ test_packages=(
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev  # bench/occt/
   clang-format clang-tidy shellcheck         # scripts/check_format.sh, scripts/check_tidy.sh, deploy_shellcheck
   chromium python3-websocket                 # the browser pages in headless chromium (tests/ui_playground_browser.py)
+  python3-matplotlib                         # examples/inspection/: the deviation colour map and histogram
 )
 # tests/openapi_lint.sh: Redocly's linter (pinned by tests/tools/redocly/package-lock.json) needs
 # npm; Debian's, unless an npm is already there (e.g. with another Node.js distribution).

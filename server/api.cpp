@@ -1,6 +1,8 @@
 #include "api.hpp"
 
 #include <chrono>
+#include <limits>
+#include <memory>
 #include <new>
 #include <vector>
 
@@ -14,6 +16,7 @@
 #include "mesh_response.hpp"
 #include "openapi_text.hpp"
 #include "project_request.hpp"
+#include "project_stream.hpp"
 #include "query.hpp"
 #include "request_log.hpp"
 #include "result_json.hpp"
@@ -123,7 +126,7 @@ Metrics::Gauges Api::gauges() const {
 }
 
 ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::string_view body,
-                        std::string_view query, const Caller& caller) {
+                        std::string_view query, const Caller& caller, const RequestFormat& format) {
   try {
     switch (match.route) {
       case Route::healthz:
@@ -146,7 +149,7 @@ ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::s
         return get_geometry(match.id);  // HEAD: the HTTP layer drops the body
       case Route::geometry_project: {
         InFlight counted(in_flight_);
-        return project(match.id, body, caller);
+        return project(match.id, body, query, format, caller);
       }
       case Route::geometry_mesh: {
         InFlight counted(in_flight_);
@@ -158,7 +161,7 @@ ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::s
       }
       case Route::project: {
         InFlight counted(in_flight_);
-        return project({}, body, caller);
+        return project({}, body, query, format, caller);
       }
       case Route::ui_playground:
       case Route::ui_docs:
@@ -442,34 +445,88 @@ ApiResponse Api::delete_geometry(std::string_view id, const Caller& caller) {
   return r;
 }
 
-ApiResponse Api::project(std::string_view id, std::string_view body, const Caller& caller) {
+ApiResponse Api::project(std::string_view id, std::string_view body, std::string_view query,
+                         const RequestFormat& format, const Caller& caller) {
   const bool inline_geometry = id.empty();
+  const bool binary_in = format.content_type == "application/octet-stream";
+  const AnswerFormat answer = answer_format(format.accept);
+  const bool streamed = answer != AnswerFormat::json;
+  if (binary_in && inline_geometry)
+    throw ApiError(415, "unsupported_media_type",
+                   "POST /v1/project takes JSON (the definition travels with the points): for binary points, "
+                   "POST the definition to /v1/geometries, then the points to /v1/geometries/{id}/project");
   std::shared_ptr<const CompiledGeometry> geometry;
   if (!inline_geometry) {
     geometry = geometry_by_id(id, ", or use POST /v1/project with the definition inline");
   }
-  ProjectRequest request = read_project_request(body, inline_geometry, config_.max_points);
+  // A streamed answer holds one window of results at a time: --max-points bounds the batches held
+  // whole, the body's size (--max-body-bytes) a stream.
+  const std::size_t max_points = streamed ? std::numeric_limits<std::size_t>::max() : config_.max_points;
+  ProjectRequest request =
+      binary_in ? read_binary_project_request(body, query, geometry->point_dim(), max_points, streamed)
+                : read_project_request(body, inline_geometry, max_points);
   if (inline_geometry) geometry = compile(*request.geometry, "geometry.").geometry;
   const GeometryMethod method = check_project_request(request, *geometry);
   if (caller.charge) caller.charge(request.count);
-  const PointsReservation reserved(in_flight_points_, request.count, config_.max_inflight_points);
 
+  if (streamed) {
+    if (request.single)
+      throw ApiError(
+          406, "not_acceptable",
+          "a single point is answered in JSON; stream a batch (\"points\") or ask for application/json",
+          "point");
+    auto stream = std::make_shared<ProjectStream>(geometry, method);
+    stream->format = answer;
+    if (answer == AnswerFormat::binary)
+      stream->layout =
+          binary_layout(request.fields, request.fields_given, geometry->point_dim(), geometry->num_params());
+    stream->request = std::move(request);
+    stream->deadline = Clock::now() + config_.deadline;
+    stream->pool = &pool_;
+    stream->metrics = &metrics_;
+    // The stream runs after this returns: it keeps its own counts of requests and points in flight
+    // (one window of points).
+    auto reserved = std::make_shared<PointsReservation>(
+        in_flight_points_, std::min(stream->request.count, kStreamWindow), config_.max_inflight_points);
+    auto counted = std::make_shared<InFlight>(in_flight_);
+    ApiResponse r;
+    r.points = stream->request.count;
+    if (answer == AnswerFormat::binary) {
+      r.content_type = "application/octet-stream";
+      r.headers.emplace_back("X-Footpoint-Record", stream->layout.describe());
+      r.headers.emplace_back("X-Footpoint-Record-Bytes", std::to_string(stream->layout.record_bytes()));
+    } else {
+      r.content_type = "application/x-ndjson";
+    }
+    r.stream = [stream, reserved, counted](const ApiResponse::Write& write) {
+      try {
+        return run_stream(*stream, write);
+      } catch (const std::exception& e) {
+        // the status is sent: the answer is cut, which the client sees
+        log_event(spdlog::level::err, "a streamed projection failed", {{"what", e.what()}});
+        return false;
+      }
+    };
+    return r;
+  }
+
+  const PointsReservation reserved(in_flight_points_, request.count, config_.max_inflight_points);
   BatchRequest batch{method};
   batch.options = request.options;
   batch.points = request.coords.data();
   batch.count = request.count;
   batch.initials = std::move(request.initials);
-  const auto start = Clock::now();
-  batch.deadline = start + config_.deadline;
+  const auto solve_start = Clock::now();
+  batch.deadline = solve_start + config_.deadline;
   const std::vector<ProjectionResult> results = project_batch(pool_, batch);
-  const double elapsed_ms = ms_since(start);
+  const double elapsed_ms = ms_since(solve_start);
 
   std::array<std::uint64_t, Metrics::kStatusCount> by_status{};
   for (const auto& r : results) ++by_status[static_cast<std::size_t>(reported_status(r))];
   metrics_.add_projections(by_status);
 
-  ApiResponse r = json_response(
-      200, project_response(geometry->id(), results, request.single, request.fields, elapsed_ms));
+  ApiResponse r = json_response(200, project_response(geometry->id(), results, request.single, request.fields,
+                                                      elapsed_ms, request.deviation));
   r.points = results.size();
   return r;
 }

@@ -22,6 +22,12 @@
 
 namespace footpoint::server {
 
+// What the HTTP layer tells of a request's representations.
+struct RequestFormat {
+  std::string content_type;  // the body's media type, lower case, no parameters ("application/json")
+  std::string accept;        // the Accept header as sent ("" when none)
+};
+
 struct ApiResponse {
   int status = 200;
   std::string content_type = "application/json";
@@ -31,6 +37,12 @@ struct ApiResponse {
   int retry_after_s = 0;   // Retry-After header (503 overloaded, registry_unavailable), 0: none
   std::vector<std::pair<std::string, std::string>> headers;  // further headers (the pages' security policy)
   std::string error_code;  // the error's code when this answers one (for the request log)
+  // A body produced while it is sent (chunked transfer), instead of `body`: the HTTP layer calls
+  // it once, while the request and its body are alive, with `write` sending one piece (false
+  // once the client is gone); it returns false when it stopped before the end (the HTTP layer
+  // then closes the connection, so that the client sees the answer cut).
+  using Write = std::function<bool(std::string_view)>;
+  std::function<bool(const Write&)> stream;
 };
 
 // Who is calling, for what the Api decides once a body is read. Empty: no keys, no limit.
@@ -51,7 +63,7 @@ class Api {
   // after '?' (empty when there is none). Never throws: every failure becomes a JSON error
   // response with its status.
   ApiResponse handle(const RouteMatch& match, std::string_view method, std::string_view body,
-                     std::string_view query = {}, const Caller& caller = {});
+                     std::string_view query = {}, const Caller& caller = {}, const RequestFormat& format = {});
 
   // While shutting down, /readyz answers 503 (the HTTP layer refuses new API requests).
   void set_shutting_down() { shutting_down_.store(true); }
@@ -75,8 +87,10 @@ class Api {
   static constexpr long long kDefaultListLimit = 100, kMaxListLimit = 1000;
   ApiResponse get_geometry(std::string_view id);
   ApiResponse delete_geometry(std::string_view id, const Caller& caller);
-  // id empty: inline geometry
-  ApiResponse project(std::string_view id, std::string_view body, const Caller& caller);
+  // id empty: inline geometry. A binary body (application/octet-stream) reads its options from
+  // the query; Accept application/x-ndjson or application/octet-stream streams the answer.
+  ApiResponse project(std::string_view id, std::string_view body, std::string_view query,
+                      const RequestFormat& format, const Caller& caller);
   ApiResponse mesh(std::string_view id, std::string_view query);
   ApiResponse evaluate(std::string_view id, std::string_view body, const Caller& caller);
   ApiResponse ui(const RouteMatch& match) const;

@@ -5,6 +5,7 @@
 #include <netinet/in.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
@@ -17,6 +18,7 @@
 
 #include <httplib.h>
 
+#include "project_stream.hpp"
 #include "request_log.hpp"
 
 namespace footpoint::server {
@@ -33,9 +35,10 @@ struct RequestContext {
   std::string request_id;
   Route route = Route::none;
   std::size_t points = 0;
-  std::string error_code;  // the code of the error answered, for the log line
-  bool admitted = false;   // already checked when the client asked "Expect: 100-continue"
-  std::string key;         // the API key's name, "" without keys or before authentication
+  std::string error_code;       // the code of the error answered, for the log line
+  bool admitted = false;        // already checked when the client asked "Expect: 100-continue"
+  std::string key;              // the API key's name, "" without keys or before authentication
+  bool stream_pending = false;  // a streamed answer admitted and not yet started (streams_starting_)
 };
 thread_local RequestContext t_request;
 
@@ -83,6 +86,19 @@ void set_response(httplib::Response& res, ApiResponse&& r) {
   if (!r.location.empty()) res.set_header("Location", r.location);
   if (r.retry_after_s > 0) res.set_header("Retry-After", std::to_string(r.retry_after_s));
   for (const auto& [name, value] : r.headers) res.set_header(name, value);
+  if (r.stream) {
+    // Sent with chunked transfer as it is produced; the provider is called once (the stream
+    // loops over its windows itself) and must not write an empty piece: httplib takes one for
+    // the end of the stream.
+    res.set_chunked_content_provider(
+        r.content_type, [stream = std::move(r.stream)](std::size_t, httplib::DataSink& sink) {
+          const bool whole = stream([&sink](std::string_view piece) {
+            return piece.empty() || (sink.is_writable() && sink.write(piece.data(), piece.size()));
+          });
+          if (whole) sink.done();
+          return whole;
+        });
+  }
 }
 
 // Answers from pre-routing. When the request carries a body that will now not be read, the
@@ -191,6 +207,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
                    ? std::make_unique<RateLimiter>(static_cast<double>(config_.rate_limit),
                                                    static_cast<double>(config_.effective_rate_burst()))
                    : nullptr),
+      custom_handler_(static_cast<bool>(handler_)),
       http_(make_listener(tls_.get())),
       busy_ports_(std::make_unique<std::atomic<int>[]>(config_.connection_threads)) {
   init_logging(config_.log_level);
@@ -255,11 +272,19 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     }
     const bool has_body = chunked || length > 0;
 
+    const RouteMatch match = match_route(req.method, req.path);
+    ctx.route = match.route;
+    // A streamed projection is counted from here until its answer starts (shutdown() waits for
+    // them: see there). Counted before the shutting-down check, which shutdown() makes visible
+    // before it reads the count: one of the two sees the other.
+    if (req.method == "POST" && (match.route == Route::geometry_project || match.route == Route::project) &&
+        answer_format(req.get_header_value("Accept")) != AnswerFormat::json) {
+      ctx.stream_pending = true;
+      streams_starting_.fetch_add(1);
+    }
     if (api_.shutting_down())
       return reject(
           res, ApiError(503, "shutting_down", "the server is shutting down; retry on another replica"), true);
-    const RouteMatch match = match_route(req.method, req.path);
-    ctx.route = match.route;
     if (match.route == Route::none)
       return reject(res,
                     ApiError(404, "route_not_found", "no route " + req.path + " (see GET /openapi.yaml)"),
@@ -277,7 +302,8 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       if (allowed) {
         res.set_header("Access-Control-Allow-Origin", any ? "*" : origin);
         res.set_header("Access-Control-Expose-Headers",
-                       "X-Request-Id, Location, Retry-After, Content-Disposition");
+                       "X-Request-Id, Location, Retry-After, Content-Disposition, X-Footpoint-Record, "
+                       "X-Footpoint-Record-Bytes");
       }
       if (req.method == "OPTIONS") {
         if (!allowed)
@@ -369,10 +395,16 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
                     ApiError(415, "unsupported_content_encoding",
                              "Content-Encoding " + encoding + " is not accepted; send the JSON uncompressed"),
                     true);
-    if (media_type(req.get_header_value("Content-Type")) != "application/json")
+    // Points may also come as binary (application/octet-stream) to the projection routes.
+    const std::string media = media_type(req.get_header_value("Content-Type"));
+    const bool projection = match.route == Route::geometry_project || match.route == Route::project;
+    if (media != "application/json" && !(projection && media == "application/octet-stream"))
       return reject(
           res,
-          ApiError(415, "unsupported_media_type", "the body must be JSON (Content-Type: application/json)"),
+          ApiError(415, "unsupported_media_type",
+                   projection ? "the body must be JSON (Content-Type: application/json) or points in "
+                                "binary (Content-Type: application/octet-stream)"
+                              : "the body must be JSON (Content-Type: application/json)"),
           true);
     if (is_compute_route(match.route) && api_.in_flight() >= config_.effective_max_inflight())
       return reject(res, ApiError(503, "overloaded", "too many requests in progress; retry shortly"), true);
@@ -415,8 +447,17 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
         if (decision.allowed) return;
         throw rate_limited(key, points, config_.rate_limit, decision);
       };
-    ApiResponse r = handler_(match, req.method, req.body, query, caller);
+    ApiResponse r = custom_handler_
+                        ? handler_(match, req.method, req.body, query, caller)
+                        : api_.handle(match, req.method, req.body, query, caller,
+                                      RequestFormat{media_type(req.get_header_value("Content-Type")),
+                                                    req.get_header_value("Accept")});
     t_request.points = r.points;
+    if (r.stream)
+      r.stream = [this, stream = std::move(r.stream)](const ApiResponse::Write& write) {
+        stream_started();
+        return stream(write);
+      };
     set_response(res, std::move(r));
     // A request answered while the server shuts down is the connection's last.
     if (api_.shutting_down()) res.set_header("Connection", "close");
@@ -471,6 +512,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       record.duration_ms = seconds * 1e3;
       record.key = ctx.active ? std::string_view(ctx.key) : std::string_view();
       log_request(record);
+      stream_started();  // an answer that was no stream (an error), or one never started
       ctx.active = false;
       ctx.key.clear();
       ctx.error_code.clear();
@@ -548,10 +590,24 @@ void HttpServer::shutdown() {
   while (run_state_.load() == RunState::starting && !http_->is_running())
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   if (http_->is_running()) {
+    // httplib calls a streamed answer's producer only while it has not been stopped (its chunked
+    // writer checks before every call): a stream admitted but not yet started would be cut. Those
+    // are waited for (the time to read and check their bodies, bounded by the timeouts); a stream
+    // that has started runs to its end as a batch does.
+    const auto give_up = Clock::now() + std::chrono::seconds(config_.io_timeout_s) +
+                         std::max(config_.deadline, config_.compile_deadline);
+    while (streams_starting_.load() > 0 && Clock::now() < give_up)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
     http_->stop();
     stopped_ = true;
     close_idle_connections();
   }
+}
+
+void HttpServer::stream_started() {
+  if (!t_request.stream_pending) return;
+  t_request.stream_pending = false;
+  streams_starting_.fetch_sub(1);
 }
 
 void HttpServer::mark_busy(int remote_port) {

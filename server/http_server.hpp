@@ -58,7 +58,8 @@ class HttpServer {
   // is logged and the previous keys or credentials stay in use. Returns false then.
   bool reload();
   // Starts a graceful shutdown and returns at once: no new connection is accepted and the idle
-  // ones are closed. Thread-safe; later calls do nothing.
+  // ones are closed (once the streamed answers admitted have started: the time to read their
+  // bodies). Thread-safe; later calls do nothing.
   void shutdown();
 
   int port() const { return port_; }
@@ -77,6 +78,8 @@ class HttpServer {
   void mark_busy(int remote_port);
   void mark_idle();
   void close_idle_connections();
+  // The request on this connection thread has started its streamed answer, or ended without one.
+  void stream_started();
 
   ServerConfig config_;
   Metrics metrics_;
@@ -89,6 +92,7 @@ class HttpServer {
   mutable std::mutex keys_mutex_;
   std::shared_ptr<const KeyRing> keys_;
   std::unique_ptr<RateLimiter> limiter_;  // nullptr: no rate limit
+  bool custom_handler_;  // handler_ was given (tests, benches): it sees no RequestFormat
   std::unique_ptr<httplib::Server> http_;
   int listen_fd_ = -1;  // the listening socket, seen by httplib's socket options callback
   int port_ = -1;
@@ -96,6 +100,7 @@ class HttpServer {
   std::atomic<RunState> run_state_{RunState::idle};
   std::mutex stop_mutex_;
   bool stopped_ = false;
+  std::atomic<int> streams_starting_{0};            // streamed answers admitted and not yet started
   std::unique_ptr<std::atomic<int>[]> busy_ports_;  // config_.connection_threads slots
   std::atomic<unsigned> slots_taken_{0};
 };

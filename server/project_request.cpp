@@ -1,11 +1,17 @@
 #include "project_request.hpp"
 
+#include <algorithm>
+#include <bit>
+#include <charconv>
 #include <cmath>
+#include <cstring>
+#include <system_error>
 
 #include "api_error.hpp"
 #include "geometry_json.hpp"
 #include "json_reader.hpp"
 #include "number_rows.hpp"
+#include "query.hpp"
 #include "request_object.hpp"
 
 namespace footpoint::server {
@@ -68,50 +74,94 @@ void read_initial(JsonReader& r, ProjectRequest& request) {
   }
 }
 
-void read_options(JsonReader& r, ProjectRequest& request) {
+// Sets the option `key` (named `field` in messages) from `value`, which reads it: number(),
+// boolean() and numbers(start) (1 to 3 numbers into start, returns how many). False for a key
+// that is no option. The JSON body's "options" and a binary request's query share it.
+template <class Value>
+bool set_option(ProjectRequest& request, const std::string& key, const std::string& field, Value& value) {
   Options& o = request.options;
+  if (key == "tolerance") {
+    const double t = value.number();
+    if (!(t >= 0.0 && t < 1.0))
+      throw ApiError(400, "invalid_option", field + " must be in [0, 1) (0: the method's default)", field);
+    o.tolerance = t;
+  } else if (key == "max_iterations") {
+    const double n = value.number();
+    if (!(n >= 0.0 && n <= 10000.0 && n == std::floor(n)))
+      throw ApiError(400, "invalid_option",
+                     field + " must be an integer in [0, 10000] (0: the method's default)", field);
+    o.max_iterations = static_cast<int>(n);
+  } else if (key == "max_distance") {
+    const double d = value.number();
+    if (!(d > 0.0)) throw ApiError(400, "invalid_option", field + " must be positive", field);
+    o.max_distance = d;
+  } else if (key == "all_minima") {
+    o.all_minima = value.boolean();
+  } else if (key == "max_minima") {
+    const double n = value.number();
+    if (!(n >= 1.0 && n <= 10000.0 && n == std::floor(n)))
+      throw ApiError(400, "invalid_option", field + " must be an integer in [1, 10000]", field);
+    o.max_minima = static_cast<int>(n);
+  } else if (key == "trace") {
+    o.trace = value.boolean();
+  } else if (key == "certify") {
+    o.certify = value.boolean();
+  } else if (key == "histogram_bins") {
+    const double n = value.number();
+    if (!(n >= 1.0 && n <= DeviationOptions::kMaxBins && n == std::floor(n)))
+      throw ApiError(400, "invalid_option",
+                     field + " must be an integer in [1, " + std::to_string(DeviationOptions::kMaxBins) + "]",
+                     field);
+    request.deviation.histogram_bins = static_cast<int>(n);
+  } else if (key == "tolerance_band") {
+    std::array<double, 3> band{};
+    if (value.numbers(band) != 2)
+      throw ApiError(400, "wrong_dimension", field + " must be two numbers [lo, hi]", field);
+    if (!(std::isfinite(band[0]) && std::isfinite(band[1]) && band[0] <= band[1]))
+      throw ApiError(400, "invalid_option", field + " must be [lo, hi] with finite lo <= hi", field);
+    request.deviation.tolerance_band = std::array<double, 2>{band[0], band[1]};
+  } else {
+    return false;
+  }
+  return true;
+}
+
+constexpr const char* kOptionNames =
+    "tolerance, max_iterations, initial, all_minima, max_minima, trace, max_distance, certify, "
+    "histogram_bins, "
+    "tolerance_band";
+
+// An option's value in the JSON body.
+struct JsonOptionValue {
+  JsonReader& r;
+  const std::string& field;
+  double number() { return r.number(); }
+  bool boolean() { return r.boolean(); }
+  int numbers(std::array<double, 3>& start) { return read_start(r, start, field); }
+};
+
+void read_options(JsonReader& r, ProjectRequest& request) {
   read_object(r, "options", "options", "options.", [&](const std::string& key, const std::string& field) {
     try {
-      if (key == "tolerance") {
-        const double t = r.number();
-        if (!(t >= 0.0 && t < 1.0))
-          throw ApiError(400, "invalid_option", field + " must be in [0, 1) (0: the method's default)",
-                         field);
-        o.tolerance = t;
-      } else if (key == "max_iterations") {
-        const double n = r.number();
-        if (!(n >= 0.0 && n <= 10000.0 && n == std::floor(n)))
-          throw ApiError(400, "invalid_option",
-                         field + " must be an integer in [0, 10000] (0: the method's default)", field);
-        o.max_iterations = static_cast<int>(n);
-      } else if (key == "max_distance") {
-        const double d = r.number();
-        if (!(d > 0.0)) throw ApiError(400, "invalid_option", field + " must be positive", field);
-        o.max_distance = d;
-      } else if (key == "all_minima") {
-        o.all_minima = r.boolean();
-      } else if (key == "max_minima") {
-        const double n = r.number();
-        if (!(n >= 1.0 && n <= 10000.0 && n == std::floor(n)))
-          throw ApiError(400, "invalid_option", field + " must be an integer in [1, 10000]", field);
-        o.max_minima = static_cast<int>(n);
-      } else if (key == "trace") {
-        o.trace = r.boolean();
-      } else if (key == "certify") {
-        o.certify = r.boolean();
-      } else if (key == "initial") {
+      JsonOptionValue value{r, field};
+      if (key == "initial") {
         read_initial(r, request);
-      } else {
-        throw ApiError(
-            400, "unknown_field",
-            "unknown option " + field +
-                " (tolerance, max_iterations, initial, all_minima, max_minima, trace, max_distance, certify)",
-            field);
+      } else if (!set_option(request, key, field, value)) {
+        throw ApiError(400, "unknown_field", "unknown option " + field + " (" + kOptionNames + ")", field);
       }
     } catch (const JsonReadError& e) {
       throw request_error(e, field);
     }
   });
+}
+
+// The members a field name selects; 400 unknown_field naming `item` for a name that is none.
+std::uint32_t field_members(const std::string& name, const std::string& item) {
+  const std::uint32_t members = ResultFields::parse(name);
+  if (members == 0)
+    throw ApiError(400, "unknown_field",
+                   item + ": '" + name + "' is no member of a result (" + ResultFields::names() + ")", item);
+  return members;
 }
 
 // "fields": ["distance", "foot_point", "diagnostics.status", ...], at least one.
@@ -128,12 +178,7 @@ ResultFields read_fields(JsonReader& r) {
       } catch (const JsonReadError& e) {
         throw request_error(e, item);
       }
-      const std::uint32_t members = ResultFields::parse(name);
-      if (members == 0)
-        throw ApiError(400, "unknown_field",
-                       item + ": '" + name + "' is no member of a result (" + ResultFields::names() + ")",
-                       item);
-      fields.members |= members;
+      fields.members |= field_members(name, item);
     }
   } catch (const JsonReadError& e) {
     throw request_error(e, i == 0 ? std::string("fields") : indexed("fields", i));
@@ -146,6 +191,8 @@ ResultFields read_fields(JsonReader& r) {
 }  // namespace
 
 namespace {
+
+void settle_request(ProjectRequest& request, bool fields_given);
 
 ProjectRequest read_request(std::string_view body, bool inline_geometry, std::size_t max_points) {
   ProjectRequest request;
@@ -202,7 +249,14 @@ ProjectRequest read_request(std::string_view body, bool inline_geometry, std::si
   if (inline_geometry && !request.geometry)
     throw ApiError(400, "missing_field", "geometry (the definition) is required", "geometry");
   request.single = has_point;
-  // minima and trace are computed on request only; "fields" cannot ask for them alone.
+  settle_request(request, fields_given);
+  return request;
+}
+
+// minima and trace are computed on request only; "fields" cannot ask for them alone. One start
+// per point, or none.
+void settle_request(ProjectRequest& request, bool fields_given) {
+  request.fields_given = fields_given;
   for (const auto& [member, option] :
        {std::pair{ResultFields::minima, "all_minima"}, std::pair{ResultFields::trace, "trace"}}) {
     const bool asked = member == ResultFields::minima ? request.options.all_minima : request.options.trace;
@@ -219,7 +273,6 @@ ProjectRequest read_request(std::string_view body, bool inline_geometry, std::si
                    "options.initial has " + std::to_string(request.initials.size()) + " starts for " +
                        std::to_string(request.count) + " points",
                    "options.initial");
-  return request;
 }
 
 }  // namespace
@@ -229,6 +282,120 @@ ProjectRequest read_project_request(std::string_view body, bool inline_geometry,
     return read_request(body, inline_geometry, max_points);
   } catch (const ApiError& e) {
     throw unless_malformed(body, e);
+  }
+}
+
+namespace {
+
+// A query parameter's value as an option: numbers written as in JSON, booleans true or false,
+// several numbers separated by commas.
+struct QueryOptionValue {
+  const std::string& text;
+  const std::string& name;
+  static bool parse(std::string_view text, double& x) {
+    const auto r = std::from_chars(text.data(), text.data() + text.size(), x);
+    return r.ec == std::errc() && r.ptr == text.data() + text.size() && !text.empty();
+  }
+  double number() const {
+    double x = 0.0;
+    if (!parse(text, x))
+      throw ApiError(400, "wrong_type", name + " must be a number, got '" + text + "'", name);
+    return x;
+  }
+  bool boolean() const {
+    if (text == "true") return true;
+    if (text == "false") return false;
+    throw ApiError(400, "wrong_type", name + " must be true or false, got '" + text + "'", name);
+  }
+  int numbers(std::array<double, 3>& out) const {
+    int n = 0;
+    std::string_view rest = text;
+    while (true) {
+      const auto comma = rest.find(',');
+      if (n == 3) throw ApiError(400, "wrong_dimension", name + " has more than 3 numbers", name);
+      if (!parse(rest.substr(0, comma), out[n++]))
+        throw ApiError(400, "wrong_type", name + " must be numbers separated by commas, got '" + text + "'",
+                       name);
+      if (comma == std::string_view::npos) return n;
+      rest = rest.substr(comma + 1);
+    }
+  }
+};
+
+}  // namespace
+
+ProjectRequest read_binary_project_request(std::string_view body, std::string_view query, int point_dim,
+                                           std::size_t max_points, bool keep_raw) {
+  ProjectRequest request;
+  bool fields_given = false;
+  for (const auto& [name, value] : query_parameters(
+           query, {"dtype", "method", "fields", "tolerance", "max_iterations", "initial", "all_minima",
+                   "max_minima", "trace", "max_distance", "certify", "histogram_bins", "tolerance_band"})) {
+    QueryOptionValue v{value, name};
+    if (name == "dtype") {
+      if (value != "float64" && value != "float32")
+        throw ApiError(400, "invalid_option", "dtype must be float64 or float32, got '" + value + "'", name);
+      request.raw_float32 = value == "float32";
+    } else if (name == "method") {
+      request.method = value;
+    } else if (name == "fields") {
+      request.fields = ResultFields{0};
+      std::string_view rest = value;
+      for (std::size_t i = 0;; ++i) {
+        const auto comma = rest.find(',');
+        request.fields.members |= field_members(std::string(rest.substr(0, comma)), indexed("fields", i));
+        if (comma == std::string_view::npos) break;
+        rest = rest.substr(comma + 1);
+      }
+      fields_given = true;
+    } else if (name == "initial") {
+      std::array<double, 3> start{};
+      request.initial_length = v.numbers(start);
+      request.options.initial = start;
+    } else {
+      set_option(request, name, name, v);
+    }
+  }
+  const std::size_t record = static_cast<std::size_t>(point_dim) * (request.raw_float32 ? 4 : 8);
+  if (body.size() % record != 0)
+    throw ApiError(400, "wrong_shape",
+                   "the body has " + std::to_string(body.size()) + " bytes, not a whole number of " +
+                       std::to_string(record) + "-byte points (" + std::to_string(point_dim) +
+                       " little-endian " + (request.raw_float32 ? "float32" : "float64") +
+                       " numbers each); " + std::to_string(body.size() % record) + " bytes are left over",
+                   "body");
+  request.count = body.size() / record;
+  if (request.count == 0) throw ApiError(400, "missing_field", "the body holds no point", "body");
+  if (request.count > max_points)
+    throw ApiError(413, "too_many_points",
+                   "the body holds " + std::to_string(request.count) + " points, over the limit of " +
+                       std::to_string(max_points) + " (--max-points): split the batch",
+                   "body");
+  request.point_length = point_dim;
+  request.raw_points = body;
+  if (!keep_raw) {
+    request.coords.resize(request.count * static_cast<std::size_t>(point_dim));
+    decode_points(request, 0, request.count, request.coords.data());
+  }
+  settle_request(request, fields_given);
+  return request;
+}
+
+void decode_points(const ProjectRequest& request, std::size_t begin, std::size_t end, double* out) {
+  const std::size_t dim = static_cast<std::size_t>(request.point_length);
+  const std::size_t width = request.raw_float32 ? 4 : 8;
+  const char* p = request.raw_points.data() + begin * dim * width;
+  for (std::size_t i = 0; i < (end - begin) * dim; ++i, p += width) {
+    unsigned char bytes[8];
+    std::memcpy(bytes, p, width);
+    if constexpr (std::endian::native == std::endian::big) std::reverse(bytes, bytes + width);
+    if (request.raw_float32) {
+      float x;
+      std::memcpy(&x, bytes, 4);
+      out[i] = x;
+    } else {
+      std::memcpy(&out[i], bytes, 8);
+    }
   }
 }
 

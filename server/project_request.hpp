@@ -1,7 +1,7 @@
 // The body of POST /v1/geometries/{id}/project and POST /v1/project:
 //   {"point":[x,y,z]} or {"points":[[x,y,z],...]}, "method", "options":{tolerance, max_iterations,
-//   initial, all_minima, trace, max_distance, certify}, "fields":[...] (the members of each
-//   result), and for /v1/project the inline "geometry".
+//   initial, all_minima, trace, max_distance, certify, histogram_bins, tolerance_band}, "fields":[...] (the
+//   members of each result), and for /v1/project the inline "geometry".
 // Read in one pass with the pull reader; the points go straight into one flat array of doubles.
 #pragma once
 #include <array>
@@ -28,12 +28,30 @@ struct ProjectRequest {
   int initial_length = 0;                       // numbers per start (0: no start given)
   // The members each result has: "fields", or all; minima and trace only when the options ask.
   ResultFields fields;
+  bool fields_given = false;   // "fields" was given (else fields holds the defaults)
+  DeviationOptions deviation;  // options.histogram_bins, options.tolerance_band (stats.deviation)
+  // A binary body (read_binary_project_request): its points as sent, little-endian float64 or
+  // float32 (raw_float32), point_length numbers each; coords holds them decoded unless the
+  // request keeps them raw (a stream decodes a window at a time).
+  std::string_view raw_points;
+  bool raw_float32 = false;
 };
 
 // Reads and checks the shape of a request body; throws ApiError (400 for shapes, 413 for more
 // than `max_points` points). `inline_geometry` selects POST /v1/project, which requires
 // "geometry"; the other route rejects it.
 ProjectRequest read_project_request(std::string_view body, bool inline_geometry, std::size_t max_points);
+
+// A body of points in binary (Content-Type application/octet-stream): count records of point_dim
+// little-endian float64 numbers (float32 with ?dtype=float32), the options as query parameters
+// (method, fields=a,b,..., tolerance, max_iterations, initial=a,b, all_minima, max_minima, trace,
+// max_distance, certify, histogram_bins, tolerance_band=lo,hi). A length that is no whole number
+// of records is 400 wrong_shape with the byte counts. `keep_raw`: coords is left empty and
+// raw_points refers into `body` (decode_points reads it).
+ProjectRequest read_binary_project_request(std::string_view body, std::string_view query, int point_dim,
+                                           std::size_t max_points, bool keep_raw);
+// The points [begin, end) of a binary request, decoded to doubles (point_length each) into out.
+void decode_points(const ProjectRequest& request, std::size_t begin, std::size_t end, double* out);
 
 // Checks the request against the geometry it targets (point dimension, method, starts) and returns
 // the geometry's method it names.

@@ -9,9 +9,7 @@
 
 namespace footpoint::server {
 
-namespace {
-
-bool finite_answer(const ProjectionResult& r) {
+bool has_finite_answer(const ProjectionResult& r) {
   if (!std::isfinite(r.distance)) return false;
   for (int k = 0; k < r.dim; ++k)
     if (!std::isfinite(r.foot[k])) return false;
@@ -19,6 +17,8 @@ bool finite_answer(const ProjectionResult& r) {
     if (!std::isfinite(r.params[k])) return false;
   return true;
 }
+
+namespace {
 
 // Method, status and location names are plain identifiers; anything else is escaped.
 void name(JsonAppender& o, std::string_view s) {
@@ -85,7 +85,7 @@ void write_multiplicity(JsonAppender& o, const AnswerMultiplicity& m, const Proj
 
 // Writes one result with the members `f` selects; returns its reported status.
 Status write_result(JsonAppender& o, const ProjectionResult& r, ResultFields f) {
-  const bool answer = finite_answer(r);
+  const bool answer = has_finite_answer(r);
   const Status status = reported_status(r);
   o.literal("{");
   Members m(o);
@@ -107,6 +107,20 @@ Status write_result(JsonAppender& o, const ProjectionResult& r, ResultFields f) 
     m.key(",\"distance\":");
     if (answer)
       o.number(r.distance);
+    else
+      o.literal("null");
+  }
+  if (f.has(ResultFields::normal)) {
+    m.key(",\"normal\":");
+    if (answer && r.has_normal())
+      o.numbers(r.normal.data(), r.dim);
+    else
+      o.literal("null");
+  }
+  if (f.has(ResultFields::signed_distance)) {
+    m.key(",\"signed_distance\":");
+    if (answer && r.has_normal())
+      o.number(r.signed_distance);
     else
       o.literal("null");
   }
@@ -204,6 +218,8 @@ constexpr FieldName kFieldNames[] = {
     {"foot_point", ResultFields::foot_point},
     {"parameters", ResultFields::parameters},
     {"distance", ResultFields::distance},
+    {"normal", ResultFields::normal},
+    {"signed_distance", ResultFields::signed_distance},
     {"diagnostics", ResultFields::kDiagnostics},
     {"diagnostics.method", ResultFields::method},
     {"diagnostics.status", ResultFields::status},
@@ -222,7 +238,7 @@ constexpr FieldName kFieldNames[] = {
 }  // namespace
 
 Status reported_status(const ProjectionResult& r) {
-  if (r.summary.status == Status::converged && !finite_answer(r)) return Status::non_finite;
+  if (r.summary.status == Status::converged && !has_finite_answer(r)) return Status::non_finite;
   return r.summary.status;
 }
 
@@ -241,38 +257,96 @@ const char* ResultFields::names() {
   return text.c_str();
 }
 
-std::string project_response(const std::string& geometry_id, const std::vector<ProjectionResult>& results,
-                             bool single, ResultFields fields, double elapsed_ms) {
-  // ~330 bytes per plain result; more with minima or trace, less when trimmed.
-  std::string out;
-  out.reserve(192 + results.size() * (fields.has(ResultFields::minima | ResultFields::trace) ? 1024 : 340));
+Status append_result(std::string& out, const ProjectionResult& r, ResultFields fields) {
   JsonAppender o(out);
-  o.literal("{\"geometry_id\":");
-  o.string(geometry_id);
-  std::array<std::size_t, static_cast<std::size_t>(Status::deadline_exceeded) + 1> by_status{};
-  o.literal(single ? ",\"result\":" : ",\"results\":[");
-  for (std::size_t i = 0; i < results.size(); ++i) {
-    if (i) o.literal(",");
-    ++by_status[static_cast<std::size_t>(write_result(o, results[i], fields))];
-  }
-  o.literal(single ? ",\"stats\":{\"points\":" : "],\"stats\":{\"points\":");
-  o.integer(static_cast<long long>(results.size()));
+  return write_result(o, r, fields);
+}
+
+void append_stats(std::string& out, const BatchStats& stats, const DeviationOptions& options) {
+  JsonAppender o(out);
+  o.literal("{\"points\":");
+  o.integer(static_cast<long long>(stats.points));
   o.literal(",\"converged\":");
-  o.integer(static_cast<long long>(by_status[static_cast<std::size_t>(Status::converged)]));
+  o.integer(static_cast<long long>(stats.by_status[static_cast<std::size_t>(Status::converged)]));
   o.literal(",\"statuses\":{");
   bool first = true;
-  for (std::size_t k = 0; k < by_status.size(); ++k) {
-    if (by_status[k] == 0) continue;
+  for (std::size_t k = 0; k < stats.by_status.size(); ++k) {
+    if (stats.by_status[k] == 0) continue;
     o.literal(first ? "\"" : ",\"");
     first = false;
     o.literal(to_string(static_cast<Status>(k)));
     o.literal("\":");
-    o.integer(static_cast<long long>(by_status[k]));
+    o.integer(static_cast<long long>(stats.by_status[k]));
   }
   o.literal("},\"elapsed_ms\":");
-  o.number(elapsed_ms);
+  o.number(stats.elapsed_ms);
+  const DeviationStats& d = stats.deviation;
+  o.literal(",\"deviation\":{\"count\":");
+  o.integer(static_cast<long long>(d.count));
+  o.literal(",\"signed\":");
+  o.integer(static_cast<long long>(d.signed_count));
+  const bool any = d.count > 0;
+  for (const auto& [key, value] : {std::pair{",\"min\":", d.min}, std::pair{",\"max\":", d.max},
+                                   std::pair{",\"mean\":", d.mean}, std::pair{",\"rms\":", d.rms}}) {
+    o.literal(key);
+    if (any)
+      o.number(value);
+    else
+      o.literal("null");
+  }
+  o.literal(",\"histogram\":");
+  if (any) {
+    o.literal("{\"edges\":");
+    o.numbers(d.edges.data(), static_cast<int>(d.edges.size()));
+    o.literal(",\"counts\":[");
+    for (std::size_t k = 0; k < d.counts.size(); ++k) {
+      if (k) o.literal(",");
+      o.integer(static_cast<long long>(d.counts[k]));
+    }
+    o.literal("]}");
+  } else {
+    o.literal("null");
+  }
+  if (options.tolerance_band) {
+    o.literal(",\"tolerance_band\":{\"lo\":");
+    o.number((*options.tolerance_band)[0]);
+    o.literal(",\"hi\":");
+    o.number((*options.tolerance_band)[1]);
+    o.literal(",\"within\":");
+    o.integer(static_cast<long long>(d.within_band));
+    o.literal(",\"share\":");
+    if (any)
+      o.number(static_cast<double>(d.within_band) / static_cast<double>(d.count));
+    else
+      o.literal("null");
+    o.literal("}");
+  }
   o.literal("}}");
-  o.flush();
+}
+
+std::string project_response(const std::string& geometry_id, const std::vector<ProjectionResult>& results,
+                             bool single, ResultFields fields, double elapsed_ms,
+                             const DeviationOptions& deviation) {
+  // ~400 bytes per plain result; more with minima or trace, less when trimmed.
+  std::string out;
+  out.reserve(512 + results.size() * (fields.has(ResultFields::minima | ResultFields::trace) ? 1024 : 400));
+  BatchStats stats;
+  stats.points = results.size();
+  stats.elapsed_ms = elapsed_ms;
+  {
+    JsonAppender o(out);
+    o.literal("{\"geometry_id\":");
+    o.string(geometry_id);
+    o.literal(single ? ",\"result\":" : ",\"results\":[");
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      if (i) o.literal(",");
+      ++stats.by_status[static_cast<std::size_t>(write_result(o, results[i], fields))];
+    }
+    o.literal(single ? ",\"stats\":" : "],\"stats\":");
+  }
+  stats.deviation = deviation_stats(results, deviation);
+  append_stats(out, stats, deviation);
+  out += '}';
   return out;
 }
 

@@ -1,5 +1,6 @@
 // The JSON form of projection results (see openapi.yaml, ProjectionResult):
 //   {"foot_point":[...], "parameters":[u,v] | [t] (absent for implicit curves), "distance":d,
+//    "normal":[...] | null, "signed_distance":d | null,
 //    "diagnostics":{"method","status","converged","iterations","residual","step_norm","starts",
 //                   "location","certificate"}, "minima":[...] (all_minima), "trace":[...] (trace)}
 // trimmed to the members the request's "fields" names. Numbers are written in shortest
@@ -7,11 +8,14 @@
 // foot_point, parameters and distance; a result whose status claims convergence with non-finite
 // numbers is reported as non_finite, never as converged.
 #pragma once
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "batch/deviation.hpp"
 #include "geometry/projection_result.hpp"
 
 namespace footpoint::server {
@@ -35,10 +39,13 @@ struct ResultFields {
     minima = 1u << 12,
     trace = 1u << 13,
     multiplicity = 1u << 14,
+    normal = 1u << 15,
+    signed_distance = 1u << 16,
   };
   static constexpr std::uint32_t kDiagnostics = method | status | converged | iterations | residual |
                                                 step_norm | starts | location | certificate | multiplicity;
-  static constexpr std::uint32_t kAll = foot_point | parameters | distance | kDiagnostics | minima | trace;
+  static constexpr std::uint32_t kAll =
+      foot_point | parameters | distance | normal | signed_distance | kDiagnostics | minima | trace;
   // Everything a result has without options.all_minima and options.trace.
   static constexpr std::uint32_t kPlain = kAll & ~(minima | trace);
 
@@ -52,12 +59,32 @@ struct ResultFields {
   static const char* names();
 };
 
+// Whether r has a finite foot point, parameters and distance (else they are null).
+bool has_finite_answer(const ProjectionResult& r);
+
 // The status the response reports for r (see above).
 Status reported_status(const ProjectionResult& r);
 
-// The whole response body: {"geometry_id", "result" | "results", "stats"}; stats counts the
-// points, the converged ones and each status that occurs ("statuses").
+// Appends one result with the members `fields` selects to `out`; returns its reported status.
+Status append_result(std::string& out, const ProjectionResult& r, ResultFields fields);
+
+// What "stats" says of a batch: the points, the converged ones, each status that occurs, the time
+// and the deviations.
+struct BatchStats {
+  std::size_t points = 0;
+  std::array<std::size_t, static_cast<std::size_t>(Status::deadline_exceeded) + 1> by_status{};
+  double elapsed_ms = 0.0;
+  DeviationStats deviation;
+};
+
+// Appends the "stats" object: {"points", "converged", "statuses", "elapsed_ms", "deviation":
+// {"count", "signed", "min", "max", "mean", "rms", "histogram": {"edges", "counts"},
+// "tolerance_band": {"lo", "hi", "within", "share"} (with options.tolerance_band)}}.
+void append_stats(std::string& out, const BatchStats& stats, const DeviationOptions& deviation);
+
+// The whole response body: {"geometry_id", "result" | "results", "stats"}.
 std::string project_response(const std::string& geometry_id, const std::vector<ProjectionResult>& results,
-                             bool single, ResultFields fields, double elapsed_ms);
+                             bool single, ResultFields fields, double elapsed_ms,
+                             const DeviationOptions& deviation = {});
 
 }  // namespace footpoint::server

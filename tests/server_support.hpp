@@ -78,11 +78,8 @@ class TestServer {
   std::thread thread_;
 };
 
-// Sends `request` as it is on a new connection and returns the first response the server
-// writes (headers and a Content-Length body), or what arrived before the server closed the
-// connection or `timeout` passed.
-inline std::string raw_exchange(int port, const std::string& request,
-                                std::chrono::milliseconds timeout = std::chrono::milliseconds(10000)) {
+// A new connection to the server on 127.0.0.1:port (a socket to close).
+inline int raw_connect(int port) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
   REQUIRE(fd >= 0);
   sockaddr_in addr{};
@@ -90,16 +87,31 @@ inline std::string raw_exchange(int port, const std::string& request,
   addr.sin_port = htons(static_cast<std::uint16_t>(port));
   addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   REQUIRE(::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0);
+  return fd;
+}
+
+// Sends all of `data` on fd (or as much as the peer takes before it closes); the bytes sent.
+inline std::size_t send_all(int fd, const std::string& data) {
+  std::size_t sent = 0;
+  while (sent < data.size()) {
+    const auto n = ::send(fd, data.data() + sent, data.size() - sent, MSG_NOSIGNAL);
+    if (n <= 0) break;
+    sent += static_cast<std::size_t>(n);
+  }
+  return sent;
+}
+
+// Sends `request` as it is on a new connection and returns the first response the server
+// writes (headers and a Content-Length body), or what arrived before the server closed the
+// connection or `timeout` passed.
+inline std::string raw_exchange(int port, const std::string& request,
+                                std::chrono::milliseconds timeout = std::chrono::milliseconds(10000)) {
+  const int fd = raw_connect(port);
   timeval tv{};
   tv.tv_sec = static_cast<long>(timeout.count() / 1000);
   tv.tv_usec = static_cast<long>(timeout.count() % 1000) * 1000;
   ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-  std::size_t sent = 0;
-  while (sent < request.size()) {
-    const auto n = ::send(fd, request.data() + sent, request.size() - sent, MSG_NOSIGNAL);
-    if (n <= 0) break;
-    sent += static_cast<std::size_t>(n);
-  }
+  send_all(fd, request);
   std::string response;
   char buf[4096];
   for (;;) {

@@ -2,6 +2,7 @@
 // compiled object is immutable, shared by all threads, and answers projections by method name.
 #pragma once
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -85,6 +86,16 @@ class CompiledGeometry {
     (void)out;
     return false;
   }
+  // The unit normal at r's foot point (first point_dim() coordinates of n), or false where the
+  // geometry has none there: parametric surfaces s_u x s_v / |s_u x s_v| (none at a pole or where
+  // s_u x s_v = 0); planar parametric curves the tangent c' turned by +90 degrees in the plane,
+  // (-y', x') / |c'|; planar implicit curves grad f / |grad f| of the square-free equation (none
+  // at a singular point); space curves none (their normals form a plane). r has a finite answer.
+  virtual bool foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const {
+    (void)r;
+    (void)n;
+    return false;
+  }
 
  private:
   friend class GeometryMethod;
@@ -97,7 +108,10 @@ class CompiledGeometry {
 
 inline const MethodInfo& GeometryMethod::info() const { return geometry_->methods()[index_]; }
 inline ProjectionResult GeometryMethod::project(const double* p, const Options& options) const {
-  return geometry_->project_with(index_, p, options);
+  ProjectionResult r = geometry_->project_with(index_, p, options);
+  std::array<double, 3> n{};
+  if (std::isfinite(r.distance) && geometry_->foot_normal(r, n)) set_foot_normal(r, p, n);
+  return r;
 }
 
 // Every method of a geometry type (planar and spatial curves' together), in its table's order.

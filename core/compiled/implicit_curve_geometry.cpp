@@ -147,6 +147,15 @@ ProjectionResult ImplicitCurve::project_with(std::size_t index, const double* p,
   return table(dims()).project(index, *this, {p[0], p[1], equations().planar() ? 0.0 : p[2]}, options);
 }
 
+bool ImplicitCurve::foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const {
+  if (!equations().planar() || r.summary.location == Location::singular_point) return false;
+  const Vec3 g = equations().jet({r.foot[0], r.foot[1], 0.0}).grad[0];
+  const double length = std::hypot(g.x, g.y);
+  if (!(length > 0.0 && std::isfinite(length))) return false;
+  n = {g.x / length, g.y / length, 0.0};
+  return true;
+}
+
 const std::vector<MethodInfo>& implicit_curve_methods() { return table(PointDims::any).infos(); }
 
 std::size_t ImplicitCurve::memory_bytes() const {

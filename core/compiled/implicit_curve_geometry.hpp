@@ -30,6 +30,7 @@ class ImplicitCurve final : public CompiledGeometry {
   int num_params() const override { return 0; }
   const std::vector<MethodInfo>& methods() const override;
   std::size_t memory_bytes() const override;
+  bool foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const override;
 
   // The square-free equations (the written ones when they have no repeated factor).
   const ImplicitEquations& equations() const { return whole_->equations; }

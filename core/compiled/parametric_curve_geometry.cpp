@@ -99,6 +99,15 @@ bool ParametricCurve::evaluate(const double* t, Evaluation& out) const {
   return true;
 }
 
+bool ParametricCurve::foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const {
+  if (formulas_.dim() != 2) return false;
+  const Vec3 d = formulas_.jet(r.params[0]).d1;
+  const double speed = std::hypot(d.x, d.y);
+  if (!(speed > 0.0 && std::isfinite(speed))) return false;
+  n = {-d.y / speed, d.x / speed, 0.0};
+  return true;
+}
+
 std::size_t ParametricCurve::memory_bytes() const {
   return sizeof(*this) + formulas_.program().memory_bytes() + samples_.memory_bytes() +
          index_.memory_bytes() + cells_.memory_bytes();

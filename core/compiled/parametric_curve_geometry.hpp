@@ -23,6 +23,7 @@ class ParametricCurve final : public CompiledGeometry {
   const std::vector<MethodInfo>& methods() const override;
   std::size_t memory_bytes() const override;
   bool evaluate(const double* t, Evaluation& out) const override;
+  bool foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const override;
 
   const CurveFormulas& formulas() const { return formulas_; }
   const ParamInterval& domain() const { return domain_; }

@@ -123,6 +123,15 @@ bool ParametricSurface::evaluate(const double* t, Evaluation& out) const {
   return true;
 }
 
+bool ParametricSurface::foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const {
+  if (r.summary.location == Location::pole) return false;
+  Evaluation e;
+  evaluate(r.params.data(), e);
+  if (!e.normal_defined) return false;
+  n = {e.normal.x, e.normal.y, e.normal.z};
+  return true;
+}
+
 const std::vector<MethodInfo>& parametric_surface_methods() { return table().infos(); }
 
 std::size_t ParametricSurface::memory_bytes() const {

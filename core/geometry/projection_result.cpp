@@ -1,6 +1,7 @@
 #include "geometry/projection_result.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace footpoint {
@@ -115,6 +116,20 @@ void cap_minima(ProjectionResult& r, const Options& options) {
   if (r.minima.size() <= options.minima_cap()) return;
   r.minima.resize(options.minima_cap());
   r.minima_truncated = true;
+}
+
+void set_foot_normal(ProjectionResult& r, const double* p, const std::array<double, 3>& n) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  r.normal = {nan, nan, nan};
+  r.signed_distance = nan;
+  if (!std::isfinite(r.distance)) return;
+  double side = 0.0;
+  for (int k = 0; k < r.dim; ++k) {
+    if (!std::isfinite(n[k]) || !std::isfinite(r.foot[k])) return;
+    side += (p[k] - r.foot[k]) * n[k];
+  }
+  for (int k = 0; k < r.dim; ++k) r.normal[k] = n[k];
+  r.signed_distance = side < 0.0 ? -r.distance : r.distance;
 }
 
 double Summary::residual() const {

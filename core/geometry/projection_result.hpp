@@ -97,7 +97,20 @@ struct ProjectionResult {
   std::vector<Minimum> minima;               // with options.all_minima, best first
   bool minima_truncated = false;             // more minima were found than options.max_minima
   std::vector<std::array<double, 3>> trace;  // with options.trace: per-iteration increments
+  // The unit normal of the geometry at the foot point (dim coordinates; NaN where none is
+  // defined: no answer, a singular point or pole, a space curve) and the distance with the sign
+  // of <p - foot, normal> (NaN where the normal is). Set by set_foot_normal.
+  std::array<double, 3> normal{std::numeric_limits<double>::quiet_NaN(),
+                               std::numeric_limits<double>::quiet_NaN(),
+                               std::numeric_limits<double>::quiet_NaN()};
+  double signed_distance = std::numeric_limits<double>::quiet_NaN();
+  bool has_normal() const { return normal[0] == normal[0]; }
 };
+
+// Records the unit normal n at r's foot point (the first r.dim coordinates of n are read) and the
+// signed distance of the point p (r.dim coordinates): r.distance with the sign of <p - foot, n>
+// (+0 where p is on the geometry). Without a finite answer, or with a non-finite n, both stay NaN.
+void set_foot_normal(ProjectionResult& r, const double* p, const std::array<double, 3>& n);
 
 struct Options {
   // Convergence tolerance on the relative parameter step (and on the relative residuals).
