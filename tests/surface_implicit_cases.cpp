@@ -185,3 +185,38 @@ TEST_CASE("implicit surface: canonical form and id round trip") {
   CHECK(back.id() == def.id());
   CHECK(back.type == GeometryType::implicit_surface);
 }
+
+TEST_CASE(
+    "implicit surface: answers at the box's corners and edges are certified; a kink answers degenerate") {
+  // The triangle x + y + z = 1 in the unit cube: from points around it the foot is often a
+  // corner or on an edge, where the Lagrangian's multiplier is chosen to give the box's
+  // multipliers their signs; elsewhere on the lines where it meets the faces.
+  const auto plane = implicit_surface_of("x+y+z-1", 0, 1, 0, 1);
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-1.0, 2.0);
+  int corners = 0, faces = 0;
+  for (int i = 0; i < 200; ++i) {
+    const double p[3] = {u(rng), u(rng), u(rng)};
+    const auto r = plane->project(p, "auto", {});
+    REQUIRE(r);
+    CAPTURE(p[0]);
+    CAPTURE(p[1]);
+    CAPTURE(p[2]);
+    CHECK(r->summary.certificate.certified);
+    CHECK(std::fabs(r->foot[0] + r->foot[1] + r->foot[2] - 1.0) <= 1e-15);
+    corners += r->summary.location == Location::box_corner ? 1 : 0;
+    faces += r->summary.location == Location::box_face ? 1 : 0;
+  }
+  CHECK(corners > 10);
+  CHECK(faces > 10);
+  // The octahedron |x| + |y| + |z| = 1: from (-2.197, -2.182, -0.2927) the foot lies on a kink,
+  // where neither Newton's nor Hartmann's step is defined: a point of the surface, degenerate.
+  const auto octahedron = implicit_surface_of("abs(x)+abs(y)+abs(z)-1", -2, 2, -2, 2);
+  const double p[3] = {-2.197, -2.182, -0.2927};
+  const auto r = octahedron->project(p, "auto", {});
+  REQUIRE(r);
+  CHECK(r->summary.status == Status::degenerate);
+  REQUIRE(std::isfinite(r->distance));
+  CHECK(std::fabs(std::fabs(r->foot[0]) + std::fabs(r->foot[1]) + std::fabs(r->foot[2]) - 1.0) <= 1e-12);
+  CHECK(r->summary.certificate.lower_bound <= r->distance);
+}

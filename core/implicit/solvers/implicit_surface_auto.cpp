@@ -121,8 +121,16 @@ ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
   for (const BoxEdgePoint& e : cells.edge_points)
     search.consider(e.x, e.corner ? Location::box_corner : Location::box_edge);
   for (const Vec3& s : cells.singular_points) search.consider(s, Location::singular_point);
-  if (const int s = search.nearest_sample(); s >= 0)
-    search.solve_from(cells.samples[static_cast<std::size_t>(s)]);
+  const int nearest = search.nearest_sample();
+  if (nearest >= 0) search.solve_from(cells.samples[static_cast<std::size_t>(nearest)]);
+  // No local solve converged (a kink of abs, min or max, where Newton's and Hartmann's steps are
+  // undefined): the nearest sample, a point of the surface but no stationary point of the
+  // distance, is the answer, reported as degenerate with its certificate.
+  const bool stationary = std::isfinite(search.best().distance);
+  if (!stationary && nearest >= 0) {
+    const Vec3 s = cells.samples[static_cast<std::size_t>(nearest)];
+    search.consider(s, box_location(cells.box, s));
+  }
 
   ProjectionResult r;
   Certificate certificate;
@@ -155,7 +163,8 @@ ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
     r.summary.location = Location::singular_point;
     r.summary.orthogonality[0] = 0.0;  // no normal at a singular point
   }
-  r.summary.status = curve::within_max_distance(Status::converged, best.distance, control);
+  r.summary.status =
+      curve::within_max_distance(stationary ? Status::converged : Status::degenerate, best.distance, control);
   r.summary.iterations = best.iterations;
   r.summary.step_norm = best.step;
   r.summary.starts = search.starts();

@@ -17,15 +17,34 @@ namespace iv = formula::interval;
 constexpr double kRound = 0x1p-50;  // a few units of rounding, relative
 
 // The multiplier l of the foot x*: least squares of p - x* = l grad f over the coordinates not at
-// a bound of the box (the face multipliers take the others).
+// a bound of the box (the face multipliers take the others). At a corner every l is a multiplier
+// of the Lagrangian; the middle of those that give r = x* - p + l grad f the signs of the box's
+// multipliers (r_k >= 0 at a lower bound, <= 0 at an upper one, so that r . (x - x*) >= 0 in the
+// box), or 0 when none does.
 double foot_multiplier(const ImplicitSurfaceJet& j, const Box3& box, Vec3 p, Vec3 x) {
-  double num = 0.0, den = 0.0;
+  double num = 0.0, den = 0.0, lo = -std::numeric_limits<double>::infinity(), hi = -lo;
   for (int k = 0; k < 3; ++k) {
-    if (x[k] == box.lo[k] || x[k] == box.hi[k]) continue;
-    num += j.grad[k] * (p[k] - x[k]);
-    den += j.grad[k] * j.grad[k];
+    const bool at_lo = x[k] == box.lo[k], at_hi = x[k] == box.hi[k];
+    if (!at_lo && !at_hi) {
+      num += j.grad[k] * (p[k] - x[k]);
+      den += j.grad[k] * j.grad[k];
+      continue;
+    }
+    // (x - p)_k + l g_k >= 0 (lower bound) or <= 0 (upper bound): a half-line of l.
+    const double g = at_lo ? j.grad[k] : -j.grad[k], c = at_lo ? x[k] - p[k] : p[k] - x[k];
+    if (g > 0.0)
+      lo = std::max(lo, -c / g);
+    else if (g < 0.0)
+      hi = std::min(hi, -c / g);
+    else if (c < 0.0)
+      hi = lo - 1.0;  // no l helps
   }
-  return den > 0.0 ? num / den : 0.0;
+  if (den > 0.0) return num / den;
+  if (!(lo <= hi)) return 0.0;
+  if (std::isfinite(lo) && std::isfinite(hi)) return 0.5 * (lo + hi);
+  if (std::isfinite(lo)) return lo + 1.0 + std::fabs(lo);
+  if (std::isfinite(hi)) return hi - 1.0 - std::fabs(hi);
+  return 0.0;
 }
 
 // min over d in [a, b] (a <= 0 <= b) and s in [r.lo, r.hi] of s d + m / 2 d^2: at an end, or
