@@ -537,7 +537,9 @@ ApiResponse Api::mesh(std::string_view id, std::string_view query) {
   if (request.resolution == 0)
     request.resolution =
         std::min(config_.max_mesh_resolution,
-                 geometry->num_params() == 2 ? kDefaultSurfaceResolution : kDefaultCurveResolution);
+                 geometry->num_params() == 2 || geometry->definition().type == GeometryType::implicit_surface
+                     ? kDefaultSurfaceResolution
+                     : kDefaultCurveResolution);
   const Mesh mesh = mesh_geometry(*geometry, MeshOptions{request.resolution});
   ApiResponse r;
   if (request.format == MeshFormat::obj) {

@@ -30,7 +30,7 @@ std::string join(const std::vector<std::string>& names) {
 
 // The members of a definition object as read, before the type decides which are allowed.
 struct RawDefinition {
-  std::optional<std::string> type, x, y, z;
+  std::optional<std::string> type, x, y, z, equation;
   std::optional<std::vector<std::string>> equations;
   std::optional<std::vector<std::pair<std::string, Interval>>> domain;
   std::map<std::string, double> constants;
@@ -109,6 +109,8 @@ RawDefinition read_members(JsonReader& r, const std::string& prefix) {
       raw.y = read_string(field);
     } else if (key == "z") {
       raw.z = read_string(field);
+    } else if (key == "equation") {
+      raw.equation = read_string(field);
     } else if (key == "equations") {
       raw.equations = read_strings(field, 2, " holds one equation (planar) or two (spatial)");
     } else if (key == "periodic") {
@@ -137,7 +139,8 @@ RawDefinition read_members(JsonReader& r, const std::string& prefix) {
                      field);
     } else {
       throw ApiError(400, "unknown_field",
-                     "unknown field " + field + " (type, x, y, z, equations, domain, constants)", field);
+                     "unknown field " + field + " (type, x, y, z, equation, equations, domain, constants)",
+                     field);
     }
   });
   return raw;
@@ -163,6 +166,7 @@ GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
   if (type == "parametric_surface") {
     def.type = GeometryType::parametric_surface;
     forbid(raw.equations.has_value(), "equations");
+    forbid(raw.equation.has_value(), "equation");
     require(raw.x, "x");
     require(raw.y, "y");
     require(raw.z, "z");
@@ -170,6 +174,7 @@ GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
   } else if (type == "parametric_curve") {
     def.type = GeometryType::parametric_curve;
     forbid(raw.equations.has_value(), "equations");
+    forbid(raw.equation.has_value(), "equation");
     require(raw.x, "x");
     require(raw.y, "y");
     if (raw.z) def.formulas.push_back({"z", *raw.z});
@@ -179,6 +184,7 @@ GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
     forbid(raw.x.has_value(), "x");
     forbid(raw.y.has_value(), "y");
     forbid(raw.z.has_value(), "z");
+    forbid(raw.equation.has_value(), "equation");
     if (!raw.equations)
       throw ApiError(400, "missing_field", prefix + "equations is required for implicit_curve",
                      prefix + "equations");
@@ -189,11 +195,19 @@ GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
       def.formulas.push_back({"equations[" + std::to_string(i) + "]", (*raw.equations)[i]});
     names = raw.equations->size() == 1 ? std::vector<std::string>{"x", "y"}
                                        : std::vector<std::string>{"x", "y", "z"};
+  } else if (type == "implicit_surface") {
+    def.type = GeometryType::implicit_surface;
+    forbid(raw.x.has_value(), "x");
+    forbid(raw.y.has_value(), "y");
+    forbid(raw.z.has_value(), "z");
+    forbid(raw.equations.has_value(), "equations");
+    require(raw.equation, "equation");
+    names = {"x", "y", "z"};
   } else {
-    throw ApiError(
-        400, "unknown_geometry_type",
-        "unknown geometry type '" + type + "' (parametric_surface, parametric_curve, implicit_curve)",
-        prefix + "type");
+    throw ApiError(400, "unknown_geometry_type",
+                   "unknown geometry type '" + type +
+                       "' (parametric_surface, parametric_curve, implicit_curve, implicit_surface)",
+                   prefix + "type");
   }
 
   if (!raw.domain) throw ApiError(400, "missing_field", prefix + "domain is required", prefix + "domain");

@@ -2,6 +2,7 @@
 //   {"type":"parametric_surface", "x":"…", "y":"…", "z":"…", "domain":{"u":[a,b],"v":[c,d]}}
 //   {"type":"parametric_curve", "x":"…", "y":"…"[, "z":"…"], "domain":{"t":[a,b]}}
 //   {"type":"implicit_curve", "equations":["f1"[, "f2"]], "domain":{"x":[..],"y":[..][,"z":[..]]}}
+//   {"type":"implicit_surface", "equation":"f", "domain":{"x":[..],"y":[..],"z":[..]}}
 // each with optional "constants":{"name": number}, parametric ones with optional "periodic": ["u",
 // "v"] / ["t"] (the parameters declared periodic). Shape problems are 400 ApiErrors naming the
 // field (an unknown or repeated periodic name too); whether the formulas compile, the domain is

@@ -49,6 +49,13 @@ std::vector<MethodTableSubject> method_table_subjects() {
         {},
         {}},
        3},
+      {"implicit surface",
+       {T::implicit_surface,
+        {{"equation", "x^2/4+y^2+4*z^2-1"}},
+        {{"x", {-3, 3}}, {"y", {-3, 3}}, {"z", {-3, 3}}},
+        {},
+        {}},
+       3},
   };
 }
 

@@ -219,6 +219,23 @@ TEST_CASE("every response matches openapi.yaml") {
   record("GET", mesh, c->Get("/v1/geometries/00000000000000000000000000000000/mesh"));        // 404
   record("POST", mesh, c->Post("/v1/geometries/" + id + "/mesh", "{}", "application/json"));  // 405
 
+  {
+    // An implicit surface (a cone clipped at its apex): definition, answers at the apex, inside
+    // and on a box face, its mesh; and a box the surface misses (422 empty_surface).
+    post(
+        "/v1/geometries", "/v1/geometries",
+        R"J({"type":"implicit_surface","equation":"x^2+y^2-z^2","domain":{"x":[-1,1],"y":[-1,1],"z":[0,1]}})J");
+    const std::string cone =
+        "/v1/geometries/" + json::parse(samples.back().body)["geometry_id"].get<std::string>();
+    record("GET", geometry, c->Get(cone));
+    post(project, cone + "/project", R"J({"points":[[0,0,-1],[0.5,0.2,0.8],[2,0.5,0.3]]})J");
+    post(project, cone + "/project",
+         R"J({"point":[0.5,0.2,0.8],"method":"first_order","options":{"trace":true}})J");
+    record("GET", mesh, c->Get(cone + "/mesh?resolution=6"));
+    post(
+        "/v1/geometries", "/v1/geometries",
+        R"J({"type":"implicit_surface","equation":"x^2+y^2+z^2+1","domain":{"x":[-1,1],"y":[-1,1],"z":[-1,1]}})J");
+  }
   for (const char* page : {"/", "/docs"}) record("GET", page, c->Get(page));
   for (const char* file : {"playground.js", "playground.css", "favicon.svg", "docs.html", "nope.js"})
     record("GET", "/ui/{file}", c->Get(std::string("/ui/") + file));

@@ -42,6 +42,8 @@ const std::vector<MethodInfo>& methods_of(GeometryType type) {
       return parametric_curve_methods();
     case GeometryType::implicit_curve:
       break;
+    case GeometryType::implicit_surface:
+      return implicit_surface_methods();
   }
   return implicit_curve_methods();
 }
@@ -99,6 +101,8 @@ std::shared_ptr<const CompiledGeometry> compile_geometry(const GeometryDefinitio
       return compile_parametric_curve(def, limits);
     case GeometryType::implicit_curve:
       return compile_implicit_curve(def, limits);
+    case GeometryType::implicit_surface:
+      return compile_implicit_surface(def, limits);
   }
   throw GeometryError("bad_type", "type", -1, "unknown geometry type");
 }

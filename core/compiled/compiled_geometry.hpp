@@ -129,9 +129,12 @@ std::shared_ptr<const CompiledGeometry> compile_parametric_curve(const GeometryD
                                                                  const formula::CompileLimits& limits);
 std::shared_ptr<const CompiledGeometry> compile_implicit_curve(const GeometryDefinition& def,
                                                                const formula::CompileLimits& limits);
+std::shared_ptr<const CompiledGeometry> compile_implicit_surface(const GeometryDefinition& def,
+                                                                 const formula::CompileLimits& limits);
 const std::vector<MethodInfo>& parametric_surface_methods();
 const std::vector<MethodInfo>& parametric_curve_methods();
 const std::vector<MethodInfo>& implicit_curve_methods();
+const std::vector<MethodInfo>& implicit_surface_methods();
 
 // Shared by the per-type compilers: compiles formulas over variables, turning FormulaError into
 // GeometryError, and checks that each domain interval is finite with lo < hi.

@@ -21,6 +21,8 @@ const char* to_string(GeometryType t) {
       return "parametric_curve";
     case GeometryType::implicit_curve:
       return "implicit_curve";
+    case GeometryType::implicit_surface:
+      return "implicit_surface";
   }
   return "unknown";
 }
@@ -101,6 +103,7 @@ const TypeLayout* layout_of(std::string_view type, std::size_t formulas) {
       {GeometryType::parametric_curve, {"x", "y"}, {"z"}, {"t"}, {"t"}},
       {GeometryType::implicit_curve, {"equations[0]"}, {}, {"x", "y"}, {}},
       {GeometryType::implicit_curve, {"equations[0]", "equations[1]"}, {}, {"x", "y", "z"}, {}},
+      {GeometryType::implicit_surface, {"equation"}, {}, {"x", "y", "z"}, {}},
   };
   for (const auto& l : layouts)
     if (type == to_string(l.type) && formulas >= l.required.size() &&

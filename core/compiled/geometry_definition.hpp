@@ -15,15 +15,17 @@
 
 namespace footpoint {
 
-enum class GeometryType { parametric_surface, parametric_curve, implicit_curve };
+enum class GeometryType { parametric_surface, parametric_curve, implicit_curve, implicit_surface };
 inline constexpr GeometryType kGeometryTypes[] = {
-    GeometryType::parametric_surface, GeometryType::parametric_curve, GeometryType::implicit_curve};
+    GeometryType::parametric_surface, GeometryType::parametric_curve, GeometryType::implicit_curve,
+    GeometryType::implicit_surface};
 const char* to_string(GeometryType t);
 
 struct GeometryDefinition {
   GeometryType type = GeometryType::parametric_surface;
   // parametric_surface: x, y, z (in u, v); parametric_curve: x, y[, z] (in t);
-  // implicit_curve: equations[0][, equations[1]] (in x, y[, z]).
+  // implicit_curve: equations[0][, equations[1]] (in x, y[, z]); implicit_surface: equation (in
+  // x, y, z).
   std::vector<formula::NamedFormula> formulas;
   // Parameter domain (surfaces: u, v; curves: t) or box (implicit: x, y[, z]), in that order.
   std::vector<std::pair<std::string, std::array<double, 2>>> domain;

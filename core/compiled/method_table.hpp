@@ -64,6 +64,12 @@ inline constexpr std::string_view kCitationHuWallner =
     "S.-M. Hu, J. Wallner. A second order algorithm for orthogonal projection onto curves and surfaces. "
     "Computer Aided Geometric Design 22, 251-260, 2005";
 
+inline constexpr std::string_view kCitationHartmann =
+    "E. Hartmann. On the curvature of curves and surfaces defined by normalforms. Computer Aided Geometric "
+    "Design 16, 355-376, 1999";
+inline constexpr std::string_view kCitationNocedalWright =
+    "J. Nocedal, S. J. Wright. Numerical Optimization, 2nd ed. Springer, 2006";
+
 struct MethodInfo {
   std::string_view name;
   std::string_view description;  // one line

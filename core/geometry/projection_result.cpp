@@ -42,6 +42,10 @@ const char* to_string(Location l) {
       return "endpoint";
     case Location::box_face:
       return "box_face";
+    case Location::box_edge:
+      return "box_edge";
+    case Location::box_corner:
+      return "box_corner";
     case Location::singular_point:
       return "singular_point";
     case Location::pole:

@@ -29,8 +29,21 @@ const char* to_string(Status s);
 // Where the foot point lies: inside the domain, on an edge or corner of a surface's parameter box
 // (a seam of a closed direction is no edge: it is interior), at a pole of a surface (an edge that
 // is one point: every parameter along it gives the foot), at an end of a parametric curve (not of a
-// closed one), on a face of an implicit curve's box, at a singular point.
-enum class Location { interior, edge, corner, endpoint, box_face, singular_point, pole, kink, unknown };
+// closed one), on a face of an implicit curve's or surface's box, on an edge or at a corner of an
+// implicit surface's box, at a singular point.
+enum class Location {
+  interior,
+  edge,
+  corner,
+  endpoint,
+  box_face,
+  box_edge,
+  box_corner,
+  singular_point,
+  pole,
+  kink,
+  unknown
+};
 const char* to_string(Location l);
 
 // How many points of the geometry are nearest: one; k distinct feet at the same distance (within
@@ -60,9 +73,11 @@ struct Summary {
   int iterations = 0;      // iterations of the (final) local solve
   double step_norm = 0.0;  // norm of the last parameter / position increment
   // Orthogonality residuals: surfaces |<p-s,s_u>|/(|p-s||s_u|), |<p-s,s_v>|/(|p-s||s_v|);
-  // parametric curves one entry; implicit curves |<p-X, n1 x n2>|/(|p-X||n1 x n2|).
+  // parametric curves one entry; implicit curves |<p-X, n1 x n2>|/(|p-X||n1 x n2|); implicit
+  // surfaces |(p-X) x grad f|/(|p-X||grad f|), the sine of the angle between p - X and the normal.
   std::array<double, 2> orthogonality{0.0, 0.0};
-  // Implicit curves: |f1|/|grad f1|, |f2|/|grad f2| at the foot point (0 otherwise).
+  // Implicit curves: |f1|/|grad f1|, |f2|/|grad f2| at the foot point (0 otherwise); implicit
+  // surfaces: |f|/|grad f| (one entry).
   std::array<double, 2> equation_residual{0.0, 0.0};
   int starts = 1;  // local solves started (auto: seeds tried)
   Location location = Location::unknown;

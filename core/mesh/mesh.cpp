@@ -6,6 +6,7 @@
 #include "compiled/parametric_curve_geometry.hpp"
 #include "compiled/parametric_surface_geometry.hpp"
 #include "mesh/curve_mesh.hpp"
+#include "mesh/implicit_surface_mesh.hpp"
 #include "mesh/surface_mesh.hpp"
 
 namespace footpoint {
@@ -18,6 +19,8 @@ Mesh mesh_geometry(const CompiledGeometry& geometry, const MeshOptions& options)
     return mesh_parametric_curve(*c, options.resolution);
   if (const auto* c = dynamic_cast<const ImplicitCurve*>(&geometry))
     return mesh_implicit_curve(*c, options.resolution);
+  if (const auto* s = dynamic_cast<const ImplicitSurface*>(&geometry))
+    return mesh_implicit_surface(*s, options.resolution);
   throw std::invalid_argument("no mesh for this kind of geometry");
 }
 

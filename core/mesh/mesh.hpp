@@ -1,6 +1,7 @@
 // Meshes of compiled geometries, for looking at them: a triangulated parameter grid of a
 // parametric surface, polylines of a curve (a parametric curve's parameter line; an implicit
-// curve's pieces as the `auto` seeding traced them, with its singular points). Every vertex is a
+// curve's pieces as the `auto` seeding traced them, with its singular points; marching
+// tetrahedra for an implicit surface, mesh/implicit_surface_mesh.hpp). Every vertex is a
 // point of the geometry (evaluated from the formula tape, or a traced sample on the curve), every
 // triangle has positive area, and no coordinate is NaN or infinite (parts of the domain where the
 // formulas are not finite are left out).
@@ -37,7 +38,7 @@ struct MeshOptions {
   int resolution = 128;
 };
 
-// The mesh of `geometry` (a ParametricSurface, ParametricCurve or ImplicitCurve). Throws
+// The mesh of `geometry` (a ParametricSurface, ParametricCurve, ImplicitCurve or ImplicitSurface). Throws
 // std::invalid_argument for a resolution below 2.
 Mesh mesh_geometry(const CompiledGeometry& geometry, const MeshOptions& options);
 

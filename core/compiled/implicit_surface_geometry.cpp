@@ -1,0 +1,110 @@
+#include "compiled/implicit_surface_geometry.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "implicit/solvers/implicit_surface_auto.hpp"
+#include "implicit/solvers/implicit_surface_certificate.hpp"
+#include "implicit/solvers/implicit_surface_methods.hpp"
+
+namespace footpoint {
+
+namespace {
+
+// A local method's answer, asked for a certificate (options.certify), gets it from the same
+// bounds `auto` uses (certified or refuted, not improved).
+template <ProjectionResult (*solve)(const ImplicitSurfaceEquation&, const Box3&, Vec3, const Options&)>
+ProjectionResult local(const ImplicitSurface& s, Vec3 p, const Options& o) {
+  ProjectionResult r = solve(s.equation(), s.box(), p, o);
+  const Vec3 foot{r.foot[0], r.foot[1], r.foot[2]};
+  if (o.certify.value_or(false) && std::isfinite(r.distance) && s.box().contains(foot))
+    r.summary.certificate =
+        surface_implicit::certify_surface_answer(s.equation(), s.cells(), p, foot, r.distance).certificate;
+  return r;
+}
+
+constexpr std::uint32_t kLocalStatuses = statuses(
+    {Status::converged, Status::max_iterations, Status::diverged, Status::non_finite, Status::degenerate,
+     Status::outside_domain, Status::beyond_max_distance, Status::deadline_exceeded});
+
+constexpr Method<ImplicitSurface> kMethods[] = {
+    {{"auto",
+      "global nearest point in the box: interval subdivision of the box, Newton on the Lagrange system "
+      "from the nearest samples, the curves on the box's faces, its edges' points and the singular "
+      "points are candidates; a branch-and-bound certificate bounds the distance from below",
+      "",
+      {},
+      option_tolerance | option_max_iterations | option_trace | option_max_distance | option_certify,
+      statuses(
+          {Status::converged, Status::degenerate, Status::beyond_max_distance, Status::deadline_exceeded})},
+     [](const ImplicitSurface& s, Vec3 p, const Options& o) {
+       return surface_implicit::implicit_surface_auto(s.equation(), s.cells(), p, o);
+     }},
+    {{"lagrange_newton",
+      "Newton's method on the Lagrange system p - x = l grad f(x), f(x) = 0 from the start",
+      "Nocedal and Wright, Numerical Optimization (Sec. 18.1)",
+      {kCitationNocedalWright},
+      kLocalOptions | option_max_distance,
+      kLocalStatuses},
+     local<surface_implicit::lagrange_newton_method>},
+    {{"first_order",
+      "Hartmann's first-order foot-point iteration: Newton onto the surface, then the foot of p on the "
+      "tangent plane, until the surface points stop moving",
+      "Hartmann, On the curvature of curves and surfaces defined by normalforms (Sec. 5)",
+      {kCitationHartmann},
+      kLocalOptions | option_max_distance,
+      kLocalStatuses},
+     local<surface_implicit::first_order_method>},
+};
+
+const MethodTable<ImplicitSurface>& table() {
+  static const MethodTable<ImplicitSurface> every(kMethods, PointDims::any);
+  return every;
+}
+
+}  // namespace
+
+ImplicitSurface::ImplicitSurface(GeometryDefinition def, formula::Program program, Box3 box)
+    : CompiledGeometry(std::move(def)),
+      equation_(program.square_free()),
+      box_(box),
+      cells_(subdivide_surface(equation_, box_)) {}
+
+const std::vector<MethodInfo>& ImplicitSurface::methods() const { return table().infos(); }
+
+const std::vector<MethodInfo>& implicit_surface_methods() { return table().infos(); }
+
+ProjectionResult ImplicitSurface::project_with(std::size_t index, const double* p,
+                                               const Options& options) const {
+  return table().project(index, *this, {p[0], p[1], p[2]}, options);
+}
+
+std::size_t ImplicitSurface::memory_bytes() const {
+  return sizeof(*this) + equation_.program().memory_bytes() + cells_.memory_bytes();
+}
+
+std::shared_ptr<const CompiledGeometry> compile_implicit_surface(const GeometryDefinition& def,
+                                                                 const formula::CompileLimits& limits) {
+  if (def.formulas.size() != 1 || def.formulas[0].name != "equation")
+    throw GeometryError("wrong_shape", "equation", -1, "an implicit surface has one equation in x, y, z");
+  declared_periodic(def, {});  // no parameters to declare
+  const std::vector<std::string> names{"x", "y", "z"};
+  validate_domain(def, names);
+  formula::Program program = compile_formulas(def, names, limits);
+  Box3 box;
+  for (std::size_t k = 0; k < names.size(); ++k)
+    for (const auto& [name, range] : def.domain)
+      if (name == names[k]) {
+        box.lo[static_cast<int>(k)] = range[0];
+        box.hi[static_cast<int>(k)] = range[1];
+      }
+  auto surface = std::make_shared<ImplicitSurface>(def, std::move(program), box);
+  if (surface->cells().empty() || (surface->cells().samples.empty() && surface->cells().edge_points.empty() &&
+                                   surface->cells().singular_points.empty()))
+    throw GeometryError(
+        "empty_surface", "domain", -1,
+        "no point of the surface lies in the box (the interval search excluded the whole box)");
+  return surface;
+}
+
+}  // namespace footpoint

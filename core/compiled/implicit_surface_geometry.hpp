@@ -1,0 +1,38 @@
+// The compiled implicit surface f(x, y, z) = 0 clipped to a box: its equation (the square-free
+// form, formula::Program::square_free: (x^2 + y^2 + z^2 - 1)^2 is the sphere, regular), what
+// `auto` precomputes (implicit/seeding/implicit_surface_cells: the octree of cells that may hold
+// the surface, a sample in each leaf, the points on the box's edges, the singular points), and
+// projection by method name.
+#pragma once
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "compiled/compiled_geometry.hpp"
+#include "implicit/geometry/implicit_surface.hpp"
+#include "implicit/seeding/implicit_surface_cells.hpp"
+
+namespace footpoint {
+
+class ImplicitSurface final : public CompiledGeometry {
+ public:
+  ImplicitSurface(GeometryDefinition def, formula::Program program, Box3 box);
+
+  int point_dim() const override { return 3; }
+  int num_params() const override { return 0; }
+  const std::vector<MethodInfo>& methods() const override;
+  std::size_t memory_bytes() const override;
+
+  const ImplicitSurfaceEquation& equation() const { return equation_; }
+  const Box3& box() const { return box_; }
+  const ImplicitSurfaceCells& cells() const { return cells_; }
+
+ private:
+  ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
+
+  ImplicitSurfaceEquation equation_;
+  Box3 box_;
+  ImplicitSurfaceCells cells_;
+};
+
+}  // namespace footpoint

@@ -1,0 +1,178 @@
+#include "implicit/solvers/implicit_surface_auto.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <vector>
+
+#include "implicit/solvers/implicit_surface_certificate.hpp"
+#include "implicit/solvers/implicit_surface_lagrange.hpp"
+#include "implicit/solvers/implicit_surface_methods.hpp"
+#include "solvers/iteration_control.hpp"
+
+namespace footpoint::surface_implicit {
+
+namespace {
+
+// Newton's budget per start, and the rounds of certificate and new starts.
+constexpr int kLocalIterations = 50;
+constexpr int kFirstOrderIterations = 200;
+constexpr int kRounds = 6;
+constexpr std::size_t kStartsPerRound = 4;
+
+struct Candidate {
+  Vec3 x;
+  double distance = curve::kInfinity;
+  Location location = Location::unknown;
+  int iterations = 0;
+  double step = 0.0;
+};
+
+class Search {
+ public:
+  Search(const ImplicitSurfaceEquation& equation, const ImplicitSurfaceCells& cells, Vec3 p,
+         const curve::IterationControl& control)
+      : equation_(equation), cells_(cells), p_(p), control_(control) {}
+
+  void consider(Vec3 x, Location location, int iterations = 0, double step = 0.0) {
+    const double d = norm(p_ - x);
+    if (d < best_.distance) best_ = {x, d, location, iterations, step};
+  }
+
+  // Newton on the Lagrange system from the surface point s, then on the faces it leaves the box
+  // through or lies near (within a leaf's diagonal).
+  void solve_from(Vec3 s) {
+    ++starts_;
+    const Box3& box = cells_.box;
+    const double h = cells_.leaf_diagonal;
+    const SurfaceMinimum m = lagrange_newton_interior(equation_, p_, s, 2.0 * h, control_);
+    if (m.converged && box.contains(m.x)) consider(m.x, box_location(box, m.x), m.iterations, m.step);
+    if (!m.converged) {
+      // Newton's system is singular along a continuum of feet (p on a surface of revolution's
+      // axis): Hartmann's iteration, whose step needs no solve, settles on one of them.
+      curve::IterationControl slow = control_;
+      slow.max_iterations = kFirstOrderIterations;
+      const HartmannEnd e = hartmann_iteration(equation_, p_, s, slow);
+      if (e.status == Status::converged && box.contains(e.x))
+        consider(e.x, box_location(box, e.x), e.iterations, e.step);
+    }
+    for (int k = 0; k < 3; ++k)
+      for (const double bound : {box.lo[k], box.hi[k]}) {
+        const bool beyond = m.converged && (bound == box.lo[k] ? m.x[k] < bound : m.x[k] > bound);
+        if (!beyond && std::fabs(s[k] - bound) > h) continue;
+        ++starts_;
+        const SurfaceMinimum f = lagrange_newton_face(equation_, p_, s, k, bound, 2.0 * h, control_);
+        if (f.converged && box.contains(f.x)) consider(f.x, box_location(box, f.x), f.iterations, f.step);
+      }
+  }
+
+  // The sample nearest to p: best first over the tree, by the boxes' distance bounds.
+  int nearest_sample() const {
+    struct Item {
+      double bound;
+      std::int32_t cell;
+      bool operator<(const Item& o) const { return bound > o.bound; }
+    };
+    std::priority_queue<Item> queue;
+    queue.push({0.0, 0});
+    double best = curve::kInfinity;
+    int found = -1;
+    while (!queue.empty()) {
+      const Item item = queue.top();
+      queue.pop();
+      if (item.bound >= best) break;
+      const ImplicitSurfaceCell& cell = cells_.cells[static_cast<std::size_t>(item.cell)];
+      if (cell.first_child < 0) {
+        if (cell.sample < 0) continue;
+        const double d = norm2(p_ - cells_.samples[static_cast<std::size_t>(cell.sample)]);
+        if (d < best) {
+          best = d;
+          found = cell.sample;
+        }
+        continue;
+      }
+      for (std::int32_t i = 0; i < cell.children; ++i) {
+        const std::int32_t child = cell.first_child + i;
+        queue.push({distance2_lower_bound(p_, cells_.cells[static_cast<std::size_t>(child)].box), child});
+      }
+    }
+    return found;
+  }
+
+  const Candidate& best() const { return best_; }
+  int starts() const { return starts_; }
+
+ private:
+  const ImplicitSurfaceEquation& equation_;
+  const ImplicitSurfaceCells& cells_;
+  Vec3 p_;
+  const curve::IterationControl& control_;
+  Candidate best_;
+  int starts_ = 0;
+};
+
+}  // namespace
+
+ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
+                                       const ImplicitSurfaceCells& cells, Vec3 p, const Options& options) {
+  std::vector<std::array<double, 3>> trace;
+  const curve::IterationControl control = curve::make_control(options, kLocalIterations, &trace);
+  Search search(equation, cells, p, control);
+  for (const BoxEdgePoint& e : cells.edge_points)
+    search.consider(e.x, e.corner ? Location::box_corner : Location::box_edge);
+  for (const Vec3& s : cells.singular_points) search.consider(s, Location::singular_point);
+  const int nearest = search.nearest_sample();
+  if (nearest >= 0) search.solve_from(cells.samples[static_cast<std::size_t>(nearest)]);
+  // No local solve converged (a kink of abs, min or max, where Newton's and Hartmann's steps are
+  // undefined): the nearest sample, a point of the surface but no stationary point of the
+  // distance, is the answer, reported as degenerate with its certificate.
+  const bool stationary = std::isfinite(search.best().distance);
+  if (!stationary && nearest >= 0) {
+    const Vec3 s = cells.samples[static_cast<std::size_t>(nearest)];
+    search.consider(s, box_location(cells.box, s));
+  }
+
+  ProjectionResult r;
+  Certificate certificate;
+  const bool certify = options.certify.value_or(true);
+  if (std::isfinite(search.best().distance) && certify) {
+    for (int round = 0; round < kRounds; ++round) {
+      SurfaceCertificate c =
+          certify_surface_answer(equation, cells, p, search.best().x, search.best().distance);
+      certificate = c.certificate;
+      if (certificate.certified || c.nearer.empty()) break;
+      std::sort(c.nearer.begin(), c.nearer.end(),
+                [&](Vec3 a, Vec3 b) { return norm2(p - a) < norm2(p - b); });
+      const double before = search.best().distance;
+      for (std::size_t i = 0; i < std::min(c.nearer.size(), kStartsPerRound); ++i)
+        search.solve_from(c.nearer[i]);
+      if (!(search.best().distance < before)) break;
+    }
+  }
+  const Candidate& best = search.best();
+  if (!std::isfinite(best.distance)) {
+    r.dim = 3;
+    r.num_params = 0;
+    r.summary.method = "auto";
+    r.summary.status = Status::degenerate;
+    r.summary.starts = search.starts();
+    return r;
+  }
+  r = implicit_surface_result(equation, cells.box, p, best.x, "auto");
+  if (best.location == Location::singular_point) {
+    r.summary.location = Location::singular_point;
+    r.summary.orthogonality[0] = 0.0;  // no normal at a singular point
+  }
+  r.summary.status =
+      curve::within_max_distance(stationary ? Status::converged : Status::degenerate, best.distance, control);
+  r.summary.iterations = best.iterations;
+  r.summary.step_norm = best.step;
+  r.summary.starts = search.starts();
+  r.summary.certificate = certificate;
+  if (!certify) r.summary.certificate.computed = false;
+  r.trace = std::move(trace);
+  if (r.summary.status == Status::beyond_max_distance) withhold_answer(r);
+  return r;
+}
+
+}  // namespace footpoint::surface_implicit

@@ -1,0 +1,308 @@
+#include "implicit/solvers/implicit_surface_certificate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace footpoint::surface_implicit {
+
+namespace {
+
+using formula::interval::add;
+using formula::interval::mag;
+using formula::interval::mul;
+using formula::interval::sub;
+namespace iv = formula::interval;
+
+constexpr double kRound = 0x1p-50;  // a few units of rounding, relative
+
+// The multiplier l of the foot x*: least squares of p - x* = l grad f over the coordinates not at
+// a bound of the box (the face multipliers take the others). At a corner every l is a multiplier
+// of the Lagrangian; the middle of those that give r = x* - p + l grad f the signs of the box's
+// multipliers (r_k >= 0 at a lower bound, <= 0 at an upper one, so that r . (x - x*) >= 0 in the
+// box), or 0 when none does.
+double foot_multiplier(const ImplicitSurfaceJet& j, const Box3& box, Vec3 p, Vec3 x) {
+  double num = 0.0, den = 0.0, lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+  for (int k = 0; k < 3; ++k) {
+    const bool at_lo = x[k] == box.lo[k], at_hi = x[k] == box.hi[k];
+    if (!at_lo && !at_hi) {
+      num += j.grad[k] * (p[k] - x[k]);
+      den += j.grad[k] * j.grad[k];
+      continue;
+    }
+    // (x - p)_k + l g_k >= 0 (lower bound) or <= 0 (upper bound): a half-line of l.
+    const double g = at_lo ? j.grad[k] : -j.grad[k], c = at_lo ? x[k] - p[k] : p[k] - x[k];
+    if (g > 0.0)
+      lo = std::max(lo, -c / g);
+    else if (g < 0.0)
+      hi = std::min(hi, -c / g);
+    else if (c < 0.0)
+      hi = lo - 1.0;  // no l helps
+  }
+  if (den > 0.0) return num / den;
+  if (!(lo <= hi)) return 0.0;
+  if (std::isfinite(lo) && std::isfinite(hi)) return 0.5 * (lo + hi);
+  if (std::isfinite(lo)) return lo + 1.0 + std::fabs(lo);
+  if (std::isfinite(hi)) return hi - 1.0 - std::fabs(hi);
+  return 0.0;
+}
+
+// min over d in [a, b] (a <= 0 <= b) and s in [r.lo, r.hi] of s d + m / 2 d^2: at an end, or
+// where the derivative vanishes when m > 0.
+double separable_minimum(Interval r, double m, double a, double b) {
+  double best = 0.0;  // d = 0
+  for (const double s : {r.lo, r.hi}) {
+    const double d = m > 0.0 ? std::clamp(-s / m, a, b) : a;
+    for (const double t : {a, b, d}) best = std::min(best, s * t + 0.5 * m * t * t);
+  }
+  return best - kRound * (std::fabs(best) + std::max(std::fabs(a), std::fabs(b)) * mag(r));
+}
+
+// The eigenvectors of the symmetric 3 x 3 matrix a (columns of q), by cyclic Jacobi rotations
+// (G. H. Golub, C. F. Van Loan, Matrix Computations, 4th ed., Sec. 8.5.2).
+Mat3 eigenvectors(Mat3 a) {
+  Mat3 q{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  for (int sweep = 0; sweep < 12; ++sweep) {
+    double off = 0.0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = i + 1; j < 3; ++j) off += a[i][j] * a[i][j];
+    if (!(off > 0.0)) break;
+    for (int i = 0; i < 3; ++i)
+      for (int j = i + 1; j < 3; ++j) {
+        if (a[i][j] == 0.0) continue;
+        const double theta = (a[j][j] - a[i][i]) / (2.0 * a[i][j]);
+        const double t = std::copysign(1.0, theta) / (std::fabs(theta) + std::sqrt(theta * theta + 1.0));
+        const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
+        for (int k = 0; k < 3; ++k) {  // a <- a G (columns i, j)
+          const double ki = a[k][i], kj = a[k][j];
+          a[k][i] = c * ki - s * kj;
+          a[k][j] = s * ki + c * kj;
+        }
+        for (int k = 0; k < 3; ++k) {  // a <- G^T a (rows i, j)
+          const double ik = a[i][k], jk = a[j][k];
+          a[i][k] = c * ik - s * jk;
+          a[j][k] = s * ik + c * jk;
+        }
+        for (int k = 0; k < 3; ++k) {  // q <- q G
+          const double ki = q[k][i], kj = q[k][j];
+          q[k][i] = c * ki - s * kj;
+          q[k][j] = s * ki + c * kj;
+        }
+      }
+  }
+  return q;
+}
+
+// A lower bound m of the eigenvalues of every symmetric matrix in the interval matrix a: with q
+// the midpoint's eigenvectors, Gershgorin's discs of the enclosure of q^T a q bound those of
+// q^T A q from below by m'; q^T A q and A have the same eigenvalues up to the departure of q
+// from orthogonality, which m' / (1 + e), e >= ||q^T q - I||_2 (bounded by the sum of the
+// entries' magnitudes), covers: d^T A d = h^T (q^T A q) h >= m' |h|^2 >= m' |d|^2 / (1 + e) for
+// d = q h. -inf when the bound is not positive.
+double eigenvalue_lower_bound(const IMat3& a) {
+  Mat3 mid;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) mid[i][j] = iv::mid(a[i][j]);
+  const Mat3 q = eigenvectors(mid);
+  // n = q^T a q, enclosed.
+  IMat3 aq;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      Interval sum = iv::point(0.0);
+      for (int k = 0; k < 3; ++k) sum = add(sum, mul(q[k][j], a[i][k]));
+      aq[i][j] = sum;
+    }
+  double m = std::numeric_limits<double>::infinity(), e = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    Interval row[3];
+    for (int j = 0; j < 3; ++j) {
+      Interval sum = iv::point(0.0);
+      for (int k = 0; k < 3; ++k) sum = add(sum, mul(q[k][i], aq[k][j]));
+      row[j] = sum;
+      double qq = 0.0;
+      for (int k = 0; k < 3; ++k) qq += q[k][i] * q[k][j];
+      e += std::fabs(qq - (i == j ? 1.0 : 0.0)) + 8.0 * kRound;
+    }
+    double off = 0.0;
+    for (int j = 0; j < 3; ++j)
+      if (j != i) off += mag(row[j]);
+    m = std::min(m, row[i].lo - off * (1.0 + kRound));
+  }
+  if (!(m > 0.0) || !(e < 0.5)) return -std::numeric_limits<double>::infinity();
+  return m / (1.0 + e) * (1.0 - kRound);
+}
+
+// A lower bound of |p - x|^2 / 2 over the points x of S in k (a box around x* within the box),
+// or -inf where the Lagrangian is not shown convex there.
+double convex_bound(const ImplicitSurfaceEquation& equation, const Box3& k, Vec3 p, Vec3 x, double l) {
+  const ImplicitSurfaceIntervalJet over = equation.interval_jet(k);
+  if (!over.smooth) return -std::numeric_limits<double>::infinity();
+  IMat3 lagrangian;
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 3; ++c)
+      lagrangian[i][c] = add(iv::point(i == c ? 1.0 : 0.0), mul(l, over.hess[i][c]));
+  const double m = eigenvalue_lower_bound(lagrangian);
+  if (!(m > 0.0)) return -std::numeric_limits<double>::infinity();
+  const ImplicitSurfaceIntervalJet at = equation.interval_gradient({x, x});
+  if (!at.lipschitz) return -std::numeric_limits<double>::infinity();
+  // L(x*) = |p - x*|^2 / 2 + l f(x*), r = x* - p + l grad f(x*), enclosed.
+  Interval value = mul(l, at.f);
+  for (int c = 0; c < 3; ++c) {
+    const Interval gap = sub(iv::point(x[c]), iv::point(p[c]));
+    value = add(value, mul(0.5, iv::sqr(gap)));
+  }
+  double bound = value.lo;
+  for (int c = 0; c < 3; ++c) {
+    const Interval r = add(sub(iv::point(x[c]), iv::point(p[c])), mul(l, at.grad[c]));
+    bound += separable_minimum(r, m, k.lo[c] - x[c], k.hi[c] - x[c]);
+  }
+  return bound - kRound * std::fabs(bound);
+}
+
+double lower_sqrt(double twice_half_square) {
+  return twice_half_square > 0.0 ? std::sqrt(twice_half_square) * (1.0 - kRound) : 0.0;
+}
+
+}  // namespace
+
+SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equation,
+                                          const ImplicitSurfaceCells& cells, Vec3 p, Vec3 foot,
+                                          double distance) {
+  SurfaceCertificate out;
+  Certificate& c = out.certificate;
+  c.computed = true;
+  c.absolute_gap = Certificate::absolute_gap_at(p, foot);
+  const double gap = std::fmax(Certificate::kRelativeGap * distance, c.absolute_gap);
+  const double threshold = distance - 0.5 * gap;
+  double lower = distance;
+  const Box3& box = cells.box;
+  if (cells.empty()) {
+    c.lower_bound = distance;
+    c.certified = true;
+    c.reason = CertificateReason::gap_met;
+    return out;
+  }
+
+  // K: the largest box around the foot (the whole box's extent, halved up to 14 times) on which
+  // the Lagrangian is shown convex with a bound within half the gap.
+  const ImplicitSurfaceJet j = equation.jet(foot);
+  const double l = foot_multiplier(j, box, p, foot);
+  Box3 k{foot, foot};
+  bool have_k = false;
+  for (double w = box.max_edge(); w >= box.max_edge() * 0x1p-14; w *= 0.5) {
+    const Box3 trial = intersection(box, {foot - Vec3{w, w, w}, foot + Vec3{w, w, w}});
+    const double half_square = convex_bound(equation, trial, p, foot, l);
+    const double bound = lower_sqrt(2.0 * half_square);
+    if (half_square > -std::numeric_limits<double>::infinity() && bound >= threshold) {
+      k = trial;
+      have_k = true;
+      lower = std::min(lower, bound);
+      break;
+    }
+  }
+
+  // Branch and bound over the tree, then over pieces of the leaves.
+  struct Piece {
+    Box3 box;
+    int depth;
+  };
+  std::vector<std::int32_t> stack{0};
+  std::vector<Piece> pieces;
+  // Settled by its distance: nothing in b is nearer than the threshold; or b lies in K.
+  auto near_settled = [&](const Box3& b, double& bound) {
+    bound = distance_lower_bound(p, b);
+    if (bound >= threshold) {
+      lower = std::min(lower, bound);
+      return true;
+    }
+    return have_k && k.contains(b);
+  };
+  // Settled by the Lagrangian: g(x) = |p - x|^2 / 2 + l f(x) is |p - x|^2 / 2 on S, and its
+  // enclosure over b (the natural one and the mean value form about b's centre, intersected) is
+  // at least the threshold's half square; or f's enclosure excludes 0 (b holds no point of S).
+  // Second order, where the first does not settle b: Taylor's theorem about the centre c with the
+  // Hessian I + l H(b) enclosed over b, g(c + d) >= g(c) + grad g(c) . d + d^T Q d / 2, bounded below
+  // by the separable diagonal part less the off-diagonal entries at b's half-widths.
+  auto second_order_bound = [&](const Box3& b) {
+    const ImplicitSurfaceIntervalJet over = equation.interval_jet(b);
+    if (!over.smooth) return 0.0;
+    const Vec3 centre = b.center();
+    const ImplicitSurfaceIntervalJet at = equation.interval_gradient({centre, centre});
+    Interval value = mul(l, at.f);
+    double cross_terms = 0.0, linear = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const Interval to_p = sub(iv::point(centre[i]), iv::point(p[i]));
+      value = add(value, mul(0.5, iv::sqr(to_p)));
+      const Interval slope = add(to_p, mul(l, at.grad[i]));
+      const Interval diagonal = add(iv::point(1.0), mul(l, over.hess[i][i]));
+      const double half = 0.5 * (b.hi[i] - b.lo[i]) * (1.0 + kRound);
+      linear += separable_minimum(slope, diagonal.lo, b.lo[i] - centre[i], b.hi[i] - centre[i]);
+      for (int c = 0; c < 3; ++c)
+        if (c != i) cross_terms += 0.5 * mag(mul(l, over.hess[i][c])) * half * (0.5 * (b.hi[c] - b.lo[c]));
+    }
+    const double half_square = value.lo + linear - cross_terms * (1.0 + kRound);
+    return half_square - kRound * std::fabs(half_square);
+  };
+  auto lagrangian_settled = [&](const Box3& b, double& bound) {
+    const ImplicitSurfaceIntervalJet jb = equation.interval_gradient(b);
+    if (jb.f.excludes_zero()) return true;
+    if (!jb.lipschitz) return false;
+    const Vec3 centre = b.center();
+    const Interval fc = equation.value_enclosure({centre, centre});
+    Interval mean = mul(l, fc), natural = mul(l, jb.f);
+    for (int i = 0; i < 3; ++i) {
+      const Interval side{b.lo[i], b.hi[i]};
+      const Interval to_p = sub(side, iv::point(p[i]));
+      natural = add(natural, mul(0.5, iv::sqr(to_p)));
+      const Interval gap_c = sub(iv::point(centre[i]), iv::point(p[i]));
+      mean = add(mean, mul(0.5, iv::sqr(gap_c)));
+      const Interval slope = add(to_p, mul(l, jb.grad[i]));
+      mean = add(mean, mul(slope, sub(side, iv::point(centre[i]))));
+    }
+    double half_square = std::max(natural.lo, mean.lo) * (1.0 - kRound);
+    if (lower_sqrt(2.0 * half_square) < threshold) half_square = std::max(half_square, second_order_bound(b));
+    const double b2 = lower_sqrt(2.0 * half_square);
+    if (b2 < threshold) return false;
+    bound = b2;
+    lower = std::min(lower, bound);
+    return true;
+  };
+  while (!stack.empty()) {
+    const ImplicitSurfaceCell& cell = cells.cells[static_cast<std::size_t>(stack.back())];
+    stack.pop_back();
+    double bound = 0.0;
+    if (near_settled(cell.box, bound)) continue;
+    if (cell.first_child >= 0) {
+      for (std::int32_t i = 0; i < cell.children; ++i) stack.push_back(cell.first_child + i);
+      continue;
+    }
+    if (cell.sample >= 0) {
+      const Vec3 s = cells.samples[static_cast<std::size_t>(cell.sample)];
+      if (norm(p - s) < distance - gap) out.nearer.push_back(s);
+    }
+    pieces.push_back({cell.box, 0});
+  }
+  // Pieces of the leaves, depth first, up to 16 levels below the leaves and the box budget.
+  while (!pieces.empty()) {
+    const Piece piece = pieces.back();
+    pieces.pop_back();
+    double bound = 0.0;
+    if (near_settled(piece.box, bound)) continue;
+    if (c.boxes >= kCertificateBoxes || piece.depth >= 16) {
+      lower = std::min(lower, bound);
+      continue;
+    }
+    ++c.boxes;
+    if (lagrangian_settled(piece.box, bound)) continue;
+    for (int octant = 0; octant < 8; ++octant)
+      pieces.push_back({octant_of(piece.box, octant), piece.depth + 1});
+  }
+  c.lower_bound = std::min(lower, distance);
+  c.certified = Certificate::meets_gap(distance, c.lower_bound, c.absolute_gap);
+  c.reason = c.certified           ? CertificateReason::gap_met
+             : !out.nearer.empty() ? CertificateReason::nearer_point
+                                   : CertificateReason::budget_exhausted;
+  return out;
+}
+
+}  // namespace footpoint::surface_implicit

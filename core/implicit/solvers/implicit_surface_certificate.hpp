@@ -1,0 +1,40 @@
+// The certificate of an answer on an implicit surface S = {f = 0} clipped to the box B: a rigorous
+// lower bound L of the distance from p to S ∩ B (geometry/certificate.hpp), by branch and bound
+// over the compiled octree (implicit/seeding/implicit_surface_cells.hpp):
+//  - a cell whose distance from p (geometry/interval_vec3.hpp, distance_lower_bound) is at least
+//    the answer's distance less half the gap holds nothing nearer;
+//  - a cell (or a piece of a leaf, subdivided per point) whose enclosure of f excludes 0 holds no
+//    point of S;
+//  - around the foot x*, a box K where the Lagrangian L(x) = |p - x|^2 / 2 + l f(x) is strongly
+//    convex: on S, |p - x|^2 / 2 = L(x) for every l, and with M = I + l H(K) (H(K) the interval
+//    Hessian of f over K) and m > 0 a Gershgorin lower bound of M's eigenvalues, Taylor's theorem
+//    gives for every x in K ∩ B
+//        L(x) >= L(x*) + r . (x - x*) + m / 2 |x - x*|^2,   r = x* - p + l grad f(x*),
+//    whose minimum over the box K ∩ B - x* is separable by coordinate (a second-order sufficient
+//    condition made global on K: [NW06] Theorem 12.6 and its proof; the box faces' multipliers
+//    are r's components along the faces x* lies on, of the sign that makes r . (x - x*) >= 0).
+//    L(x*) and r are enclosed with interval arithmetic at the point x*.
+// The leaves' sample points nearer than the answer are reported (nearer), for the search to start
+// from them.
+#pragma once
+#include <vector>
+
+#include "geometry/certificate.hpp"
+#include "implicit/seeding/implicit_surface_cells.hpp"
+
+namespace footpoint::surface_implicit {
+
+struct SurfaceCertificate {
+  Certificate certificate;
+  // Samples nearer to p than the answer by more than the gap (only when not certified).
+  std::vector<Vec3> nearer;
+};
+
+// The box budget of one certificate (pieces of leaves subdivided for this point).
+inline constexpr int kCertificateBoxes = 20000;
+
+SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equation,
+                                          const ImplicitSurfaceCells& cells, Vec3 p, Vec3 foot,
+                                          double distance);
+
+}  // namespace footpoint::surface_implicit

@@ -1,0 +1,222 @@
+// Implicit surfaces f(x, y, z) = 0 in a box (compiled/implicit_surface_geometry): `auto` against
+// references computed independently (tests/tools/gen_surface_implicit_reference.py: sympy, scipy's
+// brentq on dense lines, mpmath at 50 digits; tests/data/surface_implicit_cases.json): sphere,
+// ellipsoid, torus, a cone clipped at its apex, hyperboloids of one and two sheets, a sphere and a
+// plane clipped so that answers lie on faces, edges and corners, far points and points on the
+// surface. The local methods on closed forms (a sphere's foot is p / |p|), and the errors.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+
+#include "compiled/implicit_surface_geometry.hpp"
+
+using namespace footpoint;
+using nlohmann::json;
+
+namespace {
+
+std::shared_ptr<const CompiledGeometry> implicit_surface_of(const std::string& equation, double lo, double hi,
+                                                            double zlo, double zhi) {
+  GeometryDefinition def;
+  def.type = GeometryType::implicit_surface;
+  def.formulas = {{"equation", equation}};
+  def.domain = {{"x", {lo, hi}}, {"y", {lo, hi}}, {"z", {zlo, zhi}}};
+  return compile_geometry(def);
+}
+
+std::shared_ptr<const CompiledGeometry> implicit_surface_case(const json& c) {
+  GeometryDefinition def;
+  def.type = GeometryType::implicit_surface;
+  def.formulas = {{"equation", c["equation"]}};
+  const json& d = c["domain"];
+  def.domain = {{"x", {d["x"][0], d["x"][1]}}, {"y", {d["y"][0], d["y"][1]}}, {"z", {d["z"][0], d["z"][1]}}};
+  return compile_geometry(def);
+}
+
+Location implicit_surface_location(const std::string& type) {
+  if (type == "interior") return Location::interior;
+  if (type == "box-face") return Location::box_face;
+  if (type == "box-edge") return Location::box_edge;
+  if (type == "box-corner") return Location::box_corner;
+  return Location::singular_point;
+}
+
+double foot_gap(const ProjectionResult& r, const json& foot) {
+  return std::hypot(r.foot[0] - foot[0].get<double>(), r.foot[1] - foot[1].get<double>(),
+                    r.foot[2] - foot[2].get<double>());
+}
+
+}  // namespace
+
+TEST_CASE("implicit surface auto: the references' distances, feet and locations") {
+  std::ifstream in(std::string(FOOTPOINT_TESTS_DIR) + "/data/surface_implicit_cases.json");
+  REQUIRE(in.good());
+  const json data = json::parse(in);
+  int points = 0, certified = 0;
+  for (const json& c : data["cases"]) {
+    const auto g = implicit_surface_case(c);
+    for (const json& q : c["points"]) {
+      const double p[3] = {q["p"][0], q["p"][1], q["p"][2]};
+      const auto r = g->project(p, "auto", {});
+      REQUIRE(r);
+      const double reference = q["distance"];
+      CAPTURE(c["id"].get<std::string>());
+      CAPTURE(q["p"].dump());
+      CAPTURE(r->distance);
+      CAPTURE(reference);
+      CHECK(r->summary.status == Status::converged);
+      CHECK(std::fabs(r->distance - reference) <= 1e-12 * std::max(1.0, reference));
+      if (!q["ambiguous"].get<bool>()) {
+        CHECK(foot_gap(*r, q["foot"]) <= 1e-9 * std::max(1.0, reference));
+        CHECK(r->summary.location == implicit_surface_location(q["type"]));
+      }
+      const Certificate& cert = r->summary.certificate;
+      REQUIRE(cert.computed);
+      // No lower bound above the reference distance.
+      CHECK(cert.lower_bound <= reference * (1.0 + 1e-15) + 1e-300);
+      ++points;
+      certified += cert.certified ? 1 : 0;
+    }
+  }
+  MESSAGE("certified " << certified << " of " << points);
+  CHECK(points >= 40);
+}
+
+TEST_CASE("implicit surface: a repeated factor counts once, and the sphere's foot is p / |p|") {
+  const auto squared = implicit_surface_of("(x^2+y^2+z^2-1)^2", -2, 2, -2, 2);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (int i = 0; i < 50; ++i) {
+    const double p[3] = {u(rng), u(rng), u(rng)};
+    const double r = std::hypot(p[0], p[1], p[2]);
+    for (const char* method : {"auto", "lagrange_newton"}) {
+      const auto a = squared->project(p, method, {});
+      REQUIRE(a);
+      CAPTURE(method);
+      CHECK(a->summary.status == Status::converged);
+      CHECK(std::fabs(a->distance - std::fabs(r - 1.0)) <= 1e-14);
+      for (int k = 0; k < 3; ++k) CHECK(std::fabs(a->foot[static_cast<std::size_t>(k)] - p[k] / r) <= 1e-13);
+    }
+  }
+}
+
+TEST_CASE("implicit surface lagrange_newton: 6-7 iterations from p on an ellipsoid and a torus") {
+  const auto ellipsoid = implicit_surface_of("x^2/4+y^2+4*z^2-1", -3, 3, -3, 3);
+  const auto torus = implicit_surface_of("(x^2+y^2+z^2+3.75)^2-16*(x^2+y^2)", -3, 3, -1, 1);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  for (const auto& g : {ellipsoid, torus}) {
+    int converged = 0, total = 0, iterations = 0;
+    for (int i = 0; i < 200; ++i) {
+      const double p[3] = {u(rng), u(rng), u(rng) / 3.0};
+      const auto r = g->project(p, "lagrange_newton", {});
+      REQUIRE(r);
+      ++total;
+      if (r->summary.status != Status::converged) continue;
+      ++converged;
+      iterations += r->summary.iterations;
+      // A stationary point of the distance: on the surface and p - x along the normal.
+      CHECK(r->summary.residual() <= 1e-10);
+    }
+    MESSAGE("lagrange_newton converged on " << converged << " of " << total << ", mean iterations "
+                                            << static_cast<double>(iterations) / std::max(1, converged));
+    CHECK(converged >= total * 9 / 10);
+    CHECK(iterations <= 9 * converged);
+  }
+}
+
+TEST_CASE("implicit surface first_order (Hartmann): where it converges on an ellipsoid") {
+  // A linear iteration whose rate is the distance over the radius of curvature: it converges
+  // where that is below 1 and stalls (max_iterations) or wanders elsewhere; every converged
+  // answer is a foot point (residuals at rounding level).
+  const auto ellipsoid = implicit_surface_of("x^2/4+y^2+4*z^2-1", -3, 3, -3, 3);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  int converged = 0;
+  const int total = 200;
+  for (int i = 0; i < total; ++i) {
+    const double p[3] = {u(rng), u(rng), u(rng)};
+    const auto r = ellipsoid->project(p, "first_order", {});
+    REQUIRE(r);
+    if (r->summary.status != Status::converged) continue;
+    ++converged;
+    CHECK(r->summary.residual() <= 1e-8);
+    const auto best = ellipsoid->project(p, "auto", {});
+    CHECK(r->distance >= best->distance * (1.0 - 1e-12));
+  }
+  MESSAGE("first_order converged on " << converged << " of " << total);
+  CHECK(converged > 0);
+}
+
+TEST_CASE("implicit surface errors: empty_surface, geometry_too_complex, wrong shape") {
+  auto code_of = [](const std::string& equation, double lo, double hi) {
+    try {
+      implicit_surface_of(equation, lo, hi, lo, hi);
+    } catch (const GeometryError& e) {
+      return e.code;
+    }
+    return std::string("none");
+  };
+  CHECK(code_of("x^2+y^2+z^2+1", -2, 2) == "empty_surface");
+  CHECK(code_of("x^2+y^2+z^2-1", 2, 3) == "empty_surface");
+  CHECK(code_of("sin(40*x)*cos(40*y)+sin(40*y)*cos(40*z)+sin(40*z)*cos(40*x)", -3, 3) ==
+        "geometry_too_complex");
+  CHECK(code_of("x^2+y^2+z^2-1", -2, 2) == "none");
+  GeometryDefinition def;
+  def.type = GeometryType::implicit_surface;
+  def.formulas = {{"equation", "x+y"}};
+  def.domain = {{"x", {0, 1}}, {"y", {0, 1}}};
+  CHECK_THROWS_AS(compile_geometry(def), GeometryError);
+}
+
+TEST_CASE("implicit surface: canonical form and id round trip") {
+  GeometryDefinition def;
+  def.type = GeometryType::implicit_surface;
+  def.formulas = {{"equation", "x^2 + y^2 - z^2"}};
+  def.domain = {{"x", {-1, 1}}, {"y", {-1, 1}}, {"z", {0, 1}}};
+  CHECK(def.canonical() ==
+        "footpoint/1;type=implicit_surface;equation=x^2+y^2-z^2;domain.x=[-1,1];"
+        "domain.y=[-1,1];domain.z=[0,1]");
+  const GeometryDefinition back = parse_canonical(def.canonical());
+  CHECK(back.id() == def.id());
+  CHECK(back.type == GeometryType::implicit_surface);
+}
+
+TEST_CASE(
+    "implicit surface: answers at the box's corners and edges are certified; a kink answers degenerate") {
+  // The triangle x + y + z = 1 in the unit cube: from points around it the foot is often a
+  // corner or on an edge, where the Lagrangian's multiplier is chosen to give the box's
+  // multipliers their signs; elsewhere on the lines where it meets the faces.
+  const auto plane = implicit_surface_of("x+y+z-1", 0, 1, 0, 1);
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-1.0, 2.0);
+  int corners = 0, faces = 0;
+  for (int i = 0; i < 200; ++i) {
+    const double p[3] = {u(rng), u(rng), u(rng)};
+    const auto r = plane->project(p, "auto", {});
+    REQUIRE(r);
+    CAPTURE(p[0]);
+    CAPTURE(p[1]);
+    CAPTURE(p[2]);
+    CHECK(r->summary.certificate.certified);
+    CHECK(std::fabs(r->foot[0] + r->foot[1] + r->foot[2] - 1.0) <= 1e-15);
+    corners += r->summary.location == Location::box_corner ? 1 : 0;
+    faces += r->summary.location == Location::box_face ? 1 : 0;
+  }
+  CHECK(corners > 10);
+  CHECK(faces > 10);
+  // The octahedron |x| + |y| + |z| = 1: from (-2.197, -2.182, -0.2927) the foot lies on a kink,
+  // where neither Newton's nor Hartmann's step is defined: a point of the surface, degenerate.
+  const auto octahedron = implicit_surface_of("abs(x)+abs(y)+abs(z)-1", -2, 2, -2, 2);
+  const double p[3] = {-2.197, -2.182, -0.2927};
+  const auto r = octahedron->project(p, "auto", {});
+  REQUIRE(r);
+  CHECK(r->summary.status == Status::degenerate);
+  REQUIRE(std::isfinite(r->distance));
+  CHECK(std::fabs(std::fabs(r->foot[0]) + std::fabs(r->foot[1]) + std::fabs(r->foot[2]) - 1.0) <= 1e-12);
+  CHECK(r->summary.certificate.lower_bound <= r->distance);
+}
