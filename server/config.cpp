@@ -83,7 +83,7 @@ const std::vector<Setting>& settings() {
        [](const ServerConfig& c) { return std::to_string(c.max_points); }},
       {"max-formula-length", "FOOTPOINT_MAX_FORMULA_LENGTH", "characters per formula",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
-         c.max_formula_length = parse_integer<std::size_t>(n, v, 1, std::size_t{1} << 24);
+         c.max_formula_length = parse_integer<std::size_t>(n, v, 1, formula::kLongestFormula);
        },
        [](const ServerConfig& c) { return std::to_string(c.max_formula_length); }},
       {"deadline-ms", "FOOTPOINT_DEADLINE_MS", "per-request deadline in milliseconds",

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "formula/program.hpp"
+
 namespace footpoint::server {
 
 struct ServerConfig {
@@ -37,8 +39,9 @@ struct ServerConfig {
   std::size_t max_body_bytes = std::size_t{16} << 20;
   // --max-points / FOOTPOINT_MAX_POINTS: points per request (413 above it).
   std::size_t max_points = 100000;
-  // --max-formula-length / FOOTPOINT_MAX_FORMULA_LENGTH: characters per formula (422 above it).
-  std::size_t max_formula_length = 4096;
+  // --max-formula-length / FOOTPOINT_MAX_FORMULA_LENGTH: characters per formula (422 above it),
+  // at most what the formula compiler reads (formula::kLongestFormula, also the default).
+  std::size_t max_formula_length = formula::kLongestFormula;
   // --deadline-ms / FOOTPOINT_DEADLINE_MS: per-request deadline; points not started by then
   // get the status deadline_exceeded.
   std::chrono::milliseconds deadline{30000};

@@ -40,9 +40,16 @@ struct NamedFormula {
   std::string expression;  // muparser syntax
 };
 
+// The longest formula the compiler reads: muparser 2.3 refuses an expression of
+// mu::MaxLenExpression = 20000 characters or more (muParserDef.h), after our reader has taken out
+// the whitespace between a function's name and its '('.
+inline constexpr std::size_t kLongestFormula = 19999;
+
 struct CompileLimits {
-  std::size_t max_formula_length = 4096;  // characters per formula
-  std::size_t max_nodes = 20000;          // tape length over all formulas
+  // Characters per formula, at most kLongestFormula. What a formula costs is bounded by max_nodes
+  // (evaluation) and the deadline (what `auto` precomputes), not by its length.
+  std::size_t max_formula_length = kLongestFormula;
+  std::size_t max_nodes = 20000;  // tape length over all formulas
   // When compiling the whole geometry (with what `auto` precomputes) must be done.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
 };
