@@ -31,10 +31,11 @@ struct BoxEnclosure {
   bool smooth = false;
 };
 
-// The enclosure of `program` (inputs t_1..t_N, outputs x, y[, z]) over the box [lo, hi].
+// The enclosure of `program` (inputs t_1..t_N, outputs x, y[, z]) over the box [lo, hi]; with
+// `choice`, of the formulas with its selects replaced by their branches.
 template <int N>
 BoxEnclosure<N> enclose_box(const formula::Program& program, const std::array<double, N>& lo,
-                            const std::array<double, N>& hi);
+                            const std::array<double, N>& hi, const formula::BranchChoice* choice = nullptr);
 
 // s and its first partials at one point, each exact value within `*_rad` of the stored one, per
 // coordinate (from a ball jet, or from a point jet and a bound on its rounding).
@@ -45,9 +46,11 @@ struct PointEnclosure {
   bool valid = false;  // the formulas are defined and differentiable at the point (balls finite)
 };
 
-// The rigorous evaluation at t (Program::ball_jets1).
+// The rigorous evaluation at t (Program::ball_jets1; with `choice`, of the formulas with its
+// selects replaced by their branches).
 template <int N>
-PointEnclosure<N> enclose_point(const formula::Program& program, const std::array<double, N>& t);
+PointEnclosure<N> enclose_point(const formula::Program& program, const std::array<double, N>& t,
+                                const formula::BranchChoice* choice = nullptr);
 
 // The enclosure over a box B inside `ancestor`'s box from a rigorous evaluation at B's centre c
 // (centred forms, Taylor's theorem with the ancestor's second derivatives on the segment from c):
