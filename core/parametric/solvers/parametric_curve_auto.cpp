@@ -144,9 +144,11 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
     if (options.all_minima) {
       const Vec3 x = formulas.point(f.t);
       const bool end = (f.t <= domain.tmin || f.t >= domain.tmax) && !joins_smoothly(closure);
-      add_distinct_minimum(
-          minima, x, 1e-8 * std::max(1.0, norm(x)),
-          {{x.x, x.y, x.z}, {f.t, 0.0}, f.distance, end ? Location::endpoint : Location::interior});
+      add_distinct_minimum(minima, x, 1e-8 * std::max(1.0, norm(x)),
+                           {{x.x, x.y, x.z},
+                            {closed_representative(domain, f.t, closure), 0.0},
+                            f.distance,
+                            end ? Location::endpoint : Location::interior});
     }
     if (f.distance < best.distance) {
       best = f;

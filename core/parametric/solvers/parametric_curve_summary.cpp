@@ -12,7 +12,7 @@ ProjectionResult parametric_result(const CurveFormulas& formulas, const ParamInt
   r.dim = formulas.dim();
   r.num_params = 1;
   r.foot = {j.c.x, j.c.y, j.c.z};
-  r.params = {t, 0.0};
+  r.params = {closed_representative(domain, t, closure), 0.0};
   r.distance = norm(p - j.c);
   r.summary.method = method;
   const double speed = norm(j.d1);
