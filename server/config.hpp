@@ -17,7 +17,8 @@ struct ServerConfig {
   std::string host = "0.0.0.0";
   // --port / FOOTPOINT_PORT: the TCP port; 0 picks a free one (tests).
   int port = 8080;
-  // --threads / FOOTPOINT_THREADS: workers of the numerical pool; 0 = hardware threads.
+  // --threads / FOOTPOINT_THREADS: workers of the numerical pool; 0 = the CPUs of the cgroup's
+  // quota, else the hardware threads (default_threads(), batch/thread_pool.hpp).
   unsigned threads = 0;
   // --connection-threads / FOOTPOINT_CONNECTION_THREADS: HTTP connections served at once (one
   // thread each; further connections wait in the accept queue). Well above the expected number
@@ -102,6 +103,10 @@ struct ConfigError : std::runtime_error {
 // Sets `help` when --help is given (the caller prints usage()).
 ServerConfig load_config(int argc, const char* const* argv,
                          const std::function<const char*(const char*)>& env, bool& help);
+
+// The FOOTPOINT_* variables of `environment` ("NAME=value" entries, null-terminated, as environ)
+// that are no setting's: a misspelled one would otherwise be ignored in silence.
+std::vector<std::string> unknown_environment(const char* const* environment);
 
 // The flags, their variables and defaults, one per line.
 std::string usage();

@@ -1,6 +1,8 @@
 // footpoint-server: the HTTP/JSON service. Flags and environment variables: see --help
 // (server/config.hpp). Exits 0 after a graceful shutdown on SIGTERM or SIGINT.
 #include <pthread.h>
+#include <unistd.h>
+
 #include <csignal>
 
 #include <algorithm>
@@ -13,6 +15,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "batch/thread_pool.hpp"
 #include "config.hpp"
 #include "http_server.hpp"
 #include "request_log.hpp"
@@ -33,8 +36,10 @@ int main(int argc, char** argv) {
   try {
     HttpServer server(config);
     const int port = server.bind();
-    const unsigned threads =
-        config.threads ? config.threads : std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads = config.threads ? config.threads : footpoint::default_threads();
+    for (const std::string& name : unknown_environment(environ))
+      log_event(spdlog::level::warn, "unknown environment variable",
+                {{"variable", name}, {"hint", "no setting reads it (footpoint-server --help lists them)"}});
     log_event(spdlog::level::info, "listening",
               {{"version", kVersion},
                {"host", config.host},
