@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "formula/interval.hpp"
+#include "formula/interval_arith.hpp"
 
 namespace footpoint {
 
@@ -34,8 +35,11 @@ BoxEnclosure<N> enclose_box(const formula::Program& program, const std::array<do
 
   e.bounded = true;
   e.smooth = true;
+  e.finite_part = true;
   for (int k = 0; k < 3; ++k) {
     const formula::IntervalJet2<N>& c = out[k];
+    e.empty = e.empty || formula::IntervalArith::bad(c.v);
+    e.finite_part = e.finite_part && finite(c.v);
     e.bounded = e.bounded && !c.v.partial && finite(c.v);
     e.smooth = e.smooth && c.smooth;
     e.s_mid[k] = formula::interval::mid(c.v);
@@ -48,6 +52,7 @@ BoxEnclosure<N> enclose_box(const formula::Program& program, const std::array<do
         e.d2_rad[pair_index(i, j, N)][k] = formula::interval::rad(h);
       }
   }
+  e.finite_part = e.finite_part && !e.empty;
   e.smooth = e.smooth && e.bounded;
   if (!e.smooth) return e;
   // <s_i, s_j> as an interval sum of interval products (outward rounded)

@@ -17,7 +17,8 @@ template <int N>
 struct BoxEnclosure {
   static constexpr int kPairs = N * (N + 1) / 2;  // (i, j) with i <= j: 00 | 00, 01, 11
   std::array<double, N> lo{}, hi{};               // the parameter box
-  // s over the box: every s(t) has |s_k(t) - s_mid_k| <= s_rad_k. Valid when `bounded`.
+  // s over the box: every s(t) has |s_k(t) - s_mid_k| <= s_rad_k. Valid when `bounded`, and for
+  // the t where s is finite when `finite_part`.
   Vec3 s_mid, s_rad;
   // ∂²s/∂t_i∂t_j over the box, pair index as above. Valid when `smooth`.
   std::array<Vec3, kPairs> d2_mid{}, d2_rad{};
@@ -26,6 +27,12 @@ struct BoxEnclosure {
   std::array<double, kPairs> metric_lo{}, metric_hi{};
   // s is defined and finite at every point of the box (the interval values are finite).
   bool bounded = false;
+  // s is finite somewhere in the box (bounded, or defined on part of it with finite interval
+  // values there: formula/interval.hpp's `partial`), and s_mid ± s_rad holds those points.
+  bool finite_part = false;
+  // No point of the box is in the formulas' domain (an empty interval value): no point of the
+  // geometry comes from the box.
+  bool empty = false;
   // s is twice continuously differentiable on the box (the interval jets' `smooth` flag for x, y
   // and z): the second-order data holds.
   bool smooth = false;

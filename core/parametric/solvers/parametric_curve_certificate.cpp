@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <queue>
 
 #include "parametric/geometry/distance_bound.hpp"
@@ -13,6 +14,7 @@ namespace footpoint::curve {
 namespace {
 
 constexpr double kU = 0x1p-53;
+constexpr double kNoPoint = std::numeric_limits<double>::infinity();
 
 struct OpenInterval {
   double t0 = 0.0, t1 = 0.0;
@@ -77,9 +79,12 @@ class Certifier {
   void close(double lb) { ledger_.close(lb); }
   void note_unclosed(const OpenInterval& b) { ledger_.leave_open(b.lb, b.finite); }
 
-  // The distance to the box of c over an interval (0 where the enclosure is not finite).
+  // The distance to the box of c over an interval: over the points where c is finite (the curve
+  // is the part of the domain where the formulas are finite); none where no point is in the
+  // formulas' domain (+inf), 0 where the enclosure is not finite.
   double zero_order(const BoxEnclosure<1>& e) const {
-    return e.bounded ? std::sqrt(box_distance2_lower(e.s_mid, e.s_rad, p_)) : 0.0;
+    if (e.empty) return kNoPoint;
+    return e.bounded || e.finite_part ? std::sqrt(box_distance2_lower(e.s_mid, e.s_rad, p_)) : 0.0;
   }
 
   // An interval whose formulas are finite but not smooth over it: where the switch of a select

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <queue>
 
@@ -90,9 +91,12 @@ class Certifier {
   void close(double lb) { ledger_.close(lb); }
   void note_unclosed(const OpenBox& b) { ledger_.leave_open(b.lb, b.finite); }
 
-  // The distance to the box of s over a box (0 where the enclosure is not finite).
+  // The distance to the box of s over a box: over the points where s is finite (the surface is
+  // the part of the domain where the formulas are finite); none where no point is in the
+  // formulas' domain (+inf), 0 where the enclosure is not finite.
   double zero_order(const BoxEnclosure<2>& e) const {
-    return e.bounded ? std::sqrt(box_distance2_lower(e.s_mid, e.s_rad, p_)) : 0.0;
+    if (e.empty) return std::numeric_limits<double>::infinity();
+    return e.bounded || e.finite_part ? std::sqrt(box_distance2_lower(e.s_mid, e.s_rad, p_)) : 0.0;
   }
 
   // A box whose formulas are finite but not smooth over it: where the switch of a select crosses
