@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "compiled/compiled_geometry.hpp"
 #include "cpu_time.hpp"
 #include "parametric/geometry/curve_closure.hpp"
@@ -42,7 +43,8 @@ constexpr double kTwoPi = 6.283185307179586;
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  bench::take_no_arguments(argc, argv, "usage: closure_bench (no arguments; prints a row per geometry)\n");
   const Surface surfaces[] = {
       {"[GSA] Ex. 1 over [-25,25]^2", "u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-25, 25, -25, 25}},
       {"[GSA] Ex. 2", "u^4*v^3+u*v+u", "u^3+v^3", "u+v", {-5, 5, -5, 5}},

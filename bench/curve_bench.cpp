@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "compiled/implicit_curve_geometry.hpp"
 #include "compiled/parametric_curve_geometry.hpp"
 #include "cpu_time.hpp"
@@ -148,7 +149,8 @@ double paper_us(const CompiledGeometry& g, const std::vector<double>& points, co
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  bench::take_no_arguments(argc, argv, "usage: curve_bench (no arguments; prints a row per curve)\n");
   std::printf("[%s]\n", bench::load_average().c_str());
   std::printf("%-24s %10s %8s %11s %11s %7s %10s %10s %10s\n", "implicit curve", "compile ms", "samples",
               "us/pt off", "us/pt auto", "ratio", "certified", "away sing", "ratio far");

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "formula/program.hpp"
 
 using namespace footpoint::formula;
@@ -43,7 +44,9 @@ double median_ns(F&& body) {
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  footpoint::bench::take_no_arguments(argc, argv,
+                                      "usage: formula_bench (no arguments; prints a row per surface)\n");
   const Surface surfaces[] = {
       {"S1", "u+v", "sin(u)+2*cos(v)", "sin(u+v)"},
       {"S2", "u^4*v^3+u*v+u", "u^3+v^3", "u+v"},

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench_args.hpp"
 #include "json_writer.hpp"
 #include "project_request.hpp"
 #include "result_json.hpp"
@@ -42,7 +43,11 @@ volatile std::size_t sink;  // keeps results alive
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::size_t n = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 10000;
+  constexpr const char* kUsage = "usage: json_bench [points, default 10000]\n";
+  bench::exit_on_help(argc, argv, kUsage);
+  if (argc > 2) bench::refuse_argument(argv[0], "unexpected argument", argv[2], kUsage);
+  const std::size_t n =
+      argc > 1 ? static_cast<std::size_t>(bench::count_argument(argv[0], argv[1], kUsage)) : 10000;
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> d(-30.0, 30.0);
 

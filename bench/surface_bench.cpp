@@ -39,6 +39,7 @@
 
 #include "batch/batch.hpp"
 #include "batch/thread_pool.hpp"
+#include "bench_args.hpp"
 #include "compiled_surface.hpp"
 #include "cpu_time.hpp"
 #include "occt/point_sets.hpp"
@@ -393,7 +394,13 @@ int comparison_mode(const std::string& dir, int reps, std::vector<std::string> n
   return 0;
 }
 
+constexpr const char* kUsage =
+    "usage: surface_bench [points per set, default 2000] [runs, default 5] [--sections 123456]\n"
+    "       surface_bench --peer [--peer-dir DIR] [--reps R] [NAME ...]\n"
+    "(the sections and the --peer comparison: the comment at the top of bench/surface_bench.cpp)\n";
+
 int run(int argc, char** argv) {
+  bench::exit_on_help(argc, argv, kUsage);
   std::vector<std::string> positional;
   std::string comparison, sections = "123456";
   int reps = 5;
@@ -403,17 +410,27 @@ int run(int argc, char** argv) {
     } else if (!std::strcmp(argv[i], "--peer-dir") && i + 1 < argc) {
       comparison = argv[++i];
     } else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) {
-      reps = std::atoi(argv[++i]);
+      reps = static_cast<int>(bench::count_argument(argv[0], argv[++i], kUsage));
     } else if (!std::strcmp(argv[i], "--sections") && i + 1 < argc) {
       sections = argv[++i];
+      if (sections.empty() || sections.find_first_not_of("123456") != std::string::npos)
+        bench::refuse_argument(argv[0], "sections are digits 1-6, not", argv[i], kUsage);
+    } else if (argv[i][0] == '-') {
+      bench::refuse_argument(argv[0], "unknown option", argv[i], kUsage);
     } else {
       positional.emplace_back(argv[i]);
     }
   }
   if (!comparison.empty()) return comparison_mode(comparison, reps, positional);
+  if (positional.size() > 2)
+    bench::refuse_argument(argv[0], "unexpected argument", positional[2].c_str(), kUsage);
 
-  const int n = !positional.empty() ? std::atoi(positional[0].c_str()) : 2000;
-  const int runs = positional.size() > 1 ? std::atoi(positional[1].c_str()) : 5;
+  const int n = !positional.empty()
+                    ? static_cast<int>(bench::count_argument(argv[0], positional[0].c_str(), kUsage))
+                    : 2000;
+  const int runs = positional.size() > 1
+                       ? static_cast<int>(bench::count_argument(argv[0], positional[1].c_str(), kUsage))
+                       : 5;
   const double overhead = timer_overhead();
   std::printf(
       "surface_bench: %d box points + %d near points per surface, %d runs, single thread; "

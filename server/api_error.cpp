@@ -55,4 +55,9 @@ std::string error_body(const ApiError& error) {
   return w.take();
 }
 
+std::string with_article(std::string_view noun) {
+  const bool vowel = !noun.empty() && std::string_view("aeiou").find(noun.front()) != std::string_view::npos;
+  return (vowel ? "an " : "a ") + std::string(noun);
+}
+
 }  // namespace footpoint::server

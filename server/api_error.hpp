@@ -40,6 +40,10 @@ ApiError request_error(const JsonReadError& error, const std::string& field);
 // whole body. Returns the malformed_json error, or `error` when the body is well-formed.
 ApiError unless_malformed(std::string_view body, ApiError error);
 
+// `noun` with its indefinite article, as error messages name a geometry's type: "an
+// implicit_curve", "a parametric_surface".
+std::string with_article(std::string_view noun);
+
 // The JSON body of an error response.
 std::string error_body(const ApiError& error);
 

@@ -1,13 +1,16 @@
 #include "config.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <string_view>
 #include <thread>
 #include <vector>
 
+#include "batch/thread_pool.hpp"
 #include "json_writer.hpp"
 #include "redis/redis_client.hpp"
 #include "version.hpp"
@@ -50,7 +53,8 @@ const std::vector<Setting>& settings() {
          c.port = parse_integer<int>(n, v, 0, 65535);
        },
        [](const ServerConfig& c) { return std::to_string(c.port); }},
-      {"threads", "FOOTPOINT_THREADS", "numerical worker threads (0: hardware threads)",
+      {"threads", "FOOTPOINT_THREADS",
+       "numerical worker threads (0: the cgroup's CPU quota, else hardware threads)",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
          c.threads = parse_integer<unsigned>(n, v, 0, 1024);
        },
@@ -84,7 +88,7 @@ const std::vector<Setting>& settings() {
        [](const ServerConfig& c) { return std::to_string(c.max_points); }},
       {"max-formula-length", "FOOTPOINT_MAX_FORMULA_LENGTH", "characters per formula",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
-         c.max_formula_length = parse_integer<std::size_t>(n, v, 1, std::size_t{1} << 24);
+         c.max_formula_length = parse_integer<std::size_t>(n, v, 1, formula::kLongestFormula);
        },
        [](const ServerConfig& c) { return std::to_string(c.max_formula_length); }},
       {"deadline-ms", "FOOTPOINT_DEADLINE_MS", "per-request deadline in milliseconds",
@@ -303,6 +307,19 @@ ServerConfig load_config(int argc, const char* const* argv,
   return config;
 }
 
+std::vector<std::string> unknown_environment(const char* const* environment) {
+  std::vector<std::string> unknown;
+  for (const char* const* e = environment; e && *e; ++e) {
+    const std::string_view entry(*e);
+    if (entry.rfind("FOOTPOINT_", 0) != 0) continue;
+    const std::string name(entry.substr(0, entry.find('=')));
+    const auto& all = settings();
+    if (std::none_of(all.begin(), all.end(), [&](const Setting& s) { return name == s.env; }))
+      unknown.push_back(name);
+  }
+  return unknown;
+}
+
 std::string usage() {
   const ServerConfig defaults;
   std::string text =
@@ -321,7 +338,7 @@ std::string usage() {
 
 std::string effective_settings_json(const ServerConfig& config) {
   ServerConfig effective = config;
-  if (effective.threads == 0) effective.threads = std::max(1u, std::thread::hardware_concurrency());
+  if (effective.threads == 0) effective.threads = default_threads();
   effective.max_inflight = config.effective_max_inflight();
   if (effective.rate_limit > 0) effective.rate_burst = config.effective_rate_burst();
   if (effective.compile_deadline.count() == 0) effective.compile_deadline = effective.deadline;

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "formula/program.hpp"
+
 namespace footpoint::server {
 
 struct ServerConfig {
@@ -16,7 +18,8 @@ struct ServerConfig {
   std::string host = "0.0.0.0";
   // --port / FOOTPOINT_PORT: the TCP port; 0 picks a free one (tests).
   int port = 8080;
-  // --threads / FOOTPOINT_THREADS: workers of the numerical pool; 0 = hardware threads.
+  // --threads / FOOTPOINT_THREADS: workers of the numerical pool; 0 = the CPUs of the cgroup's
+  // quota, else the hardware threads (default_threads(), batch/thread_pool.hpp).
   unsigned threads = 0;
   // --connection-threads / FOOTPOINT_CONNECTION_THREADS: HTTP connections served at once (one
   // thread each; further connections wait in the accept queue). Well above the expected number
@@ -38,8 +41,9 @@ struct ServerConfig {
   std::size_t max_body_bytes = std::size_t{16} << 20;
   // --max-points / FOOTPOINT_MAX_POINTS: points per request (413 above it).
   std::size_t max_points = 100000;
-  // --max-formula-length / FOOTPOINT_MAX_FORMULA_LENGTH: characters per formula (422 above it).
-  std::size_t max_formula_length = 4096;
+  // --max-formula-length / FOOTPOINT_MAX_FORMULA_LENGTH: characters per formula (422 above it),
+  // at most what the formula compiler reads (formula::kLongestFormula, also the default).
+  std::size_t max_formula_length = formula::kLongestFormula;
   // --deadline-ms / FOOTPOINT_DEADLINE_MS: per-request deadline; points not started by then
   // get the status deadline_exceeded.
   std::chrono::milliseconds deadline{30000};
@@ -122,6 +126,10 @@ struct ConfigError : std::runtime_error {
 // Sets `help` when --help is given (the caller prints usage()).
 ServerConfig load_config(int argc, const char* const* argv,
                          const std::function<const char*(const char*)>& env, bool& help);
+
+// The FOOTPOINT_* variables of `environment` ("NAME=value" entries, null-terminated, as environ)
+// that are no setting's: a misspelled one would otherwise be ignored in silence.
+std::vector<std::string> unknown_environment(const char* const* environment);
 
 // The flags, their variables and defaults, one per line.
 std::string usage();

@@ -80,7 +80,7 @@ std::string evaluate_response(const CompiledGeometry& geometry, const EvaluateRe
   const char* type = to_string(geometry.definition().type);
   if (params == 0)
     throw ApiError(400, "not_parametric",
-                   std::string("a ") + type +
+                   with_article(type) +
                        " has no parameters to evaluate at: project points onto it with POST "
                        "/v1/geometries/{id}/project, or look at it with GET /v1/geometries/{id}/mesh",
                    "id");

@@ -255,10 +255,10 @@ GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
       const std::string& name = (*raw.periodic)[i];
       const std::string field = prefix + "periodic[" + std::to_string(i) + "]";
       if (std::find(parameters.begin(), parameters.end(), name) == parameters.end())
-        throw ApiError(
-            400, "unknown_parameter",
-            field + ": '" + name + "' is not a parameter of a " + type + " (" + join(parameters) + ")",
-            field);
+        throw ApiError(400, "unknown_parameter",
+                       field + ": '" + name + "' is not a parameter of " + with_article(type) + " (" +
+                           join(parameters) + ")",
+                       field);
       for (std::size_t j = 0; j < i; ++j)
         if ((*raw.periodic)[j] == name)
           throw ApiError(400, "duplicate_parameter", field + ": '" + name + "' is named twice", field);

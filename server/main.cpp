@@ -2,6 +2,8 @@
 // (server/config.hpp). Exits 0 after a graceful shutdown on SIGTERM or SIGINT; SIGHUP reads the
 // API keys and the TLS certificate and key again.
 #include <pthread.h>
+#include <unistd.h>
+
 #include <csignal>
 
 #include <algorithm>
@@ -14,6 +16,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "batch/thread_pool.hpp"
 #include "config.hpp"
 #include "http_server.hpp"
 #include "request_log.hpp"
@@ -34,8 +37,10 @@ int main(int argc, char** argv) {
   try {
     HttpServer server(config);
     const int port = server.bind();
-    const unsigned threads =
-        config.threads ? config.threads : std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads = config.threads ? config.threads : footpoint::default_threads();
+    for (const std::string& name : unknown_environment(environ))
+      log_event(spdlog::level::warn, "unknown environment variable",
+                {{"variable", name}, {"hint", "no setting reads it (footpoint-server --help lists them)"}});
     log_event(spdlog::level::info, "listening",
               {{"version", kVersion},
                {"host", config.host},

@@ -413,8 +413,8 @@ GeometryMethod check_project_request(const ProjectRequest& request, const Compil
     const int expected = geometry.num_params() > 0 ? geometry.num_params() : dim;
     if (request.initial_length != expected)
       throw ApiError(400, "wrong_dimension",
-                     "options.initial: a start has " + std::to_string(expected) + " numbers for a " + type +
-                         " (" +
+                     "options.initial: a start has " + std::to_string(expected) + " numbers for " +
+                         with_article(type) + " (" +
                          (geometry.num_params() == 2   ? "[u, v]"
                           : geometry.num_params() == 1 ? "[t]"
                                                        : "a point") +

@@ -144,13 +144,20 @@ Status write_result(JsonAppender& o, const ProjectionResult& r, ResultFields f) 
       d.key(",\"iterations\":");
       o.integer(s.iterations);
     }
+    // The residuals and the last step describe the foot point: null without one.
     if (f.has(ResultFields::residual)) {
       d.key(",\"residual\":");
-      o.number(s.residual());
+      if (answer)
+        o.number(s.residual());
+      else
+        o.literal("null");
     }
     if (f.has(ResultFields::step_norm)) {
       d.key(",\"step_norm\":");
-      o.number(s.step_norm);
+      if (answer)
+        o.number(s.step_norm);
+      else
+        o.literal("null");
     }
     if (f.has(ResultFields::starts)) {
       d.key(",\"starts\":");
@@ -158,7 +165,7 @@ Status write_result(JsonAppender& o, const ProjectionResult& r, ResultFields f) 
     }
     if (f.has(ResultFields::location)) {
       d.key(",\"location\":");
-      name(o, to_string(s.location));
+      name(o, to_string(answer ? s.location : Location::unknown));
     }
     if (f.has(ResultFields::certificate)) {
       d.key(",\"certificate\":");

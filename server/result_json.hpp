@@ -4,8 +4,9 @@
 //    "diagnostics":{"method","status","converged","iterations","residual","step_norm","starts",
 //                   "location","certificate"}, "minima":[...] (all_minima), "trace":[...] (trace)}
 // trimmed to the members the request's "fields" names. Numbers are written in shortest
-// round-trip form. A result without a finite answer (e.g. deadline_exceeded, non_finite) has null
-// foot_point, parameters and distance; a result whose status claims convergence with non-finite
+// round-trip form. A result without a finite answer (e.g. deadline_exceeded, non_finite,
+// beyond_max_distance) has null foot_point, parameters, distance, residual, step_norm, certificate
+// gap and multiplicity, and location unknown; a result whose status claims convergence with non-finite
 // numbers is reported as non_finite, never as converged.
 #pragma once
 #include <array>

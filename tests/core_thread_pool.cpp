@@ -4,8 +4,12 @@
 
 #include <atomic>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
+#include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "batch/thread_pool.hpp"
@@ -75,4 +79,52 @@ TEST_CASE("a small job is not stuck behind a large one: jobs share the workers r
   big.join();
   // With first-in-first-out scheduling every chunk of the big job would run before the small one.
   CHECK(big_chunks_after_small > 150);
+}
+
+namespace {
+
+// A cgroup file system of our own under the test's working directory: `files` path -> content.
+std::string fake_cgroup(const std::string& name,
+                        const std::vector<std::pair<std::string, std::string>>& files) {
+  const std::filesystem::path root = std::filesystem::current_path() / ("cgroup_" + name);
+  std::filesystem::remove_all(root);
+  for (const auto& [path, content] : files) {
+    std::filesystem::create_directories((root / path).parent_path());
+    std::ofstream(root / path) << content;
+  }
+  return root.string();
+}
+
+}  // namespace
+
+TEST_CASE("0 threads: the CPUs of the cgroup's quota (v2 cpu.max, v1 cfs), else the hardware's") {
+  using footpoint::cpus_of_cgroup;
+  // cgroup v2: quota and period in microseconds, rounded up; "max" is no quota
+  CHECK(cpus_of_cgroup(fake_cgroup("v2_two", {{"cpu.max", "200000 100000\n"}}), 16) == 2);
+  CHECK(cpus_of_cgroup(fake_cgroup("v2_half", {{"cpu.max", "150000 100000\n"}}), 16) == 2);
+  CHECK(cpus_of_cgroup(fake_cgroup("v2_tenth", {{"cpu.max", "10000 100000\n"}}), 16) == 1);
+  CHECK(cpus_of_cgroup(fake_cgroup("v2_max", {{"cpu.max", "max 100000\n"}}), 16) == 16);
+  // never more than the hardware
+  CHECK(cpus_of_cgroup(fake_cgroup("v2_many", {{"cpu.max", "6400000 100000\n"}}), 8) == 8);
+  // cgroup v1, under cpu/ or cpu,cpuacct/; -1 is no quota
+  CHECK(cpus_of_cgroup(
+            fake_cgroup("v1", {{"cpu/cpu.cfs_quota_us", "300000\n"}, {"cpu/cpu.cfs_period_us", "100000\n"}}),
+            16) == 3);
+  CHECK(cpus_of_cgroup(fake_cgroup("v1_acct", {{"cpu,cpuacct/cpu.cfs_quota_us", "50000\n"},
+                                               {"cpu,cpuacct/cpu.cfs_period_us", "100000\n"}}),
+                       16) == 1);
+  CHECK(cpus_of_cgroup(
+            fake_cgroup("v1_none", {{"cpu/cpu.cfs_quota_us", "-1\n"}, {"cpu/cpu.cfs_period_us", "100000\n"}}),
+            16) == 16);
+  // no cgroup files at all; unreadable content
+  CHECK(cpus_of_cgroup(fake_cgroup("none", {}), 12) == 12);
+  CHECK(cpus_of_cgroup(fake_cgroup("garbage", {{"cpu.max", "lots\n"}}), 12) == 12);
+  CHECK(cpus_of_cgroup(fake_cgroup("none", {}), 0) == 1);
+  for (const char* name :
+       {"v2_two", "v2_half", "v2_tenth", "v2_max", "v2_many", "v1", "v1_acct", "v1_none", "none", "garbage"})
+    std::filesystem::remove_all(std::filesystem::current_path() / (std::string("cgroup_") + name));
+  // the pool of 0 threads has default_threads() workers, at least one
+  ThreadPool pool(0);
+  CHECK(pool.size() == footpoint::default_threads());
+  CHECK(pool.size() >= 1);
 }

@@ -101,3 +101,34 @@ TEST_CASE("division by zero and domain errors give non-finite values, not crashe
   CHECK(!std::isfinite(j[0].g[0]));
   CHECK(!std::isfinite(j[3].g[0]));
 }
+
+TEST_CASE("formulas up to the compiler's longest compile; a longer one is too_long, naming the limit") {
+  // 1*u*v+2*u*v+...: a plain sum, one term more at a time until the next would pass the limit.
+  std::string sum;
+  for (int k = 1;; ++k) {
+    std::string term = sum.empty() ? "" : "+";
+    term += std::to_string(k);
+    term += "*u*v";
+    if (sum.size() + term.size() > footpoint::formula::kLongestFormula) break;
+    sum += term;
+  }
+  while (sum.size() < footpoint::formula::kLongestFormula) sum += "+0";
+  if (sum.size() > footpoint::formula::kLongestFormula) sum.resize(sum.size() - 2);
+  REQUIRE(sum.size() >= footpoint::formula::kLongestFormula - 1);
+  const Program p = Program::compile({{"x", sum}}, {"u", "v"}, {});
+  const double uv[2] = {0.5, 2.0};
+  double value = 0.0;
+  p.values(uv, &value);
+  const double terms = std::count(sum.begin(), sum.end(), '*') / 2.0;
+  CHECK(value == doctest::Approx(terms * (terms + 1) / 2));  // sum of k * 0.5 * 2
+
+  // 30,000 characters: refused before muparser sees them, in words that name the limit.
+  std::string longer = sum;
+  while (longer.size() < 30000) longer += "+u*v";
+  footpoint::formula::CompileLimits limits;
+  limits.max_formula_length = 1 << 20;
+  const auto e = error_of({{"x", longer}}, {"u", "v"}, {}, limits);
+  CHECK(e.kind == FormulaError::Kind::too_long);
+  CHECK(e.formula == "x");
+  CHECK(std::string(e.what()).find("reads at most 19999") != std::string::npos);
+}

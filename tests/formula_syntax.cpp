@@ -46,6 +46,9 @@ TEST_CASE("each fault: its kind, its character position, its suggestion, in our 
       // unknown functions and names, with the nearest valid one
       {"sinn(u)", K::unknown_function, 0, "sin", "unknown function 'sinn' at position 0; did you mean sin?"},
       {"2*Cos(v)", K::unknown_function, 2, "cos", "did you mean cos?"},
+      {"cs(u)", K::unknown_function, 0, "cos", "unknown function 'cs' at position 0; did you mean cos?"},
+      {"1+ab(u)", K::unknown_function, 2, "abs", ""},
+      {"qz(u)", K::unknown_function, 0, "", "the functions: sin, cos"},
       {"pow(u,2)", K::unknown_function, 0, "u^2", "did you mean u^2?"},
       {"1+pow(u+v, 1/3)", K::unknown_function, 2, "(u+v)^(1/3)", "unknown function 'pow'"},
       {"pow(sin(u),v)", K::unknown_function, 0, "sin(u)^v", ""},

@@ -214,3 +214,31 @@ TEST_CASE("periodic refused: unknown or repeated names 400, edges that do not co
            400),
       "unknown_parameter", "periodic[0]");
 }
+
+TEST_CASE("answers on a seam name the lower bound of the periodic direction, the minima too") {
+  TestServer s;
+  auto c = s.client();
+  auto project = [&](const std::string& definition, const json& point) {
+    const std::string path = "/v1/geometries/" + create(*c, definition) + "/project";
+    return post(*c, path, json{{"point", point}, {"options", {{"all_minima", true}}}}.dump(), 200)["result"];
+  };
+  // The torus's outer equator meets both seams at (2.5, 0, 0): u = v = 0 (not 2π).
+  const json torus = project(kTorus, {5, 0, 0});
+  CHECK(torus["diagnostics"]["status"] == "converged");
+  CHECK(torus["parameters"] == json{0.0, 0.0});
+  CHECK(torus["minima"][0]["parameters"] == json{0.0, 0.0});
+  CHECK(torus["minima"][0]["parameter_copies"].size() == 4);  // (0 or 2π, 0 or 2π)
+
+  const std::string sphere =
+      surface("cos(u)*sin(v)", "sin(u)*sin(v)", "cos(v)", "[0," + kTwoPi + "]", "[0,3.141592653589793]");
+  const json on_sphere = project(sphere, {5, 0, 0});
+  CHECK(on_sphere["diagnostics"]["status"] == "converged");
+  CHECK(on_sphere["parameters"][0] == 0.0);
+  CHECK(on_sphere["parameters"][1].get<double>() == doctest::Approx(M_PI / 2).epsilon(1e-12));
+
+  const json circle = project(
+      R"J({"type":"parametric_curve","x":"cos(t)","y":"sin(t)","domain":{"t":[0,"2*_pi"]}})J", {2, 0});
+  CHECK(circle["diagnostics"]["status"] == "converged");
+  CHECK(circle["parameters"] == json{0.0});
+  CHECK(circle["minima"][0]["parameters"] == json{0.0});
+}

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,20 @@
 using namespace footpoint::server;
 using namespace footpoint::server::testing;
 using json = nlohmann::json;
+
+namespace {
+
+// The body of GET `path` on a server of its own, which answers 200.
+std::string get_ok(const std::string& path) {
+  TestServer s;
+  auto c = s.client();
+  auto r = c->Get(path);
+  REQUIRE(r);
+  REQUIRE(r->status == 200);
+  return r->body;
+}
+
+}  // namespace
 
 TEST_CASE("the functions of the formula language: the core's, openapi.yaml's and the README's are the same") {
   std::vector<std::string> core;
@@ -43,12 +58,7 @@ TEST_CASE("the functions of the formula language: the core's, openapi.yaml's and
 }
 
 TEST_CASE("GET /v1/methods: each method's full citations, the options it reads, the statuses it reports") {
-  TestServer s;
-  auto c = s.client();
-  auto r = c->Get("/v1/methods");
-  REQUIRE(r);
-  REQUIRE(r->status == 200);
-  const json list = json::parse(r->body);
+  const json list = json::parse(get_ok("/v1/methods"));
   std::size_t methods = 0;
   for (const auto& type : list["geometry_types"])
     for (const auto& m : type["methods"]) {
@@ -83,4 +93,43 @@ TEST_CASE("GET /v1/methods: each method's full citations, the options it reads, 
   CHECK(gsa["options"] == json::array({"tolerance", "max_iterations", "initial", "trace", "certify"}));
   CHECK(gsa["statuses"] == json::array({"converged", "max_iterations", "diverged", "non_finite", "degenerate",
                                         "outside_domain", "deadline_exceeded"}));
+}
+
+TEST_CASE("every footpoint_* metric GET /metrics exports is in the README's metrics table") {
+  const std::string metrics = get_ok("/metrics");
+  const std::string readme = read_text_file(FOOTPOINT_SOURCE_DIR "/README.md");
+  const auto begin = readme.find("### Metrics"), end = readme.find("### Logs");
+  REQUIRE(begin != std::string::npos);
+  REQUIRE(end > begin);
+  // The names the table gives: `name` and, in a row of several, `…_tail` for the name before it
+  // with as many trailing parts replaced as the tail has.
+  std::vector<std::string> documented;
+  std::istringstream table(readme.substr(begin, end - begin));
+  const std::regex token("`(footpoint_[a-z_]+|…_[a-z_]+)");
+  for (std::string line; std::getline(table, line);) {
+    std::string previous;
+    for (auto it = std::sregex_iterator(line.begin(), line.end(), token); it != std::sregex_iterator();
+         ++it) {
+      std::string name = (*it)[1];
+      if (name.rfind("footpoint_", 0) != 0 && !previous.empty()) {
+        const std::string tail = name.substr(name.find('_'));  // "_misses_total"
+        std::string stem = previous;
+        for (char ch : tail)
+          if (ch == '_') stem.erase(stem.rfind('_'));
+        name = stem + tail;
+      }
+      documented.push_back(name);
+      previous = name;
+    }
+  }
+  std::istringstream exported(metrics);
+  int families = 0;
+  for (std::string line; std::getline(exported, line);) {
+    if (line.rfind("# TYPE footpoint_", 0) != 0) continue;
+    const std::string name = line.substr(7, line.find(' ', 7) - 7);
+    CAPTURE(name);
+    ++families;
+    CHECK(std::find(documented.begin(), documented.end(), name) != documented.end());
+  }
+  CHECK(families > 10);
 }

@@ -128,6 +128,14 @@ TEST_CASE("evaluate: every bad request its status, code and field") {
     CHECK(e["error"]["code"] == k.code);
     CHECK(e["error"]["field"] == k.field);
   }
+  // The messages name the type with its article: "an implicit_curve".
+  const json e = evaluate(*c, implicit, {{"parameter", {1}}}, 400);
+  CHECK(e["error"]["message"].get<std::string>().rfind("an implicit_curve has no parameters", 0) == 0);
+  auto p = c->Post("/v1/geometries/" + implicit + "/project",
+                   json{{"point", {1, 2}}, {"options", {{"initial", {1, 2, 3}}}}}.dump(), "application/json");
+  REQUIRE(p);
+  CHECK(p->status == 400);
+  CHECK(p->body.find("numbers for an implicit_curve") != std::string::npos);
   auto r = c->Get("/v1/geometries/" + surface + "/evaluate");
   REQUIRE(r);
   CHECK(r->status == 405);

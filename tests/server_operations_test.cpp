@@ -289,3 +289,14 @@ TEST_CASE("SIGTERM: idle keep-alive connections close at once, the request in fl
   MESSAGE("SIGTERM to exit with an idle keep-alive connection and a 20,000-point batch in flight: " << seconds
                                                                                                     << " s");
 }
+
+TEST_CASE("a misspelled FOOTPOINT_* variable is warned about at start, by name") {
+  REQUIRE(::setenv("FOOTPOINT_PROT", "1", 1) == 0);
+  ServerProcess server({"--host", "127.0.0.1", "--port", "0", "--threads", "1", "--log-level", "info"});
+  ::unsetenv("FOOTPOINT_PROT");
+  const json warning = server.event("unknown environment variable");
+  CHECK(warning["level"] == "warning");
+  CHECK(warning["variable"] == "FOOTPOINT_PROT");
+  CHECK(server.event("listening")["port"].is_number_integer());
+  CHECK(server.stop(SIGTERM) == 0);
+}

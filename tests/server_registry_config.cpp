@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "config.hpp"
 #include "redis/redis_client.hpp"
@@ -76,4 +77,19 @@ TEST_CASE("the registry password comes from the environment or a file, not both"
   CHECK_THROWS_AS(load_config(3, with_password, nullptr, help), ConfigError);
   const char* no_flag[] = {"footpoint-server", "--registry-password", "x"};  // environment only
   CHECK_THROWS_AS(load_config(3, no_flag, nullptr, help), ConfigError);
+}
+
+TEST_CASE("FOOTPOINT_* variables that are no setting's are named, the others not") {
+  const char* environment[] = {"FOOTPOINT_PROT=1",
+                               "FOOTPOINT_PORT=8080",
+                               "PATH=/usr/bin",
+                               "FOOTPOINT_THREADS=0",
+                               "FOOTPOINT_REGISTRY_PASSWORD=x",
+                               "FOOTPOINT_max_points=3",
+                               "FOOTPOINTLESS=1",
+                               nullptr};
+  CHECK(unknown_environment(environment) ==
+        std::vector<std::string>{"FOOTPOINT_PROT", "FOOTPOINT_max_points"});
+  const char* none[] = {nullptr};
+  CHECK(unknown_environment(none).empty());
 }

@@ -162,3 +162,54 @@ TEST_CASE("stats count each status that occurs; the counts add up to the points"
   CHECK(total == 20000);
   CHECK(late["stats"]["statuses"]["deadline_exceeded"].get<long>() > 0);
 }
+
+namespace {
+
+// Every member that describes the foot point is null (location unknown) in a result without one.
+void check_no_answer(const json& result) {
+  INFO(result.dump());
+  CHECK(result["foot_point"].is_null());
+  CHECK(result["distance"].is_null());
+  const json& d = result["diagnostics"];
+  CHECK(d["residual"].is_null());
+  CHECK(d["step_norm"].is_null());
+  CHECK(d["location"] == "unknown");
+  CHECK(d["multiplicity"].is_null());
+  CHECK((d["certificate"].is_null() || d["certificate"]["gap"].is_null()));
+}
+
+}  // namespace
+
+TEST_CASE("answers without a foot point: residual, step_norm and location say nothing") {
+  {
+    TestServer s;
+    auto c = s.client();
+    const std::string sphere =
+        "/v1/geometries/" +
+        create(*c, R"J({"type":"parametric_surface","x":"cos(u)*sin(v)","y":"sin(u)*sin(v)","z":"cos(v)",
+                        "domain":{"u":[0,"2*_pi"],"v":[0,"_pi"]}})J") +
+        "/project";
+    // Beyond max_distance; beyond the range where squared distances are finite (non_finite).
+    const json beyond = post_results(*c, sphere, {{"point", {0, 0, 50}}, {"options", {{"max_distance", 5}}}});
+    CHECK(beyond["result"]["diagnostics"]["status"] == "beyond_max_distance");
+    check_no_answer(beyond["result"]);
+    const json far = post_results(*c, sphere, {{"point", {1e160, 0, 0}}});
+    CHECK(far["result"]["diagnostics"]["status"] == "non_finite");
+    check_no_answer(far["result"]);
+  }
+  // Points a 1 ms deadline leaves unsolved.
+  ServerConfig config;
+  config.deadline = std::chrono::milliseconds(1);
+  config.compile_deadline = std::chrono::milliseconds(60000);
+  TestServer s(config);
+  auto c = s.client();
+  const std::string surface = "/v1/geometries/" + create(*c, kResultsSurface) + "/project";
+  const json late = post_results(*c, surface, {{"points", batch(20000)}});
+  int unsolved = 0;
+  for (const json& r : late["results"]) {
+    if (r["diagnostics"]["status"] != "deadline_exceeded") continue;
+    ++unsolved;
+    check_no_answer(r);
+  }
+  CHECK(unsolved > 0);
+}

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "parametric/solvers/projected_newton.hpp"
@@ -103,4 +105,81 @@ TEST_CASE("a paper's method certified on request") {
   // without the option: no certificate
   const ProjectionResult plain = g->project(p.data(), "newton", Options{}).value();
   CHECK_FALSE(plain.summary.certificate.computed);
+}
+
+namespace {
+
+// The quadratic B-spline on [0, 3] (knots 0, 1, 2, 3), piece k on [k, k + 1]: C^1, its pieces
+// t^2/2, (-2t^2 + 6t - 3)/2, (3 - t)^2/2. As written text in `var` and as a number.
+std::string spline_piece(int k, const std::string& t) {
+  switch (k) {
+    case 0:
+      return "(" + t + "^2/2)";
+    case 1:
+      return "((-2*" + t + "^2+6*" + t + "-3)/2)";
+    default:
+      return "((3-" + t + ")^2/2)";
+  }
+}
+double spline(double t) {
+  if (t < 1) return t * t / 2;
+  if (t < 2) return (-2 * t * t + 6 * t - 3) / 2;
+  return (3 - t) * (3 - t) / 2;
+}
+
+// z = B(u) B(v) on [0, 3]^2, written as a 3 x 3-patch piecewise polynomial with ?:, each patch the
+// product of its pieces: u < 1 ? (v < 1 ? p00 : v < 2 ? p01 : p02) : u < 2 ? (...) : (...).
+std::string patches() {
+  auto row = [](int i) {
+    return "(v<1?" + spline_piece(i, "u") + "*" + spline_piece(0, "v") + ":v<2?" + spline_piece(i, "u") +
+           "*" + spline_piece(1, "v") + ":" + spline_piece(i, "u") + "*" + spline_piece(2, "v") + ")";
+  };
+  return "u<1?" + row(0) + ":u<2?" + row(1) + ":" + row(2);
+}
+
+// The distance from p to the surface by brute force on the closed form: a 600 x 600 grid, then
+// the best grid point refined by a shrinking pattern search (independent of the library).
+double brute_distance(const Vec3& p) {
+  auto d2 = [&](double u, double v) {
+    const double dz = spline(u) * spline(v) - p.z;
+    return (u - p.x) * (u - p.x) + (v - p.y) * (v - p.y) + dz * dz;
+  };
+  double bu = 0, bv = 0, best = d2(0, 0);
+  constexpr int n = 600;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double u = 3.0 * i / n, v = 3.0 * j / n, d = d2(u, v);
+      if (d < best) best = d, bu = u, bv = v;
+    }
+  for (double h = 3.0 / n; h > 1e-13; h *= 0.5)
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (const auto& [du, dv] : {std::pair{h, 0.0}, {-h, 0.0}, {0.0, h}, {0.0, -h}}) {
+        const double u = std::clamp(bu + du, 0.0, 3.0), v = std::clamp(bv + dv, 0.0, 3.0), d = d2(u, v);
+        if (d < best) best = d, bu = u, bv = v, moved = true;
+      }
+    }
+  return std::sqrt(best);
+}
+
+}  // namespace
+
+TEST_CASE(
+    "a piecewise polynomial written with ?: is certified: the branches bound the boxes its switches cross") {
+  const auto g = make_surface("u", "v", patches(), {0, 3}, {0, 3});
+  int certified = 0, n = 0;
+  for (const Vec3 p : {Vec3{1.5, 1.5, 1.2}, Vec3{0.9, 1.1, 0.6}, Vec3{1.0, 2.0, -0.3}, Vec3{2.4, 0.7, 0.9},
+                       Vec3{0.3, 0.4, 0.5}, Vec3{2.0, 2.0, 0.8}, Vec3{1.7, 0.2, -0.5}, Vec3{2.9, 2.6, 1.0}}) {
+    INFO("p = (" << p.x << ", " << p.y << ", " << p.z << ")");
+    const ProjectionResult r = project(*g, {p.x, p.y, p.z}, "auto", Options{});
+    ++n;
+    CHECK(r.summary.status == Status::converged);
+    CHECK(r.distance == doctest::Approx(brute_distance(p)).epsilon(1e-9));
+    const Certificate& c = r.summary.certificate;
+    CHECK(c.reason != CertificateReason::non_finite);  // the formulas are finite everywhere
+    CHECK(c.lower_bound <= r.distance);
+    CHECK(c.certified);
+    certified += c.certified;
+  }
+  CHECK(certified == n);
 }

@@ -1,6 +1,52 @@
 #include "batch/thread_pool.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
 namespace footpoint {
+
+namespace {
+
+// The CPUs a quota of `quota` microseconds per `period` gives: ceil(quota / period); 0 for none.
+unsigned quota_cpus(double quota, double period) {
+  if (!(quota > 0.0) || !(period > 0.0)) return 0;
+  return static_cast<unsigned>(std::min(std::ceil(quota / period), 65536.0));
+}
+
+// cgroup v2: "max 100000" (no quota) or "200000 100000".
+unsigned cgroup_v2_cpus(const std::string& root) {
+  std::ifstream in(root + "/cpu.max");
+  std::string quota;
+  double period = 0.0;
+  if (!(in >> quota >> period) || quota == "max") return 0;
+  try {
+    return quota_cpus(std::stod(quota), period);
+  } catch (const std::exception&) {
+    return 0;
+  }
+}
+
+// cgroup v1: cpu.cfs_quota_us (-1: no quota) and cpu.cfs_period_us, under cpu/ or cpu,cpuacct/.
+unsigned cgroup_v1_cpus(const std::string& root) {
+  for (const char* controller : {"/cpu", "/cpu,cpuacct"}) {
+    std::ifstream q(root + controller + "/cpu.cfs_quota_us"), p(root + controller + "/cpu.cfs_period_us");
+    double quota = 0.0, period = 0.0;
+    if (q >> quota && p >> period) return quota_cpus(quota, period);
+  }
+  return 0;
+}
+
+}  // namespace
+
+unsigned cpus_of_cgroup(const std::string& cgroup_root, unsigned hardware) {
+  hardware = std::max(1u, hardware);
+  unsigned quota = cgroup_v2_cpus(cgroup_root);
+  if (quota == 0) quota = cgroup_v1_cpus(cgroup_root);
+  return quota == 0 ? hardware : std::clamp(quota, 1u, hardware);
+}
+
+unsigned default_threads() { return cpus_of_cgroup("/sys/fs/cgroup", std::thread::hardware_concurrency()); }
 
 // One parallel_for call. Chunks are claimed under the pool's mutex; completion is counted under the
 // job's own mutex, which the submitting thread waits on.
@@ -15,7 +61,7 @@ struct ThreadPool::Job {
 };
 
 ThreadPool::ThreadPool(unsigned threads) {
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  if (threads == 0) threads = default_threads();
   workers_.reserve(threads);
   for (unsigned i = 0; i < threads; ++i) workers_.emplace_back([this] { worker_loop(); });
 }

@@ -11,14 +11,23 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
 namespace footpoint {
 
+// The CPUs this process may use: the cgroup's CPU quota rounded up (cgroup v2 `cpu.max`
+// "quota period"; v1 `cpu.cfs_quota_us` / `cpu.cfs_period_us`; "max" or -1 is no quota), at most
+// `hardware`; without a quota, `hardware`. `cgroup_root` is where the cgroup file system is
+// mounted (/sys/fs/cgroup; in a container its own cgroup). At least 1.
+unsigned cpus_of_cgroup(const std::string& cgroup_root, unsigned hardware);
+// What a thread count of 0 stands for: cpus_of_cgroup("/sys/fs/cgroup", hardware_concurrency()).
+unsigned default_threads();
+
 class ThreadPool {
  public:
-  explicit ThreadPool(unsigned threads);  // 0 -> std::thread::hardware_concurrency()
+  explicit ThreadPool(unsigned threads);  // 0 -> default_threads()
   ~ThreadPool();                          // finishes queued tasks, then joins
   ThreadPool(const ThreadPool&) = delete;
   ThreadPool& operator=(const ThreadPool&) = delete;

@@ -277,18 +277,34 @@ struct BallJet1Arith {
 
 }  // namespace
 
+namespace {
+
+// A value whose ball overflowed holds nothing.
+template <int N>
+void settle_defined(BallJet1<N>* out, int n) {
+  for (int k = 0; k < n; ++k)
+    out[k].defined = out[k].defined && std::isfinite(out[k].v.mid) && std::isfinite(out[k].v.rad);
+}
+
+}  // namespace
+
 template <int N>
 void Program::ball_jets1(const double* x, BallJet1<N>* out) const {
   if (tape_->polynomial && polynomial_ball_jets1<N>(*tape_->polynomial, x, out)) return;
   run<BallJet1Arith<N>>(*tape_, x, out);
-  for (int k = 0; k < num_outputs(); ++k) {
-    BallJet1<N>& o = out[k];
-    o.defined = o.defined && std::isfinite(o.v.mid) && std::isfinite(o.v.rad);
-  }
+  settle_defined(out, num_outputs());
+}
+
+template <int N>
+void Program::ball_jets1(const double* x, BallJet1<N>* out, const BranchChoice& choice) const {
+  run<BallJet1Arith<N>>(*tape_, x, out, &choice);
+  settle_defined(out, num_outputs());
 }
 
 template void Program::ball_jets1<1>(const double*, BallJet1<1>*) const;
 template void Program::ball_jets1<2>(const double*, BallJet1<2>*) const;
 template void Program::ball_jets1<3>(const double*, BallJet1<3>*) const;
+template void Program::ball_jets1<1>(const double*, BallJet1<1>*, const BranchChoice&) const;
+template void Program::ball_jets1<2>(const double*, BallJet1<2>*, const BranchChoice&) const;
 
 }  // namespace footpoint::formula

@@ -323,6 +323,8 @@ struct IntervalArith {
         return empty();
     }
   }
+  // The condition c takes one branch over the whole box.
+  static bool decided(const T& c) { return surely_nonzero(c) || (surely_zero(c) && !c.partial); }
   static T select(const T& c, const T& a, const T& b) {  // c ? a : b, and NaN ? a : b is a
     if (surely_nonzero(c)) return a;
     if (surely_zero(c) && !c.partial) return b;

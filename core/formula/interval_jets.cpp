@@ -212,9 +212,24 @@ void Program::interval_jets1(const Interval* x, IntervalJet1<N>* out) const {
   run<IntervalJetArith<N, IntervalJet1<N>>>(*tape_, x, out);
 }
 
+template <int N>
+void Program::interval_jets2(const Interval* x, IntervalJet2<N>* out, const BranchChoice& choice) const {
+  run<IntervalJetArith<N, IntervalJet2<N>>>(*tape_, x, out, &choice);
+}
+
+std::vector<std::int32_t> Program::undecided_conditions(const Interval* x) const {
+  std::vector<std::int32_t> nodes;
+  thread_local std::vector<Interval> out;
+  out.resize(static_cast<std::size_t>(num_outputs()));
+  run<IntervalArith>(*tape_, x, out.data(), nullptr, &nodes);
+  return nodes;
+}
+
 template void Program::interval_jets2<1>(const Interval*, IntervalJet2<1>*) const;
 template void Program::interval_jets2<2>(const Interval*, IntervalJet2<2>*) const;
 template void Program::interval_jets2<3>(const Interval*, IntervalJet2<3>*) const;
+template void Program::interval_jets2<1>(const Interval*, IntervalJet2<1>*, const BranchChoice&) const;
+template void Program::interval_jets2<2>(const Interval*, IntervalJet2<2>*, const BranchChoice&) const;
 template void Program::interval_jets1<1>(const Interval*, IntervalJet1<1>*) const;
 template void Program::interval_jets1<2>(const Interval*, IntervalJet1<2>*) const;
 template void Program::interval_jets1<3>(const Interval*, IntervalJet1<3>*) const;

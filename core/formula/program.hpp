@@ -40,11 +40,37 @@ struct NamedFormula {
   std::string expression;  // muparser syntax
 };
 
+// The longest formula the compiler reads: muparser 2.3 refuses an expression of
+// mu::MaxLenExpression = 20000 characters or more (muParserDef.h), after our reader has taken out
+// the whitespace between a function's name and its '('.
+inline constexpr std::size_t kLongestFormula = 19999;
+
 struct CompileLimits {
-  std::size_t max_formula_length = 4096;  // characters per formula
-  std::size_t max_nodes = 20000;          // tape length over all formulas
+  // Characters per formula, at most kLongestFormula. What a formula costs is bounded by max_nodes
+  // (evaluation) and the deadline (what `auto` precomputes), not by its length.
+  std::size_t max_formula_length = kLongestFormula;
+  std::size_t max_nodes = 20000;  // tape length over all formulas
   // When compiling the whole geometry (with what `auto` precomputes) must be done.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+};
+
+// A truth value for each of some conditions of a tape's selects (c ? a : b), named by the
+// condition's node: the formulas with every select on those conditions replaced by the branch the
+// value takes, whatever the condition evaluates to. Over a box where conditions are undecided,
+// each point has one truth value per condition, so its value is one of the evaluations over the
+// choices of values (the pieces of a piecewise formula, each over the whole box).
+struct BranchChoice {
+  std::vector<std::int32_t> nodes;  // the conditions' nodes (Program::undecided_conditions)
+  std::uint32_t take_b = 0;         // bit k set: nodes[k] is false (its selects take b), else true
+  // Whether the condition `node` is given a value, and whether that takes b.
+  bool forces(std::int32_t node, bool* b) const {
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+      if (nodes[k] == node) {
+        *b = (take_b >> k) & 1u;
+        return true;
+      }
+    return false;
+  }
 };
 
 class Program {
@@ -90,6 +116,15 @@ class Program {
   // (formula/ball.hpp): a few times the cost of jets2, for the certificates of answers.
   template <int N>
   void ball_jets1(const double* x, BallJet1<N>* out) const;
+  // The conditions of selects (c ? a : b) that the interval arithmetic does not decide over the
+  // box x, each once (their nodes; empty when the formulas have no select).
+  std::vector<std::int32_t> undecided_conditions(const Interval* x) const;
+  // interval_jets2 and ball_jets1 of the formulas with the selects on the conditions of `choice`
+  // replaced by the branches it names.
+  template <int N>
+  void interval_jets2(const Interval* x, IntervalJet2<N>* out, const BranchChoice& choice) const;
+  template <int N>
+  void ball_jets1(const double* x, BallJet1<N>* out, const BranchChoice& choice) const;
   // Rigorous enclosures of every formula's value at the point x whose radius is the rounding of the
   // value itself, u |f(x)|, plus O(u^2) of the magnitudes met (formula/accurate_values.cpp:
   // double-double arithmetic with error-free transformations): where ball_jets1's radius is

@@ -44,15 +44,17 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 }
 
 // The candidate nearest to `name`: the same letters in another case, else the fewest edits within
-// what a typo makes (one edit from three letters on, two from six; none for shorter names, whose
-// every neighbour is one edit away). "" when none is near.
+// what a typo makes (one edit from three letters on, two from six; a two-letter name only the one
+// letter it lacks, as cs of cos, for every other two letters are one edit from it; none for one
+// letter). "" when none is near.
 std::string nearest(std::string_view name, const std::vector<std::string_view>& candidates) {
   for (const auto c : candidates)
     if (equal_ignoring_case(name, c)) return std::string(c);
-  const std::size_t allowed = name.size() >= 6 ? 2 : name.size() >= 3 ? 1 : 0;
+  const std::size_t allowed = name.size() >= 6 ? 2 : name.size() >= 2 ? 1 : 0;
   std::string best;
   std::size_t best_distance = allowed + 1;
   for (const auto c : candidates) {
+    if (name.size() == 2 && c.size() != 3) continue;
     const std::size_t d = edit_distance(name, c);
     if (d < best_distance) {
       best_distance = d;

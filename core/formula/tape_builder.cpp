@@ -287,6 +287,12 @@ Program::Tape build_tape(const std::vector<NamedFormula>& formulas, const std::v
 
     // Our reader first: every fault it finds is reported in our words at its character position.
     const std::string parsed_text = check_syntax(formula, variables, constants);
+    static_assert(kLongestFormula + 1 == static_cast<std::size_t>(mu::MaxLenExpression));
+    if (parsed_text.size() > kLongestFormula)
+      throw FormulaError(FormulaError::Kind::too_long, formula.name, static_cast<int>(kLongestFormula),
+                         "formula " + formula.name + " has " + std::to_string(parsed_text.size()) +
+                             " characters; the formula compiler (muparser) reads at most " +
+                             std::to_string(kLongestFormula));
     mu::Parser parser;
     try {
       parser.ClearFun();

@@ -1,7 +1,9 @@
 // The forward pass over the tape, for any arithmetic (plain values, jets, intervals, interval
 // jets). Internal to core/formula.
 #pragma once
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "formula/tape.hpp"
@@ -16,8 +18,11 @@ inline bool is_binary(Op op) {
 // writes each formula's result. Registers are thread-local scratch, so one tape serves many threads.
 // Operands are passed as references to their registers: a node used for both operands (x * x) is
 // one object, which the interval arithmetics recognise (a square has no dependency problem).
+// `choice`: selects replaced by a branch (Program::interval_jets2 with a BranchChoice).
+// `undecided`: receives the conditions of selects that Arith::decided says are undecided, once each.
 template <class Arith>
-void run(const Program::Tape& tape, const typename Arith::Input* inputs, typename Arith::Output* outputs) {
+void run(const Program::Tape& tape, const typename Arith::Input* inputs, typename Arith::Output* outputs,
+         const BranchChoice* choice = nullptr, std::vector<std::int32_t>* undecided = nullptr) {
   using T = typename Arith::T;
   thread_local std::vector<T> regs;
   if (regs.size() < tape.nodes.size()) regs.resize(tape.nodes.size());
@@ -34,9 +39,19 @@ void run(const Program::Tape& tape, const typename Arith::Input* inputs, typenam
       case Op::variable:
         regs[i] = Arith::variable(inputs, static_cast<int>(node.k));
         break;
-      case Op::select:
+      case Op::select: {
+        bool take_b = false;
+        if (choice && choice->forces(node.c, &take_b)) {
+          regs[i] = take_b ? regs[node.b] : regs[node.a];
+          break;
+        }
+        if constexpr (requires(const T& c) { Arith::decided(c); })
+          if (undecided && !Arith::decided(regs[node.c]) &&
+              std::find(undecided->begin(), undecided->end(), node.c) == undecided->end())
+            undecided->push_back(node.c);
         regs[i] = Arith::select(regs[node.c], regs[node.a], regs[node.b]);
         break;
+      }
       case Op::add:
         regs[i] = Arith::binary(Op::add, regs[node.a], regs[node.b]);
         break;

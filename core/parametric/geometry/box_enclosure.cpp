@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "formula/interval.hpp"
+#include "formula/interval_arith.hpp"
 
 namespace footpoint {
 
@@ -16,7 +17,7 @@ bool finite(const formula::Interval& x) { return std::isfinite(x.lo) && std::isf
 
 template <int N>
 BoxEnclosure<N> enclose_box(const formula::Program& program, const std::array<double, N>& lo,
-                            const std::array<double, N>& hi) {
+                            const std::array<double, N>& hi, const formula::BranchChoice* choice) {
   using formula::Interval;
   BoxEnclosure<N> e;
   e.lo = lo;
@@ -24,15 +25,21 @@ BoxEnclosure<N> enclose_box(const formula::Program& program, const std::array<do
   Interval x[N];
   for (int i = 0; i < N; ++i) x[i] = {lo[i], hi[i]};
   formula::IntervalJet2<N> out[3];
-  program.interval_jets2<N>(x, out);
+  if (choice)
+    program.interval_jets2<N>(x, out, *choice);
+  else
+    program.interval_jets2<N>(x, out);
   const int dim = program.num_outputs();
   // a planar curve's z is 0, exactly
   for (int k = dim; k < 3; ++k) out[k] = formula::IntervalJet2<N>{};
 
   e.bounded = true;
   e.smooth = true;
+  e.finite_part = true;
   for (int k = 0; k < 3; ++k) {
     const formula::IntervalJet2<N>& c = out[k];
+    e.empty = e.empty || formula::IntervalArith::bad(c.v);
+    e.finite_part = e.finite_part && finite(c.v);
     e.bounded = e.bounded && !c.v.partial && finite(c.v);
     e.smooth = e.smooth && c.smooth;
     e.s_mid[k] = formula::interval::mid(c.v);
@@ -45,6 +52,7 @@ BoxEnclosure<N> enclose_box(const formula::Program& program, const std::array<do
         e.d2_rad[pair_index(i, j, N)][k] = formula::interval::rad(h);
       }
   }
+  e.finite_part = e.finite_part && !e.empty;
   e.smooth = e.smooth && e.bounded;
   if (!e.smooth) return e;
   // <s_i, s_j> as an interval sum of interval products (outward rounded)
@@ -61,10 +69,14 @@ BoxEnclosure<N> enclose_box(const formula::Program& program, const std::array<do
 }
 
 template <int N>
-PointEnclosure<N> enclose_point(const formula::Program& program, const std::array<double, N>& t) {
+PointEnclosure<N> enclose_point(const formula::Program& program, const std::array<double, N>& t,
+                                const formula::BranchChoice* choice) {
   PointEnclosure<N> e;
   formula::BallJet1<N> out[3];
-  program.ball_jets1<N>(t.data(), out);
+  if (choice)
+    program.ball_jets1<N>(t.data(), out, *choice);
+  else
+    program.ball_jets1<N>(t.data(), out);
   const int dim = program.num_outputs();
   e.valid = true;
   for (int k = 0; k < dim; ++k) {
@@ -160,10 +172,12 @@ BoxEnclosure<2> intersect(const BoxEnclosure<2>& a, const BoxEnclosure<2>& b) {
 }
 
 template BoxEnclosure<1> enclose_box<1>(const formula::Program&, const std::array<double, 1>&,
-                                        const std::array<double, 1>&);
+                                        const std::array<double, 1>&, const formula::BranchChoice*);
 template BoxEnclosure<2> enclose_box<2>(const formula::Program&, const std::array<double, 2>&,
-                                        const std::array<double, 2>&);
-template PointEnclosure<1> enclose_point<1>(const formula::Program&, const std::array<double, 1>&);
-template PointEnclosure<2> enclose_point<2>(const formula::Program&, const std::array<double, 2>&);
+                                        const std::array<double, 2>&, const formula::BranchChoice*);
+template PointEnclosure<1> enclose_point<1>(const formula::Program&, const std::array<double, 1>&,
+                                            const formula::BranchChoice*);
+template PointEnclosure<2> enclose_point<2>(const formula::Program&, const std::array<double, 2>&,
+                                            const formula::BranchChoice*);
 
 }  // namespace footpoint

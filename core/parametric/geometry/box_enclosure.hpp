@@ -17,7 +17,8 @@ template <int N>
 struct BoxEnclosure {
   static constexpr int kPairs = N * (N + 1) / 2;  // (i, j) with i <= j: 00 | 00, 01, 11
   std::array<double, N> lo{}, hi{};               // the parameter box
-  // s over the box: every s(t) has |s_k(t) - s_mid_k| <= s_rad_k. Valid when `bounded`.
+  // s over the box: every s(t) has |s_k(t) - s_mid_k| <= s_rad_k. Valid when `bounded`, and for
+  // the t where s is finite when `finite_part`.
   Vec3 s_mid, s_rad;
   // ∂²s/∂t_i∂t_j over the box, pair index as above. Valid when `smooth`.
   std::array<Vec3, kPairs> d2_mid{}, d2_rad{};
@@ -26,15 +27,22 @@ struct BoxEnclosure {
   std::array<double, kPairs> metric_lo{}, metric_hi{};
   // s is defined and finite at every point of the box (the interval values are finite).
   bool bounded = false;
+  // s is finite somewhere in the box (bounded, or defined on part of it with finite interval
+  // values there: formula/interval.hpp's `partial`), and s_mid ± s_rad holds those points.
+  bool finite_part = false;
+  // No point of the box is in the formulas' domain (an empty interval value): no point of the
+  // geometry comes from the box.
+  bool empty = false;
   // s is twice continuously differentiable on the box (the interval jets' `smooth` flag for x, y
   // and z): the second-order data holds.
   bool smooth = false;
 };
 
-// The enclosure of `program` (inputs t_1..t_N, outputs x, y[, z]) over the box [lo, hi].
+// The enclosure of `program` (inputs t_1..t_N, outputs x, y[, z]) over the box [lo, hi]; with
+// `choice`, of the formulas with its selects replaced by their branches.
 template <int N>
 BoxEnclosure<N> enclose_box(const formula::Program& program, const std::array<double, N>& lo,
-                            const std::array<double, N>& hi);
+                            const std::array<double, N>& hi, const formula::BranchChoice* choice = nullptr);
 
 // s and its first partials at one point, each exact value within `*_rad` of the stored one, per
 // coordinate (from a ball jet, or from a point jet and a bound on its rounding).
@@ -45,9 +53,11 @@ struct PointEnclosure {
   bool valid = false;  // the formulas are defined and differentiable at the point (balls finite)
 };
 
-// The rigorous evaluation at t (Program::ball_jets1).
+// The rigorous evaluation at t (Program::ball_jets1; with `choice`, of the formulas with its
+// selects replaced by their branches).
 template <int N>
-PointEnclosure<N> enclose_point(const formula::Program& program, const std::array<double, N>& t);
+PointEnclosure<N> enclose_point(const formula::Program& program, const std::array<double, N>& t,
+                                const formula::BranchChoice* choice = nullptr);
 
 // The enclosure over a box B inside `ancestor`'s box from a rigorous evaluation at B's centre c
 // (centred forms, Taylor's theorem with the ancestor's second derivatives on the segment from c):

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "parametric/geometry/box_quadratic.hpp"
@@ -195,6 +196,48 @@ double distance_from_f_lower(double f_lower) {
   return std::sqrt(2.0 * f_lower) * (1.0 - 4.0 * kU);
 }
 
+template <int N>
+double branch_lower_bound(const formula::Program& program, const Vec3& p, const Params<N>& lo,
+                          const Params<N>& hi, const std::vector<Params<N>>& near, double enough) {
+  formula::Interval x[N];
+  for (int i = 0; i < N; ++i) x[i] = {lo[i], hi[i]};
+  formula::BranchChoice choice;
+  choice.nodes = program.undecided_conditions(x);
+  if (choice.nodes.empty() || choice.nodes.size() > kMaxBranchConditions) return 0.0;
+  const double enough_f = enough > 0.0 ? 0.5 * enough * enough * (1.0 + 16.0 * kU) : 0.0;
+  Params<N> centre;
+  for (int i = 0; i < N; ++i) centre[i] = 0.5 * (lo[i] + hi[i]);
+  double least = kInf;
+  for (std::uint32_t m = 0; m < (1u << choice.nodes.size()); ++m) {
+    choice.take_b = m;
+    const BoxEnclosure<N> e = enclose_box<N>(program, lo, hi, &choice);
+    if (!e.bounded) return 0.0;
+    double lb = std::sqrt(box_distance2_lower(e.s_mid, e.s_rad, p));
+    const HessianBounds<N> hessian = e.smooth ? hessian_bounds(e, p) : HessianBounds<N>{};
+    auto from = [&](const Params<N>& q) {
+      if (lb >= enough || !hessian.valid) return;
+      const PointEnclosure<N> at = enclose_point<N>(program, q, &choice);
+      if (!at.valid) return;
+      lb = std::max(lb, distance_from_f_lower(
+                            second_order_lower_bound(enclose_gradient(at, p), q, lo, hi, hessian, enough_f)));
+    };
+    from(centre);
+    for (const Params<N>& k : near) {
+      Params<N> q;
+      for (int i = 0; i < N; ++i) q[i] = std::clamp(k[i], lo[i], hi[i]);
+      from(q);
+    }
+    // a choice short of `enough` leaves the box open: the zero-order bound of all of it is the caller's
+    if (!(lb >= enough)) return 0.0;
+    least = std::min(least, lb);
+  }
+  return least;
+}
+
+template double branch_lower_bound<1>(const formula::Program&, const Vec3&, const Params<1>&,
+                                      const Params<1>&, const std::vector<Params<1>>&, double);
+template double branch_lower_bound<2>(const formula::Program&, const Vec3&, const Params<2>&,
+                                      const Params<2>&, const std::vector<Params<2>>&, double);
 template struct HessianBounds<1>;
 template struct HessianBounds<2>;
 template HessianBounds<1> hessian_bounds<1>(const BoxEnclosure<1>&, const Vec3&);

@@ -22,8 +22,10 @@
 // Stability of Numerical Algorithms, 2nd ed., SIAM 2002, Section 3.1, γ_n with n <= 32).
 #pragma once
 #include <array>
+#include <cstddef>
 #include <limits>
 #include <type_traits>
+#include <vector>
 
 #include "geometry/vec.hpp"
 #include "parametric/geometry/box_enclosure.hpp"
@@ -81,5 +83,23 @@ double quadratic_lower_bound_1d(double g, double h, double lo, double hi);
 
 // The distance that a lower bound of f = ½ d^2 gives: sqrt(2 f), rounded down (0 for f <= 0).
 double distance_from_f_lower(double f_lower);
+
+// Conditions of selects (c ? a : b) undecided over one box beyond which branch_lower_bound gives
+// up: 2^4 evaluations of the pieces.
+inline constexpr std::size_t kMaxBranchConditions = 4;
+
+// A lower bound of the distance from p over the box [lo, hi] of formulas with selects whose
+// condition is undecided there (the switch of a piecewise formula crosses the box), where the
+// enclosure of the formulas themselves is not smooth: each point of the box has one truth value
+// of each such condition, so the least over the choices of values of a bound of the distance to
+// the formulas with the branches they take, over the whole box, bounds it
+// (Program::undecided_conditions, BranchChoice). Each choice's bound: zero order, and where its formulas are
+// smooth over the box, second order from the centre and from each point of `near` (known minimisers, clamped
+// into the box). The least bound when every choice's reaches `enough` (the box closes); else 0, as without
+// such selects, with more than kMaxBranchConditions, or where a choice's formulas are not finite over the
+// box.
+template <int N>
+double branch_lower_bound(const formula::Program& program, const Vec3& p, const Params<N>& lo,
+                          const Params<N>& hi, const std::vector<Params<N>>& near, double enough);
 
 }  // namespace footpoint

@@ -113,6 +113,18 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
   double d0sq = 0.0;
   const std::int32_t nearest =
       index.nearest_and_local_minima(p, options.all_minima ? kInfinity : 0.5 * h, candidates, d0sq);
+  if (nearest < 0 || !std::isfinite(d0sq)) {
+    // no point where the formulas are finite, or p so far out (beyond about 1.3e154) that squared
+    // distances overflow: no answer, as on surfaces
+    ProjectionResult r;
+    r.dim = formulas.dim();
+    r.num_params = 1;
+    r.summary.method = "auto";
+    withhold_answer(r);
+    r.summary.status = Status::non_finite;
+    r.summary.starts = 0;
+    return r;
+  }
   const double d0 = std::sqrt(d0sq);
   if (d0 - 0.5 * h > options.max_distance) {
     // every curve point is farther than max_distance (the h/2 bound)
@@ -144,9 +156,11 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
     if (options.all_minima) {
       const Vec3 x = formulas.point(f.t);
       const bool end = (f.t <= domain.tmin || f.t >= domain.tmax) && !joins_smoothly(closure);
-      add_distinct_minimum(
-          minima, x, 1e-8 * std::max(1.0, norm(x)),
-          {{x.x, x.y, x.z}, {f.t, 0.0}, f.distance, end ? Location::endpoint : Location::interior});
+      add_distinct_minimum(minima, x, 1e-8 * std::max(1.0, norm(x)),
+                           {{x.x, x.y, x.z},
+                            {closed_representative(domain, f.t, closure), 0.0},
+                            f.distance,
+                            end ? Location::endpoint : Location::interior});
     }
     if (f.distance < best.distance) {
       best = f;

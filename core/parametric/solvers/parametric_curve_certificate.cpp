@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <queue>
 
 #include "parametric/geometry/distance_bound.hpp"
@@ -13,6 +14,7 @@ namespace footpoint::curve {
 namespace {
 
 constexpr double kU = 0x1p-53;
+constexpr double kNoPoint = std::numeric_limits<double>::infinity();
 
 struct OpenInterval {
   double t0 = 0.0, t1 = 0.0;
@@ -20,6 +22,7 @@ struct OpenInterval {
   double lb = 0.0;         // the best lower bound of the distance over it so far
   HessianBounds<1> hessian;
   bool bounded = true;  // the formulas are finite and smooth over it
+  bool finite = true;   // the formulas are finite over it (else: non_finite)
   bool solved = false;
   bool nearer = false;  // a point of it is nearer than the answer by more than the gap
 };
@@ -74,7 +77,26 @@ class Certifier {
 
  private:
   void close(double lb) { ledger_.close(lb); }
-  void note_unclosed(const OpenInterval& b) { ledger_.leave_open(b.lb, b.bounded); }
+  void note_unclosed(const OpenInterval& b) { ledger_.leave_open(b.lb, b.finite); }
+
+  // The distance to the box of c over an interval: over the points where c is finite (the curve
+  // is the part of the domain where the formulas are finite); none where no point is in the
+  // formulas' domain (+inf), 0 where the enclosure is not finite.
+  double zero_order(const BoxEnclosure<1>& e) const {
+    if (e.empty) return kNoPoint;
+    return e.bounded || e.finite_part ? std::sqrt(box_distance2_lower(e.s_mid, e.s_rad, p_)) : 0.0;
+  }
+
+  // An interval whose formulas are finite but not smooth over it: where the switch of a select
+  // crosses it, the bound of its branches (branch_lower_bound).
+  void bound_branches(OpenInterval& o) {
+    if (o.bounded || !o.finite) return;
+    std::vector<Params<1>> near_t;
+    for (const Known& k : known_)
+      if (near(k, o)) near_t.push_back({k.t});
+    o.lb = std::max(o.lb,
+                    branch_lower_bound<1>(formulas_.program(), p_, {o.t0}, {o.t1}, near_t, ledger_.target()));
+  }
 
   // 1. nearest box first; a subtree whose box is beyond the target is closed whole
   void walk() {
@@ -119,7 +141,10 @@ class Certifier {
     o.cell = index;
     const BoxEnclosure<1>& e = c.enclosure;
     o.bounded = e.bounded && e.smooth && c.centre_valid;
-    o.lb = e.bounded ? std::sqrt(box_distance2_lower(e.s_mid, e.s_rad, p_)) : 0.0;
+    o.finite = e.bounded;
+    o.lb = zero_order(e);
+    if (o.lb >= ledger_.target()) return close(o.lb);
+    bound_branches(o);
     if (o.lb >= ledger_.target()) return close(o.lb);
     if (c.centre_valid && std::isfinite(c.rho)) {  // 2. the tangent line's segment
       const Vec3 r = p_ - c.centre.c;
@@ -248,8 +273,11 @@ class Certifier {
     const double tc = 0.5 * (t0 + t1);
     const PointEnclosure<1> at = enclose_point<1>(formulas_.program(), {tc});
     b.bounded = e.bounded && e.smooth && at.valid;
-    b.lb = e.bounded ? std::sqrt(box_distance2_lower(e.s_mid, e.s_rad, p_)) : 0.0;
-    if (!b.bounded || b.lb >= ledger_.target()) return b;
+    b.finite = e.bounded;
+    b.lb = zero_order(e);
+    if (b.lb >= ledger_.target()) return b;
+    bound_branches(b);
+    if (!b.bounded) return b;
     b.hessian = hessian_bounds(e, p_);
     b.lb = std::max(b.lb, distance_from_f_lower(second_order_lower_bound(
                               enclose_gradient(at, p_), {tc}, {t0}, {t1}, b.hessian, ledger_.target_f())));

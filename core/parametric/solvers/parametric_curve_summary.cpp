@@ -12,7 +12,7 @@ ProjectionResult parametric_result(const CurveFormulas& formulas, const ParamInt
   r.dim = formulas.dim();
   r.num_params = 1;
   r.foot = {j.c.x, j.c.y, j.c.z};
-  r.params = {t, 0.0};
+  r.params = {closed_representative(domain, t, closure), 0.0};
   r.distance = norm(p - j.c);
   r.summary.method = method;
   const double speed = norm(j.d1);
@@ -24,11 +24,18 @@ ProjectionResult parametric_result(const CurveFormulas& formulas, const ParamInt
   }
   const double denominator = std::max(norm(d), 1e-3 * std::max(1.0, norm(j.c))) * speed;
   const double along = dot(d, j.d1);  // <p - c, c'>
-  if ((t <= domain.tmin || t >= domain.tmax) && !joins_smoothly(closure)) {
-    // At tmin the admissible direction is +c'; a minimum there needs <p - c, c'> <= 0 (moving
-    // inwards does not approach p), at tmax <p - c, c'> >= 0. Only a violation is a residual.
-    r.summary.orthogonality[0] =
-        (t <= domain.tmin ? std::max(0.0, along) : std::max(0.0, -along)) / denominator;
+  // An end of the domain (unless the curve closes smoothly there), or of the part of it where
+  // the formulas are finite: the next double beyond t gives no point (sqrt(t - 0.5) at 0.5).
+  const bool domain_end = (t <= domain.tmin || t >= domain.tmax) && !joins_smoothly(closure);
+  const bool lower_end = (t <= domain.tmin && domain_end) ||
+                         (t > domain.tmin && !is_finite(formulas.point(std::nextafter(t, -kInfinity))));
+  const bool upper_end = (t >= domain.tmax && domain_end) ||
+                         (t < domain.tmax && !is_finite(formulas.point(std::nextafter(t, kInfinity))));
+  if (lower_end || upper_end) {
+    // At a lower end the admissible direction is +c'; a minimum there needs <p - c, c'> <= 0
+    // (moving inwards does not approach p), at an upper end <p - c, c'> >= 0. Only a violation is
+    // a residual.
+    r.summary.orthogonality[0] = (lower_end ? std::max(0.0, along) : std::max(0.0, -along)) / denominator;
     r.summary.location = Location::endpoint;
     r.summary.on_boundary = true;
   } else {

@@ -15,10 +15,16 @@ namespace footpoint::curve {
 
 // A result for c(t) as the foot of p: dim, num_params 1, params[0] = t, foot, distance,
 // orthogonality, location (endpoint when t is tmin or tmax, unless the curve closes smoothly there:
-// then the ends are one interior point) and on_boundary. When p is (almost) on the curve the
-// orthogonality is measured against max(|p - c|, 1e-3 max(1, |c|)).
+// then the ends are one interior point) and on_boundary; params[0] is closed_representative(t). When p is
+// (almost) on the curve the orthogonality is measured against max(|p - c|, 1e-3 max(1, |c|)).
 ProjectionResult parametric_result(const CurveFormulas& formulas, const ParamInterval& domain, Vec3 p,
                                    double t, const char* method, const CurveClosure& closure = {});
+
+// The parameter a closed curve's two ends name once (closure.periodic ["t"]): c(tmax) = c(tmin),
+// and answers report tmin. Every other t is kept.
+inline double closed_representative(const ParamInterval& domain, double t, const CurveClosure& closure) {
+  return closure.closed && t == domain.tmax ? domain.tmin : t;
+}
 
 // The curve's two ends are one point with one tangent: no end is an endpoint.
 inline bool joins_smoothly(const CurveClosure& closure) { return closure.closed && closure.smooth; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <queue>
 
@@ -30,7 +31,8 @@ struct OpenBox {
   bool split_u = true;  // bisect along u (the box is longer along u on the surface)
   bool solved = false;  // a local solve was started from it
   bool nearer = false;  // its centre is nearer than the answer by more than the gap
-  bool bounded = true;  // the formulas are finite and smooth over it (else: non_finite)
+  bool bounded = true;  // the formulas are finite and smooth over it
+  bool finite = true;   // the formulas are finite over it (else: non_finite)
 };
 
 struct ByBound {
@@ -87,7 +89,26 @@ class Certifier {
 
  private:
   void close(double lb) { ledger_.close(lb); }
-  void note_unclosed(const OpenBox& b) { ledger_.leave_open(b.lb, b.bounded); }
+  void note_unclosed(const OpenBox& b) { ledger_.leave_open(b.lb, b.finite); }
+
+  // The distance to the box of s over a box: over the points where s is finite (the surface is
+  // the part of the domain where the formulas are finite); none where no point is in the
+  // formulas' domain (+inf), 0 where the enclosure is not finite.
+  double zero_order(const BoxEnclosure<2>& e) const {
+    if (e.empty) return std::numeric_limits<double>::infinity();
+    return e.bounded || e.finite_part ? std::sqrt(box_distance2_lower(e.s_mid, e.s_rad, p_)) : 0.0;
+  }
+
+  // A box whose formulas are finite but not smooth over it: where the switch of a select crosses
+  // it, the bound of its branches (branch_lower_bound).
+  void bound_branches(OpenBox& o) {
+    if (o.bounded || !o.finite) return;
+    std::vector<Params2> nearby;
+    for (const Known& k : known_)
+      if (near(k, o)) nearby.push_back(k.t);
+    o.lb =
+        std::max(o.lb, branch_lower_bound<2>(formulas_.program(), p_, o.lo, o.hi, nearby, ledger_.target()));
+  }
 
   // 1. The hierarchy of the cells' boxes, nearest first; a subtree beyond the target is closed.
   void walk() {
@@ -134,8 +155,10 @@ class Certifier {
     o.split_u = norm2(c.centre.su) * (c.u1 - c.u0) * (c.u1 - c.u0) >=
                 norm2(c.centre.sv) * (c.v1 - c.v0) * (c.v1 - c.v0);
     o.bounded = b.enclosure.bounded && b.enclosure.smooth && b.centre_valid;
-    o.lb = std::max(box_lb, std::sqrt(box_distance2_lower(b.enclosure.s_mid, b.enclosure.s_rad, p_)));
-    if (!o.bounded) o.lb = b.enclosure.bounded ? o.lb : 0.0;
+    o.finite = b.enclosure.bounded;
+    o.lb = std::max(box_lb, zero_order(b.enclosure));
+    if (o.lb >= ledger_.target()) return close(o.lb);
+    bound_branches(o);
     if (o.lb >= ledger_.target()) return close(o.lb);
     const Vec3 r = c.centre.s - p_;
     if (c.framed && std::isfinite(b.rho)) {  // 2. the tangent plane
@@ -292,8 +315,11 @@ class Certifier {
     b.split_u = h.split_u;
     const BoxEnclosure<2>& e = h.enclosure;
     b.bounded = e.bounded && e.smooth && h.centre.valid;
-    b.lb = e.bounded ? std::sqrt(box_distance2_lower(e.s_mid, e.s_rad, p_)) : 0.0;
-    if (!b.bounded || b.lb >= ledger_.target()) return b;
+    b.finite = e.bounded;
+    b.lb = zero_order(e);
+    if (b.lb >= ledger_.target()) return b;
+    bound_branches(b);
+    if (!b.bounded) return b;
     b.hessian = hessian_bounds(e, p_);
     const Params2 c{0.5 * (b.lo[0] + b.hi[0]), 0.5 * (b.lo[1] + b.hi[1])};
     const GradientEnclosure<2> g = enclose_gradient(h.centre, p_);

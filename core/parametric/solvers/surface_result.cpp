@@ -31,6 +31,13 @@ Location location_in(const ParamBox& box, double u, double v, const SurfaceClosu
   return Location::interior;
 }
 
+std::array<double, 2> seam_representative(const ParamBox& box, double u, double v,
+                                          const SurfaceClosure* closure) {
+  if (closure && closure->periodic(0) && u == box.umax) u = box.umin;
+  if (closure && closure->periodic(1) && v == box.vmax) v = box.vmin;
+  return {u, v};
+}
+
 ProjectionResult surface_result(const char* method, const Vec3& p, double u, double v, const Vec3& s,
                                 const Vec3& su, const Vec3& sv, const ParamBox& box,
                                 const SurfaceClosure* closure) {
@@ -42,6 +49,7 @@ ProjectionResult surface_result(const char* method, const Vec3& p, double u, dou
   r.distance = norm(p - s);
   r.summary.method = method;
   r.summary.location = location_in(box, u, v, closure);
+  r.params = seam_representative(box, u, v, closure);
   const Orthogonality o = orthogonality(p, s, su, sv);
   const Vec3 d = p - s;
   const int sides[2] = {side(u, box.umin, box.umax, closure && closure->periodic(0)),

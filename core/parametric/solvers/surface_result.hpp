@@ -1,6 +1,8 @@
 // Filling a ProjectionResult for a surface: foot point, parameters, distance, orthogonality
 // residuals and where the parameters lie in the domain.
 #pragma once
+#include <array>
+
 #include "geometry/projection_result.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 #include "parametric/geometry/surface_closure.hpp"
@@ -12,6 +14,12 @@ namespace footpoint::surface {
 // interior; a bound of a closed direction (a seam) is no edge. Unknown outside the domain.
 Location location_in(const ParamBox& box, double u, double v, const SurfaceClosure* closure = nullptr);
 
+// The parameters a seam's two sides name once: along a periodic direction (closure.periodic) the
+// upper bound is the lower one, s(umax, v) = s(umin, v), and answers report the lower. A reversed
+// seam (a Möbius band's) and every other parameter are kept.
+std::array<double, 2> seam_representative(const ParamBox& box, double u, double v,
+                                          const SurfaceClosure* closure);
+
 // A result at parameters (u, v) with surface point s and tangents su, sv there. The summary gets
 // method, orthogonality, location and on_boundary; status, iterations and step_norm are the
 // caller's. The residuals are those of the Karush-Kuhn-Tucker conditions of min |p - s|^2 over the
@@ -19,7 +27,8 @@ Location location_in(const ParamBox& box, double u, double v, const SurfaceClosu
 // seam) the orthogonality itself; for one on a bound only its sign violation - at u = umin the
 // admissible direction is +u, and a minimum needs <p - s, s_u> <= 0 (moving inwards does not come
 // nearer), at umax >= 0 - so that a boundary answer's residual is 0 when it is right, as an
-// interior one's. Non-finite residuals are reported as the largest double, never NaN.
+// interior one's. Non-finite residuals are reported as the largest double, never NaN. The
+// parameters reported are seam_representative(u, v).
 ProjectionResult surface_result(const char* method, const Vec3& p, double u, double v, const Vec3& s,
                                 const Vec3& su, const Vec3& sv, const ParamBox& box,
                                 const SurfaceClosure* closure = nullptr);

@@ -209,7 +209,7 @@ std::vector<Minimum> SurfaceSearch::minima(const ProjectionResult& r, bool* trun
     }
     Minimum m;
     m.foot = {s.x, s.y, s.z};
-    m.params = {f->sol.u, f->sol.v};
+    m.params = seam_representative(box_, f->sol.u, f->sol.v, &closure_);
     m.distance = f->sol.distance;
     m.location = location_in(box_, f->sol.u, f->sol.v, &closure_);
     out.push_back(m);
