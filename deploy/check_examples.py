@@ -1,23 +1,21 @@
 #!/usr/bin/python3
-"""Runs the copy-paste curl examples of the operations section against a running server.
+"""Runs the copy-paste curl examples of the documentation against a running server.
 
   check_examples.py [--server PATH] BASE_URL FILE...
 
-Takes the first FILE whose operations section has ```sh blocks: README.md's text between
-<!-- operations:begin --> and <!-- operations:end -->, or a whole file without those markers
-(deploy/OPERATIONS.md), and with it the file's Results and Formulas sections (between
-<!-- results:begin/end --> and <!-- formulas:begin/end -->), whose blocks run first. The Results
-section must name every member, status, location and certificate reason of a result as the
+Reads the sections the FILEs mark with <!-- NAME:begin --> and <!-- NAME:end --> (each NAME from the
+first FILE that has it): results and formulas (docs/api.md, docs/formulas.md), examples (the API by
+example of docs/api.md) and operations (docs/operations.md). Their ```sh blocks run in that order. The
+Results section must name every member, status, location and certificate reason of a result as the
 server's /openapi.yaml has them, and the Formulas section every function and operator of its
 Formula schema (x-functions, x-operators). Every command of every block runs, in order, in one bash (so that `ID=$(...)`
 carries over), with localhost:8080 replaced by BASE_URL. A command starting with `curl` must answer
 2xx, unless a comment `# → CODE (STATUS ...)` just above it names the error code and status it
 expects; its body must then be that JSON error. JSON answers must parse; /metrics, /openapi.yaml and a
-mesh's OBJ must look like what they are. A `VAR=$(...)` command must set VAR. With --server, the section's
-configuration table must list exactly the flags, variables and defaults of `PATH --help`.
+mesh's OBJ must look like what they are. A `VAR=$(...)` command must set VAR. With --server, the operations
+section's configuration table must list exactly the flags, variables and defaults of `PATH --help`.
 """
 import json
-import os
 import re
 import shlex
 import subprocess
@@ -25,13 +23,7 @@ import sys
 
 import yaml
 
-BEGIN, END = "<!-- operations:begin -->", "<!-- operations:end -->"
-
-
-def section(text):
-    if BEGIN in text:
-        return text.split(BEGIN, 1)[1].split(END, 1)[0]
-    return text
+SECTIONS = ("results", "formulas", "examples", "operations")  # the order their blocks run in
 
 
 def named_section(text, name):
@@ -121,22 +113,24 @@ def main():
         server, args = args[1], args[2:]
     base = args[0].rstrip("/")
     host = re.sub(r"^https?://", "", base)
-    blocks = []
-    results = formulas = None
+    found, sources = {}, []
     for path in args[1:]:
-        if not os.path.exists(path):
-            continue
         with open(path, encoding="utf-8") as f:
             whole = f.read()
-        text = section(whole)
-        blocks = re.findall(r"```sh\n(.*?)```", text, re.S)
-        if blocks:
-            source = path
-            results, formulas = named_section(whole, "results"), named_section(whole, "formulas")
-            blocks = [b for s in (results, formulas) if s for b in re.findall(r"```sh\n(.*?)```", s, re.S)] + blocks
-            break
+        for name in SECTIONS:
+            text = named_section(whole, name)
+            if text is not None and name not in found:
+                found[name] = text
+                if path not in sources:
+                    sources.append(path)
+    results, formulas = found.get("results"), found.get("formulas")
+    blocks = [b for name in SECTIONS if name in found for b in re.findall(r"```sh\n(.*?)```", found[name], re.S)]
+    source = ", ".join(sources)
     if not blocks:
-        print("FAIL: no ```sh blocks in " + ", ".join(args[1:]))
+        print("FAIL: no ```sh blocks in the sections of " + ", ".join(args[1:]))
+        return 1
+    if server and "operations" not in found:
+        print("FAIL: no operations section (<!-- operations:begin -->) in " + ", ".join(args[1:]))
         return 1
     cmds = [c for b in blocks for c in commands(b)]
     script = ["set -uo pipefail"]
@@ -219,7 +213,7 @@ def main():
         problems.append(f"cannot read the served /openapi.yaml: {e}")
     settings = 0
     if server:
-        table_problems, settings = check_configuration_table(text, server)
+        table_problems, settings = check_configuration_table(found["operations"], server)
         problems += table_problems
     for q in problems:
         print("FAIL:", q)

@@ -295,9 +295,11 @@ else
   pass "two replicas without a registry behind a round-robin proxy: 3 batches met an unknown id (404), went to /v1/project, same output"
 fi
 
-# The copy-paste curl examples of the README's operations section.
-"$python" "$deploy/check_examples.py" --server "$server" "$base" "$source_dir/README.md" ||
-  fail "the operations section's curl examples"
+# The copy-paste curl examples of the documentation (the API by example, Results, Formulas) and
+# the operations section's configuration table.
+"$python" "$deploy/check_examples.py" --server "$server" "$base" "$source_dir/docs/api.md" \
+  "$source_dir/docs/formulas.md" "$source_dir/docs/operations.md" ||
+  fail "the documentation's curl examples"
 
 # ---- 6. SIGTERM: the request in flight is answered in full, then exit code 0 -----------------------
 "$python" - "$source_dir/examples/torus.json" > "$tmp/batch.json" <<'EOF'

@@ -52,7 +52,7 @@ struct ServerConfig {
   std::chrono::milliseconds compile_deadline{0};
   // --max-mesh-resolution / FOOTPOINT_MAX_MESH_RESOLUTION: the largest `resolution` of
   // GET /v1/geometries/{id}/mesh (400 above it): cells along a surface's larger direction, a
-  // curve's segments. 512 bounds a surface's mesh at 263,169 vertices (a sphere: 46 MB of JSON, 0.55 s).
+  // curve's segments. 512 bounds a surface's mesh at 263,169 vertices (a sphere: 46 MB of JSON).
   int max_mesh_resolution = 512;
   // --ui / FOOTPOINT_UI: on serves the browser pages (the playground at /, the API reference at
   // /docs and their files under /ui/); off answers them 404.

@@ -1,5 +1,5 @@
 // What the documentation says against what the server does: the functions of the formula
-// language (core, openapi.yaml's Formula x-functions, the README's Formulas table), and
+// language (core, openapi.yaml's Formula x-functions, docs/formulas.md's table), and
 // GET /v1/methods with each method's full citations, options and statuses.
 #include <doctest/doctest.h>
 
@@ -33,7 +33,7 @@ std::string get_ok(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("the functions of the formula language: the core's, openapi.yaml's and the README's are the same") {
+TEST_CASE("the formula language's functions: the core's, openapi.yaml's and docs/formulas.md's agree") {
   std::vector<std::string> core;
   for (const auto& f : footpoint::formula::function_signatures()) core.emplace_back(f.name);
   const std::string openapi(openapi_text());
@@ -46,11 +46,11 @@ TEST_CASE("the functions of the formula language: the core's, openapi.yaml's and
     documented.push_back(it->str());
   CHECK(documented == core);
 
-  const std::string readme = read_text_file(FOOTPOINT_SOURCE_DIR "/README.md");
-  const auto begin = readme.find("<!-- formulas:begin -->"), end = readme.find("<!-- formulas:end -->");
+  const std::string doc = read_text_file(FOOTPOINT_SOURCE_DIR "/docs/formulas.md");
+  const auto begin = doc.find("<!-- formulas:begin -->"), end = doc.find("<!-- formulas:end -->");
   REQUIRE(begin != std::string::npos);
   REQUIRE(end > begin);
-  const std::string formulas = readme.substr(begin, end - begin);
+  const std::string formulas = doc.substr(begin, end - begin);
   for (const auto& f : core) {
     CAPTURE(f);
     CHECK(formulas.find("`" + f + "(") != std::string::npos);

@@ -144,7 +144,7 @@ TEST_CASE("one version: CMake, openapi.yaml, --version, /metrics, the image's la
   const std::string dockerfile = read_text_file(FOOTPOINT_SOURCE_DIR "/deploy/Dockerfile");
   CHECK(dockerfile.find("org.opencontainers.image.version=\"" + version + "\"") != std::string::npos);
   for (const char* file :
-       {"/deploy/Dockerfile", "/deploy/compose.yaml", "/deploy/k8s/deployment.yaml", "/README.md"}) {
+       {"/deploy/Dockerfile", "/deploy/compose.yaml", "/deploy/k8s/deployment.yaml", "/docs/operations.md"}) {
     CAPTURE(file);
     const std::string text = read_text_file(std::string(FOOTPOINT_SOURCE_DIR) + file);
     const std::regex tag("footpoint:([0-9][0-9.]*)");

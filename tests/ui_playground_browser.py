@@ -374,7 +374,7 @@ def run(args):
         _, _, pixels_curve = page.screenshot("#canvas", os.path.join(args.out, "playground_lemniscate.png"))
         check(difference_fraction(pixels_torus, pixels_curve) > 0.05, "the lemniscate's picture differs from the torus's")
 
-        # ---- the README's picture: the torus preset, its minima -------------------------------
+        # ---- the README's picture (docs/playground.png): the torus preset, its minima ----------
         index = page.evaluate("[...document.getElementById('preset').options].findIndex(o => o.textContent === 'Torus')")
         page.evaluate(f"document.getElementById('preset').value = '{index}';"
                       "document.getElementById('preset').dispatchEvent(new Event('change'))")

@@ -5,9 +5,9 @@
 namespace footpoint {
 
 namespace {
-// Points between two reads of the clock: a read costs ~20 ns, a fast projection ~1 µs (S1), so
-// reading it for every point would cost 2 % of the batch; up to kClockStride - 1 more points of
-// a chunk may start after the deadline.
+// Points between two reads of the clock: a read costs a few hundredths of the fastest projections,
+// so it is read every kClockStride points; up to kClockStride - 1 more points of a chunk may start
+// after the deadline.
 constexpr std::size_t kClockStride = 4;
 }  // namespace
 
@@ -16,7 +16,7 @@ std::vector<ProjectionResult> project_batch(ThreadPool& pool, const BatchRequest
   const CompiledGeometry& geometry = request.method.geometry();
   const int dim = geometry.point_dim();
   // Chunks small enough to balance the pool and to check the deadline often, large enough that
-  // the per-task overhead (~1 µs) stays negligible next to the solves.
+  // the per-task overhead stays negligible next to the solves.
   const std::size_t chunk = std::clamp<std::size_t>(request.count / (8 * pool.size() + 1), 16, 1024);
   pool.parallel_for(request.count, chunk, [&](std::size_t begin, std::size_t end) {
     Options options = request.options;

@@ -12,7 +12,7 @@
 // and quotients (at most half the smallest subnormal, 2^-1075). The smallest subnormal would do as
 // well, but it would make the radius of every exact value a subnormal number (a zero derivative:
 // rounding(0) = η), and an x86 core takes a microcode assist, some hundred cycles, for each
-// operation with a subnormal operand (2.6x the time of the ball jets of Viviani's curve);
+// operation with a subnormal operand;
 // the propagated part is the classical midpoint-radius bound (S. M. Rump, "Fast and parallel
 // interval arithmetic", BIT 39 (1999) 534-554, Sections 2-3):
 //   {a} ± {b}:  m = fl(ma ± mb),   r = ra + rb + u|m| + η

@@ -1,6 +1,6 @@
-// sin x and cos x together, about twice as fast as glibc's sincos and within 1 ulp of the exact
-// values (tests/formula_sin_cos.cpp measures the error against long double): the jets of a
-// trigonometric surface spend half their time here. Internal to core/formula.
+// sin x and cos x together, in one reduction of x, within 1 ulp of the exact values
+// (tests/formula_sin_cos.cpp measures the error against long double); the values and jets of
+// every sin and cos node use it. Internal to core/formula.
 //
 // x = k π/2 + r, |r| <= π/4 (about): Cody and Waite's reduction with π/2 = P1 + P2 + P3, where P1
 // and P2 have 33 significant bits, so that k P1 and k P2 are exact for |k| < 2^20 and

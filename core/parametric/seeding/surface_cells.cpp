@@ -261,8 +261,8 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     bounds_.push_back(cell_bounds(formulas, r, e.jet));
   }
   // sub-boxes on demand: up to four pairs per cell, at least 4096 pairs (~4 MB; about 1 KB a pair,
-  // allocated as they are made): the certificates' boxes near folds, kept, cost a few hundred ns
-  // each at the next point instead of an interval jet (bench/surface_bench's batch column)
+  // allocated as they are made): the certificates' boxes near folds, kept, are read at the next
+  // point instead of enclosed by an interval jet again (bench/surface_bench's batch column)
   refinement_ = std::make_unique<SurfaceRefinement>(formulas.program(), cells_.size(),
                                                     std::max<std::size_t>(4 * cells_.size(), 4096));
   // The search hierarchy is built over the cells' boxes in space, not over the parameter

@@ -26,13 +26,13 @@
 // Fine and coarse cells are "resolved". Refinement, worst cell first, pursues `flatness` up to
 // `target_cells` cells, then `resolved_flatness` up to the memory cap `max_bytes`.
 // The trade-off: finer cells give tighter bounds, better starts and fewer local solves, but a
-// longer compile (~1.5 µs per binary node, two per cell), more memory (memory_bytes(), ~355 bytes
-// per cell) and, for points near a surface that covers itself many times, more cells to visit.
+// longer compile (two binary nodes per cell), more memory (memory_bytes(), ~355 bytes per cell)
+// and, for points near a surface that covers itself many times, more cells to visit.
 // On the [-25,25]^2 surface (bench/surface_bench.cpp, A1): all fine at flatness 0.05 would take
-// ~50,000 cells, 17 MB and ~0.2 s to compile; the former fixed budget of 4096 cells left every
-// cell unresolved (~30 local solves per point); the defaults give ~4,300 cells (target 4096, then
-// on to 0.25), 1.5 MB, ~15 ms, and per point about a third of the local solves and time of the
-// fixed budget. S1-S3 reach flatness 0.05 within the target (394-2306 cells), as before.
+// ~50,000 cells and 17 MB; a fixed budget of 4096 cells leaves every cell unresolved (~30 local
+// solves per point); the defaults give ~4,300 cells (target 4096, then on to 0.25), 1.5 MB, and
+// per point about a third of the local solves of that fixed budget. S1-S3 reach flatness 0.05
+// within the target (394-2306 cells).
 #pragma once
 #include <array>
 #include <cstddef>
@@ -58,8 +58,8 @@ struct SurfaceSeedingOptions {
   // The requirement: refine while ρ > resolved_flatness x extent, up to max_bytes; a cell within
   // it is resolved.
   double resolved_flatness = 0.25;
-  // Memory cap of the cells and the tree (memory_bytes()): about 8,400 cells, a compile of
-  // ~25 ms. Refinement stops there whatever the flatness.
+  // Memory cap of the cells and the tree (memory_bytes()): about 8,400 cells. Refinement stops
+  // there whatever the flatness.
   std::size_t max_bytes = std::size_t{4} << 20;
 };
 

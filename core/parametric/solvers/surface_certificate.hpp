@@ -36,8 +36,8 @@ namespace footpoint::surface {
 
 struct SurfaceCertifyOptions {
   // Sub-boxes bounded per point beyond the compiled cells (one interval jet and one ball jet each
-  // where the refinement has not kept them yet, ~1-10 µs with the formulas' length; a few hundred
-  // ns once kept). The count decides, not the cache: an answer's certificate is the same whichever
+  // where the refinement has not kept them yet; once kept, their enclosures are read, not
+  // computed again). The count decides, not the cache: an answer's certificate is the same whichever
   // points came before it. 1600: on bench/surface_bench's sets (section 1: the Open CASCADE
   // comparison's S1-S3, [GSA] Ex. 1 over [-25,25]^2, torus, sphere; box and near points) >= 99.3 %
   // certified, against 5-99 % with 48 and 65-100 % with 400. Most points need far fewer; the rest
