@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include <openssl/crypto.h>
-#include <openssl/evp.h>
+#include <openssl/crypto.h>
 
 namespace footpoint::server {
 
@@ -51,15 +51,6 @@ Scope required_scope(Route route, std::string_view method, bool metrics_key_free
       return kScopeProject;
   }
   return kScopeAdmin;
-}
-
-std::array<unsigned char, 32> sha256(std::string_view text) {
-  std::array<unsigned char, 32> digest{};
-  unsigned int length = 0;
-  if (EVP_Digest(text.data(), text.size(), digest.data(), &length, EVP_sha256(), nullptr) != 1 ||
-      length != digest.size())
-    throw std::runtime_error("SHA-256 failed");
-  return digest;
 }
 
 namespace {

@@ -18,6 +18,7 @@
 #include <string>
 #include <string_view>
 #include <vector>
+#include "compiled/sha256.hpp"
 
 #include "route.hpp"
 
@@ -63,8 +64,8 @@ class KeyRing {
   std::vector<ApiKey> keys_;
 };
 
-// SHA-256 of `text`.
-std::array<unsigned char, 32> sha256(std::string_view text);
+// SHA-256 of a secret: the core's (compiled/sha256.hpp, OpenSSL's EVP).
+using footpoint::sha256;
 
 // Token buckets of points, one per key name: each holds at most `burst` points and gains
 // `rate` points a second; a request takes its points or is refused.

@@ -5,7 +5,8 @@
 
 Every `#include "..."` of a file in a layer must name a header of the same layer or of a layer
 below it, and the libraries the build makes of third-party code stay where they belong (muparser
-only in formula/, nanoflann only in seeding/, JSON, HTTP and logging only in server/). With the
+only in formula/, nanoflann only in seeding/, OpenSSL only in compiled/ and server/, JSON, HTTP and
+logging only in server/). With the
 layers' static libraries, bottom to top, every symbol a layer's library leaves undefined must not
 be defined only by a library above it (a wrong-way call, which a link may or may not catch,
 depending on what else pulled that object in).
@@ -42,6 +43,7 @@ THIRD_PARTY = [
     ("httplib", {"server"}),
     ("spdlog/", {"server"}),
     ("fmt/", {"server"}),
+    ("openssl/", {"compiled", "server"}),
 ]
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 

@@ -1,4 +1,4 @@
-// SHA-256 (FIPS 180-4), for content-hash geometry ids.
+// SHA-256 (FIPS 180-4), for content-hash geometry ids and the API keys' digests (OpenSSL underneath).
 #pragma once
 #include <array>
 #include <cstdint>
