@@ -373,9 +373,32 @@ ProjectRequest read_binary_project_request(std::string_view body, std::string_vi
                    "body");
   request.point_length = point_dim;
   request.raw_points = body;
-  if (!keep_raw) {
-    request.coords.resize(request.count * static_cast<std::size_t>(point_dim));
-    decode_points(request, 0, request.count, request.coords.data());
+  // Every coordinate finite, as JSON can only write them: checked now, before a stream starts
+  // (a stream decodes its points again a window at a time).
+  constexpr std::size_t kBlock = 4096;
+  std::vector<double> block;
+  if (!keep_raw) request.coords.reserve(request.count * static_cast<std::size_t>(point_dim));
+  for (std::size_t begin = 0; begin < request.count; begin += kBlock) {
+    const std::size_t end = std::min(request.count, begin + kBlock);
+    double* out = nullptr;
+    if (keep_raw) {
+      block.resize((end - begin) * static_cast<std::size_t>(point_dim));
+      out = block.data();
+    } else {
+      request.coords.resize(end * static_cast<std::size_t>(point_dim));
+      out = request.coords.data() + begin * static_cast<std::size_t>(point_dim);
+    }
+    decode_points(request, begin, end, out);
+    for (std::size_t i = 0; i < (end - begin) * static_cast<std::size_t>(point_dim); ++i) {
+      if (std::isfinite(out[i])) continue;
+      const std::size_t point = begin + i / static_cast<std::size_t>(point_dim);
+      const std::string field = indexed("points", point) + "[" + std::to_string(i % point_dim) + "]";
+      throw ApiError(400, "number_out_of_range",
+                     field + " is " + (std::isnan(out[i]) ? "NaN" : "infinite") + " (body bytes from " +
+                         std::to_string((point * point_dim + i % point_dim) * (request.raw_float32 ? 4 : 8)) +
+                         "): every coordinate must be a finite number",
+                     field);
+    }
   }
   settle_request(request, fields_given);
   return request;

@@ -198,6 +198,21 @@ TEST_CASE("inspection: points in binary, float64 and float32, with the options i
     INFO(query << " " << r->body);
     CHECK(r->status == 400);
   }
+  // NaN and infinity, which JSON cannot write, are refused with the coordinate named
+  for (const double bad : {std::nan(""), HUGE_VAL}) {
+    std::vector<double> q = p;
+    q[3 * 17 + 2] = bad;
+    for (const bool streamed : {false, true}) {
+      r = streamed ? c->Post(path, httplib::Headers{{"Accept", "application/x-ndjson"}}, as_float64(q),
+                             "application/octet-stream")
+                   : c->Post(path, as_float64(q), "application/octet-stream");
+      REQUIRE(r);
+      INFO(r->body);
+      CHECK(r->status == 400);
+      CHECK(json::parse(r->body)["error"]["code"] == "number_out_of_range");
+      CHECK(json::parse(r->body)["error"]["field"] == "points[17][2]");
+    }
+  }
   // the inline route needs the definition, which binary cannot carry
   r = c->Post("/v1/project", as_float64(p), "application/octet-stream");
   REQUIRE(r);
