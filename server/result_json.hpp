@@ -81,7 +81,7 @@ struct BatchStats {
 // Appends the "stats" object: {"points", "converged", "statuses", "elapsed_ms", "deviation":
 // {"count", "signed", "min", "max", "mean", "rms", "histogram": {"edges", "counts"},
 // "tolerance_band": {"lo", "hi", "within", "share"} (with options.tolerance_band)}}.
-void append_stats(std::string& out, const BatchStats& stats, const DeviationOptions& deviation);
+void append_stats(std::string& out, const BatchStats& stats, const DeviationOptions& options);
 
 // The whole response body: {"geometry_id", "result" | "results", "stats"}.
 std::string project_response(const std::string& geometry_id, const std::vector<ProjectionResult>& results,
