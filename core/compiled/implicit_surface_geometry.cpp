@@ -34,7 +34,7 @@ constexpr Method<ImplicitSurface> kMethods[] = {
       "points are candidates; a branch-and-bound certificate bounds the distance from below",
       "",
       {},
-      option_tolerance | option_max_iterations | option_trace | option_max_distance | option_certify,
+      kGlobalOptions | option_max_minima,
       statuses(
           {Status::converged, Status::degenerate, Status::beyond_max_distance, Status::deadline_exceeded})},
      [](const ImplicitSurface& s, Vec3 p, const Options& o) {
