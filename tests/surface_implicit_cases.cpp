@@ -166,11 +166,27 @@ TEST_CASE("implicit surface errors: empty_surface, geometry_too_complex, wrong s
   CHECK(code_of("sin(40*x)*cos(40*y)+sin(40*y)*cos(40*z)+sin(40*z)*cos(40*x)", -3, 3) ==
         "geometry_too_complex");
   CHECK(code_of("x^2+y^2+z^2-1", -2, 2) == "none");
+  // The unit sphere in a box of 1e300: the cells that may hold it are too large for Newton to land
+  // from their centres (x^2 overflows), which is said, not taken for an empty box.
+  CHECK(code_of("x^2+y^2+z^2-1", -1e300, 1e300) == "geometry_too_complex");
+  CHECK(code_of("0*x", -1, 1) == "geometry_too_complex");  // every cell holds the "surface"
   GeometryDefinition def;
   def.type = GeometryType::implicit_surface;
   def.formulas = {{"equation", "x+y"}};
   def.domain = {{"x", {0, 1}}, {"y", {0, 1}}};
   CHECK_THROWS_AS(compile_geometry(def), GeometryError);
+}
+
+TEST_CASE("implicit surface: a sphere of radius 1e-10 is found, and its centre is no singular point") {
+  const auto tiny = implicit_surface_of("x^2+y^2+z^2-1e-20", -1, 1, -1, 1);
+  const auto& s = dynamic_cast<const ImplicitSurface&>(*tiny);
+  CHECK(s.cells().singular_points.empty());  // grad f = 0 at the centre, but f = -1e-20 there
+  const double p[3] = {0.5, 0.5, 0.5};
+  const auto r = tiny->project(p, "auto", {});
+  REQUIRE(r);
+  CHECK(r->summary.status == Status::converged);
+  CHECK(r->distance == doctest::Approx(std::sqrt(0.75) - 1e-10).epsilon(1e-15));
+  CHECK(r->summary.location == Location::interior);
 }
 
 TEST_CASE("implicit surface: canonical form and id round trip") {
