@@ -73,10 +73,6 @@ TEST_CASE("GET /v1/methods: each method's full citations, the options it reads, 
       if (m["name"] == "auto" && type["type"] == "parametric_surface") {
         CHECK(m["options"] == json::array({"tolerance", "max_iterations", "initial", "all_minima", "trace",
                                            "max_distance", "certify", "max_minima"}));
-      } else if (m["name"] == "auto" && type["type"] == "implicit_surface") {
-        // no all_minima yet: one global answer per point
-        CHECK(m["options"] ==
-              json::array({"tolerance", "max_iterations", "trace", "max_distance", "certify"}));
       } else if (m["name"] == "auto") {
         CHECK(m["options"] == json::array({"tolerance", "max_iterations", "all_minima", "trace",
                                            "max_distance", "certify", "max_minima"}));

@@ -166,11 +166,27 @@ TEST_CASE("implicit surface errors: empty_surface, geometry_too_complex, wrong s
   CHECK(code_of("sin(40*x)*cos(40*y)+sin(40*y)*cos(40*z)+sin(40*z)*cos(40*x)", -3, 3) ==
         "geometry_too_complex");
   CHECK(code_of("x^2+y^2+z^2-1", -2, 2) == "none");
+  // The unit sphere in a box of 1e300: the cells that may hold it are too large for Newton to land
+  // from their centres (x^2 overflows), which is said, not taken for an empty box.
+  CHECK(code_of("x^2+y^2+z^2-1", -1e300, 1e300) == "geometry_too_complex");
+  CHECK(code_of("0*x", -1, 1) == "geometry_too_complex");  // every cell holds the "surface"
   GeometryDefinition def;
   def.type = GeometryType::implicit_surface;
   def.formulas = {{"equation", "x+y"}};
   def.domain = {{"x", {0, 1}}, {"y", {0, 1}}};
   CHECK_THROWS_AS(compile_geometry(def), GeometryError);
+}
+
+TEST_CASE("implicit surface: a sphere of radius 1e-10 is found, and its centre is no singular point") {
+  const auto tiny = implicit_surface_of("x^2+y^2+z^2-1e-20", -1, 1, -1, 1);
+  const auto& s = dynamic_cast<const ImplicitSurface&>(*tiny);
+  CHECK(s.cells().singular_points.empty());  // grad f = 0 at the centre, but f = -1e-20 there
+  const double p[3] = {0.5, 0.5, 0.5};
+  const auto r = tiny->project(p, "auto", {});
+  REQUIRE(r);
+  CHECK(r->summary.status == Status::converged);
+  CHECK(r->distance == doctest::Approx(std::sqrt(0.75) - 1e-10).epsilon(1e-15));
+  CHECK(r->summary.location == Location::interior);
 }
 
 TEST_CASE("implicit surface: canonical form and id round trip") {
@@ -219,4 +235,33 @@ TEST_CASE(
   REQUIRE(std::isfinite(r->distance));
   CHECK(std::fabs(std::fabs(r->foot[0]) + std::fabs(r->foot[1]) + std::fabs(r->foot[2]) - 1.0) <= 1e-12);
   CHECK(r->summary.certificate.lower_bound <= r->distance);
+}
+
+TEST_CASE("implicit surface auto all_minima: the local minima of the distance, the answer first") {
+  // From the centre of the ellipsoid x^2/4 + y^2 + 4 z^2 = 1 the distance is stationary at the six
+  // vertices: minima at (0, 0, +-1/2), saddles at (0, +-1, 0), maxima at (+-2, 0, 0).
+  const auto ellipsoid = implicit_surface_of("x^2/4+y^2+4*z^2-1", -3, 3, -3, 3);
+  const double centre[3] = {0.0, 0.0, 0.0};
+  Options o;
+  o.all_minima = true;
+  const auto r = ellipsoid->project(centre, "auto", o);
+  REQUIRE(r);
+  REQUIRE(r->minima.size() == 2);
+  for (const Minimum& m : r->minima) {
+    CHECK(m.distance == doctest::Approx(0.5).epsilon(1e-14));
+    CHECK(std::fabs(m.foot[0]) <= 1e-14);
+    CHECK(std::fabs(m.foot[1]) <= 1e-14);
+    CHECK(std::fabs(std::fabs(m.foot[2]) - 0.5) <= 1e-14);
+  }
+  CHECK(r->minima[0].foot[2] * r->minima[1].foot[2] < 0.0);
+  CHECK(r->minima[0].foot[2] == doctest::Approx(r->foot[2]).epsilon(1e-14));
+  // From a point inside the unit sphere its one local minimum is the nearest point.
+  const auto sphere = implicit_surface_of("x^2+y^2+z^2-1", -2, 2, -2, 2);
+  const double inside[3] = {0.3, 0.2, 0.1};
+  const auto s = sphere->project(inside, "auto", o);
+  REQUIRE(s);
+  REQUIRE(s->minima.size() == 1);
+  CHECK(s->minima[0].distance == doctest::Approx(1.0 - std::sqrt(0.14)).epsilon(1e-14));
+  o.max_minima = 1;
+  CHECK(ellipsoid->project(centre, "auto", o)->minima_truncated);
 }

@@ -365,23 +365,28 @@ def run(args):
               f"the formula error is shown under y with character {error['position']} ('{bad[error['position']]}') marked: {message}")
         page.screenshot("#panel", os.path.join(args.out, "playground_formula_error.png"))
 
+        def show_preset(match, what, picture):
+            """Selects the preset whose name matches (a JavaScript test of its text), waits for its
+            three results and returns the canvas' pixels (saved as `picture`)."""
+            index = page.evaluate(f"[...document.getElementById('preset').options].findIndex(o => {match})")
+            page.evaluate(f"document.getElementById('preset').value = '{index}';"
+                          "document.getElementById('preset').dispatchEvent(new Event('change'))")
+            # (the change event marks the page busy before it returns)
+            page.wait_for("document.body.dataset.state === 'ready' && document.querySelectorAll('#results tbody tr').length === 3", what)
+            page.idle()
+            return page.screenshot("#canvas", os.path.join(args.out, picture))[2]
+
         # ---- a planar curve, from its preset -------------------------------------------------
-        index = page.evaluate("[...document.getElementById('preset').options].findIndex(o => o.textContent.startsWith('Lemniscate'))")
-        page.evaluate(f"document.getElementById('preset').value = '{index}';"
-                      "document.getElementById('preset').dispatchEvent(new Event('change'))")
-        page.wait_for("document.body.dataset.state === 'ready' && document.querySelectorAll('#results tbody tr').length === 3", "the lemniscate's results")
-        page.idle()
-        _, _, pixels_curve = page.screenshot("#canvas", os.path.join(args.out, "playground_lemniscate.png"))
+        pixels_curve = show_preset("o.textContent.startsWith('Lemniscate')", "the lemniscate's results", "playground_lemniscate.png")
         check(difference_fraction(pixels_torus, pixels_curve) > 0.05, "the lemniscate's picture differs from the torus's")
 
+        # ---- an implicit surface, from its preset (a mesh without parameter lines) --------------
+        pixels_implicit = show_preset("o.textContent.startsWith('Torus as f')", "the implicit torus' results",
+                                      "playground_implicit_surface.png")
+        check(difference_fraction(pixels_curve, pixels_implicit) > 0.05, "the implicit torus' picture differs from the lemniscate's")
+
         # ---- the README's picture (docs/playground.png): the torus preset, its minima ----------
-        index = page.evaluate("[...document.getElementById('preset').options].findIndex(o => o.textContent === 'Torus')")
-        page.evaluate(f"document.getElementById('preset').value = '{index}';"
-                      "document.getElementById('preset').dispatchEvent(new Event('change'))")
-        # (the change event marks the page busy before it returns)
-        page.wait_for("document.body.dataset.state === 'ready' && document.querySelectorAll('#results tbody tr').length === 3",
-                      "the torus preset")
-        page.idle()
+        show_preset("o.textContent === 'Torus'", "the torus preset", "playground_torus_preset.png")
         page.screenshot("body", os.path.join(args.out, "playground.png"))
 
         # ---- /docs ---------------------------------------------------------------------------

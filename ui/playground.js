@@ -71,6 +71,17 @@
       points: [[0.3, 0.8], [1.6, 0.1], [-0.9, -0.7]], method: 'auto', options: {all_minima: true},
     },
     {
+      name: 'Torus as f(x, y, z) = 0 (implicit surface)',
+      geometry: {type: 'implicit_surface', equation: '(x^2+y^2+z^2+R^2-r^2)^2-4*R^2*(x^2+y^2)',
+                 domain: {x: [-3, 3], y: [-3, 3], z: [-1, 1]}, constants: {R: 2, r: 0.6}},
+      points: [[3.2, 0.8, 0.5], [0.5, 0.3, 0.4], [-1.5, -2.4, -0.9]], method: 'auto', options: {},
+    },
+    {
+      name: 'Cone clipped at its apex (implicit surface, a singular point)',
+      geometry: {type: 'implicit_surface', equation: 'x^2+y^2-z^2', domain: {x: [-1, 1], y: [-1, 1], z: [0, 1]}},
+      points: [[0, 0, -1], [0.5, 0.2, 0.8], [1.5, 0.5, 0.3]], method: 'auto', options: {},
+    },
+    {
       name: 'Ellipse (planar parametric curve)',
       geometry: {type: 'parametric_curve', x: 'a*cos(t)', y: 'b*sin(t)', domain: {t: [0, TWO_PI]},
                  constants: {a: 3, b: 2}},
@@ -92,6 +103,10 @@
     implicit_curve: {
       formulas: [{field: 'equations[0]', label: 'f₁ = 0'}, {field: 'equations[1]', label: 'f₂ = 0', optional: true}],
       domain: ['x', 'y', 'z'], resolution: 512,
+    },
+    implicit_surface: {
+      formulas: [{field: 'equation', label: 'f(x, y, z) = 0'}],
+      domain: ['x', 'y', 'z'], resolution: 48,
     },
   };
 
@@ -540,7 +555,7 @@
       const back = new THREE.Mesh(g, new THREE.MeshPhongMaterial({...common, color: 0xf0c36d, side: THREE.BackSide}));
       view.geometryGroup.add(front, back);
       view.pickables.push(front, back);
-      view.geometryGroup.add(parameterLines(mesh, state.grid));
+      if (state.grid) view.geometryGroup.add(parameterLines(mesh, state.grid));  // none on an implicit surface
     }
     const radius = 0.0045 * diagonal;
     for (const line of mesh.polylines) {
@@ -827,7 +842,7 @@
       state.definition = def;
       state.geometry = g;
       state.mesh = meshAnswer.json;
-      state.grid = state.mesh.triangles.length ? parameterGrid(state.mesh) : null;
+      state.grid = state.mesh.triangles.length && state.mesh.parameters ? parameterGrid(state.mesh) : null;
       state.results = [];
       document.body.dataset.geometryId = g.geometry_id;
       $('download-obj').href = `/v1/geometries/${g.geometry_id}/mesh?resolution=${resolution}&format=obj`;

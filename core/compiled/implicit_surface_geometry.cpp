@@ -34,7 +34,7 @@ constexpr Method<ImplicitSurface> kMethods[] = {
       "points are candidates; a branch-and-bound certificate bounds the distance from below",
       "",
       {},
-      option_tolerance | option_max_iterations | option_trace | option_max_distance | option_certify,
+      kGlobalOptions | option_max_minima,
       statuses(
           {Status::converged, Status::degenerate, Status::beyond_max_distance, Status::deadline_exceeded})},
      [](const ImplicitSurface& s, Vec3 p, const Options& o) {
@@ -99,11 +99,18 @@ std::shared_ptr<const CompiledGeometry> compile_implicit_surface(const GeometryD
         box.hi[static_cast<int>(k)] = range[1];
       }
   auto surface = std::make_shared<ImplicitSurface>(def, std::move(program), box);
-  if (surface->cells().empty() || (surface->cells().samples.empty() && surface->cells().edge_points.empty() &&
-                                   surface->cells().singular_points.empty()))
+  const ImplicitSurfaceCells& cells = surface->cells();
+  if (cells.empty())
     throw GeometryError(
         "empty_surface", "domain", -1,
         "no point of the surface lies in the box (the interval search excluded the whole box)");
+  // Cells that may hold the surface but no point of it found: the leaves are too large for Newton
+  // from their centres to land (a box of 1e300), or the surface is smaller than its leaves.
+  if (cells.samples.empty() && cells.edge_points.empty() && cells.singular_points.empty())
+    throw GeometryError(
+        "geometry_too_complex", "domain", -1,
+        "the interval search could not exclude the whole box, but no point of the surface was "
+        "found in its cells; shrink the box to where the surface is");
   return surface;
 }
 

@@ -29,7 +29,7 @@ Interval enclosure(const ImplicitSurfaceEquation& equation, const Box3& box) {
 }
 
 // Newton on grad f = 0 (the Hessian as Jacobian) from x: a singular point when it converges to a
-// point where f vanishes too (relative to |H| |x - c|^2, the size f takes across the cell).
+// point where f vanishes too.
 bool newton_singular(const ImplicitSurfaceEquation& equation, const Box3& cell, Vec3& x) {
   for (int n = 0; n < 30; ++n) {
     const ImplicitSurfaceJet j = equation.jet(x);
@@ -48,7 +48,10 @@ bool newton_singular(const ImplicitSurfaceEquation& equation, const Box3& cell, 
   for (const Vec3& row : j.hess)
     scale = std::max({scale, std::fabs(row.x), std::fabs(row.y), std::fabs(row.z)});
   const double size = std::max(1.0, norm(x));
-  return std::fabs(j.f) <= 1e-12 * (scale * size * size + 1e-300) &&
+  // f(x) = 0 within its own rounding (the point enclosure holds 0), or within what Newton's last
+  // rounding-level step, ~1e-14 |x|, leaves of a quadratic form: H |dx|^2.
+  const Interval at = equation.value_enclosure({x, x});
+  return (!at.excludes_zero() || std::fabs(j.f) <= 1e-28 * scale * size * size) &&
          norm(j.grad) <= 1e-10 * (scale * size + 1e-300);
 }
 

@@ -64,6 +64,6 @@ Box3 octant_of(const Box3& box, int octant);
 // Newton steps along the gradient, x - f / |grad f|^2 grad f ([Hartmann] eq. of the surface point),
 // from x until |f| / |grad f| is below 1e-14 (1 + |x|); false when the gradient vanishes, the
 // iterates are not finite or do not settle within `iterations` steps.
-bool land_on_surface(const ImplicitSurfaceEquation& equation, Vec3& x, int iterations = 12);
+bool land_on_surface(const ImplicitSurfaceEquation& equation, Vec3& x, int iterations = 40);
 
 }  // namespace footpoint

@@ -39,6 +39,42 @@ class Search {
     if (d < best_.distance) best_ = {x, d, location, iterations, step};
   }
 
+  // With all_minima: keeps the solves' ends that are local minima of the distance on S ∩ B.
+  void collect_minima(std::vector<Candidate>* minima) { minima_ = minima; }
+
+  // A local minimum of |p - x|^2 / 2 on S within the box at the stationary point x with multiplier
+  // l (and, on the face x_axis = bound, its multiplier m along e_axis): the Lagrangian's Hessian
+  // I + l H is positive semidefinite on the directions x can move in ([NW06] Theorem 12.5), and on
+  // a face p - x points out of the box (m >= 0 at an upper bound, <= 0 at a lower one).
+  void keep_if_minimum(Vec3 x, double l, int axis = -1, double bound = 0.0) {
+    if (!minima_) return;
+    const ImplicitSurfaceJet j = equation_.jet(x);
+    Mat3 a;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) a[r][c] = (r == c ? 1.0 : 0.0) + l * j.hess[r][c];
+    const double scale = 1e-10 * (1.0 + std::fabs(l) * norm(j.hess[0]) + std::fabs(l) * norm(j.hess[1]) +
+                                  std::fabs(l) * norm(j.hess[2]));
+    const double g = norm(j.grad);
+    if (!(g > 0.0)) return;
+    const Vec3 n = j.grad / g;
+    if (axis >= 0) {
+      Vec3 e{0.0, 0.0, 0.0};
+      e[axis] = 1.0;
+      const double m = dot(p_ - x - l * j.grad, e);
+      if (bound == cells_.box.hi[axis] ? m < -scale : m > scale) return;
+      const Vec3 t = cross(n, e);
+      if (!(norm(t) > 0.0) || dot(t, a * t) < -scale * norm2(t)) return;
+    } else {
+      // An orthonormal basis (t1, t2) of the tangent plane; the 2 x 2 form must be >= 0.
+      const Vec3 helper = std::fabs(n.x) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
+      const Vec3 t1 = cross(n, helper) / norm(cross(n, helper)), t2 = cross(n, t1);
+      const double a11 = dot(t1, a * t1), a22 = dot(t2, a * t2), a12 = dot(t1, a * t2);
+      if (a11 < -scale || a22 < -scale || a11 * a22 - a12 * a12 < -scale * (std::fabs(a11) + std::fabs(a22)))
+        return;
+    }
+    minima_->push_back({x, norm(p_ - x), box_location(cells_.box, x)});
+  }
+
   // Newton on the Lagrange system from the surface point s, then on the faces it leaves the box
   // through or lies near (within a leaf's diagonal).
   void solve_from(Vec3 s) {
@@ -46,7 +82,10 @@ class Search {
     const Box3& box = cells_.box;
     const double h = cells_.leaf_diagonal;
     const SurfaceMinimum m = lagrange_newton_interior(equation_, p_, s, 2.0 * h, control_);
-    if (m.converged && box.contains(m.x)) consider(m.x, box_location(box, m.x), m.iterations, m.step);
+    if (m.converged && box.contains(m.x)) {
+      consider(m.x, box_location(box, m.x), m.iterations, m.step);
+      keep_if_minimum(m.x, m.multiplier);
+    }
     if (!m.converged) {
       // Newton's system is singular along a continuum of feet (p on a surface of revolution's
       // axis): Hartmann's iteration, whose step needs no solve, settles on one of them.
@@ -62,7 +101,10 @@ class Search {
         if (!beyond && std::fabs(s[k] - bound) > h) continue;
         ++starts_;
         const SurfaceMinimum f = lagrange_newton_face(equation_, p_, s, k, bound, 2.0 * h, control_);
-        if (f.converged && box.contains(f.x)) consider(f.x, box_location(box, f.x), f.iterations, f.step);
+        if (f.converged && box.contains(f.x)) {
+          consider(f.x, box_location(box, f.x), f.iterations, f.step);
+          keep_if_minimum(f.x, f.multiplier, k, bound);
+        }
       }
   }
 
@@ -99,6 +141,27 @@ class Search {
     return found;
   }
 
+  // Whether no other sample within `radius` of sample i is nearer to p (a discrete local minimum of
+  // the distance over the samples: a start of its own for all_minima).
+  bool discrete_minimum(int i, double radius) const {
+    const Vec3 s = cells_.samples[static_cast<std::size_t>(i)];
+    const double d2 = norm2(p_ - s);
+    std::vector<std::int32_t> stack{0};
+    while (!stack.empty()) {
+      const ImplicitSurfaceCell& cell = cells_.cells[static_cast<std::size_t>(stack.back())];
+      stack.pop_back();
+      if (distance2_lower_bound(s, cell.box) > radius * radius) continue;
+      if (cell.first_child >= 0) {
+        for (std::int32_t c = 0; c < cell.children; ++c) stack.push_back(cell.first_child + c);
+        continue;
+      }
+      if (cell.sample < 0 || cell.sample == i) continue;
+      const Vec3 t = cells_.samples[static_cast<std::size_t>(cell.sample)];
+      if (norm2(t - s) <= radius * radius && norm2(p_ - t) < d2) return false;
+    }
+    return true;
+  }
+
   const Candidate& best() const { return best_; }
   int starts() const { return starts_; }
 
@@ -109,6 +172,7 @@ class Search {
   const curve::IterationControl& control_;
   Candidate best_;
   int starts_ = 0;
+  std::vector<Candidate>* minima_ = nullptr;
 };
 
 }  // namespace
@@ -121,6 +185,14 @@ ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
   for (const BoxEdgePoint& e : cells.edge_points)
     search.consider(e.x, e.corner ? Location::box_corner : Location::box_edge);
   for (const Vec3& s : cells.singular_points) search.consider(s, Location::singular_point);
+  std::vector<Candidate> minima;
+  if (options.all_minima) {
+    // Every discrete local minimum of the distance over the samples starts a solve of its own.
+    search.collect_minima(&minima);
+    for (std::size_t i = 0; i < cells.samples.size(); ++i)
+      if (search.discrete_minimum(static_cast<int>(i), 2.0 * cells.leaf_diagonal))
+        search.solve_from(cells.samples[i]);
+  }
   const int nearest = search.nearest_sample();
   if (nearest >= 0) search.solve_from(cells.samples[static_cast<std::size_t>(nearest)]);
   // No local solve converged (a kink of abs, min or max, where Newton's and Hartmann's steps are
@@ -171,6 +243,24 @@ ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
   r.summary.certificate = certificate;
   if (!certify) r.summary.certificate.computed = false;
   r.trace = std::move(trace);
+  if (options.all_minima) {
+    // The answer first, then the other local minima found, nearest first, each foot once.
+    minima.insert(minima.begin(), best);
+    std::stable_sort(minima.begin() + 1, minima.end(),
+                     [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
+    for (const Candidate& m : minima) {
+      bool seen = false;
+      for (const Minimum& k : r.minima)
+        seen = seen || norm(m.x - Vec3{k.foot[0], k.foot[1], k.foot[2]}) <= kDistinctFoot * (1.0 + norm(m.x));
+      if (seen || m.distance > control.max_distance) continue;
+      Minimum out;
+      out.foot = {m.x.x, m.x.y, m.x.z};
+      out.distance = m.distance;
+      out.location = m.location == Location::singular_point ? m.location : box_location(cells.box, m.x);
+      r.minima.push_back(out);
+    }
+    cap_minima(r, options);
+  }
   if (r.summary.status == Status::beyond_max_distance) withhold_answer(r);
   return r;
 }

@@ -6,6 +6,10 @@
 // on the face (the curve where S meets it, by the face's Lagrange system). The certificate
 // (implicit_surface_certificate.hpp) then bounds the distance over all of S ∩ B; a leaf whose
 // sample is nearer than the answer becomes a start, and the certificate is redone, a few times.
+// With options.all_minima, every sample nearer to p than the samples around it (within two leaf
+// diagonals) starts a solve too, and the ends that are local minima of the distance on the
+// surface in the box (second-order conditions, the faces' multiplier signs) are listed with the
+// answer first.
 #pragma once
 #include "geometry/projection_result.hpp"
 #include "implicit/seeding/implicit_surface_cells.hpp"
