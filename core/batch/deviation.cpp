@@ -61,7 +61,8 @@ DeviationStats DeviationAccumulator::stats(const DeviationOptions& options) cons
     ++s.counts[k];
   }
   if (options.tolerance_band) {
-    const auto [band_lo, band_hi] = *options.tolerance_band;
+    // (named copies, not a structured binding: clang 14 cannot capture one in a lambda)
+    const double band_lo = (*options.tolerance_band)[0], band_hi = (*options.tolerance_band)[1];
     s.within_band = static_cast<std::size_t>(std::count_if(
         values_.begin(), values_.end(), [&](double d) { return d >= band_lo && d <= band_hi; }));
   }
