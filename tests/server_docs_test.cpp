@@ -91,10 +91,10 @@ TEST_CASE("GET /v1/methods: each method's full citations, the options it reads, 
                                         "outside_domain", "deadline_exceeded"}));
 }
 
-TEST_CASE("every footpoint_* metric GET /metrics exports is in the README's metrics table") {
+TEST_CASE("every footpoint_* metric GET /metrics exports is in docs/operations.md's metrics table") {
   const std::string metrics = get_ok("/metrics");
-  const std::string readme = read_text_file(FOOTPOINT_SOURCE_DIR "/README.md");
-  const auto begin = readme.find("### Metrics"), end = readme.find("### Logs");
+  const std::string readme = read_text_file(FOOTPOINT_SOURCE_DIR "/docs/operations.md");
+  const auto begin = readme.find("## Metrics"), end = readme.find("## Logs");
   REQUIRE(begin != std::string::npos);
   REQUIRE(end > begin);
   // The names the table gives: `name` and, in a row of several, `…_tail` for the name before it
