@@ -124,6 +124,12 @@ const std::vector<Setting>& settings() {
          c.cache_bytes = parse_integer<std::size_t>(n, v, 1, kMaxSize);
        },
        [](const ServerConfig& c) { return std::to_string(c.cache_bytes); }},
+      {"max-geometry-bytes", "FOOTPOINT_MAX_GEOMETRY_BYTES",
+       "memory one compiled geometry may hold, in bytes (0: a quarter of cache-bytes)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.max_geometry_bytes = parse_integer<std::size_t>(n, v, 0, kMaxSize);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.max_geometry_bytes); }},
       {"keep-alive-timeout-s", "FOOTPOINT_KEEP_ALIVE_TIMEOUT_S", "idle connection timeout in seconds",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
          c.keep_alive_timeout_s = parse_integer<int>(n, v, 1, 3600);
@@ -134,6 +140,12 @@ const std::vector<Setting>& settings() {
          c.keep_alive_max = parse_integer<std::size_t>(n, v, 1, std::size_t{1} << 40);
        },
        [](const ServerConfig& c) { return std::to_string(c.keep_alive_max); }},
+      {"probe-port", "FOOTPOINT_PROBE_PORT",
+       "a port of its own for /healthz and /readyz (plain HTTP, two threads; 0: none)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.probe_port = parse_integer<int>(n, v, 0, 65535);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.probe_port); }},
       {"io-timeout-s", "FOOTPOINT_IO_TIMEOUT_S", "socket read/write timeout in seconds",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
          c.io_timeout_s = parse_integer<int>(n, v, 1, 3600);
@@ -291,6 +303,8 @@ ServerConfig load_config(int argc, const char* const* argv,
   }
   if (config.effective_max_inflight() > config.connection_threads)
     throw ConfigError("--max-inflight must not exceed --connection-threads");
+  if (config.probe_port != 0 && config.probe_port == config.port)
+    throw ConfigError("--probe-port must differ from --port");
   if (config.tls_cert.empty() != config.tls_key.empty())
     throw ConfigError("--tls-cert and --tls-key go together (HTTPS), or neither (plain HTTP)");
   if (!config.registry_password_file.empty()) {
@@ -340,6 +354,7 @@ std::string effective_settings_json(const ServerConfig& config) {
   ServerConfig effective = config;
   if (effective.threads == 0) effective.threads = default_threads();
   effective.max_inflight = config.effective_max_inflight();
+  effective.max_geometry_bytes = config.effective_max_geometry_bytes();
   if (effective.rate_limit > 0) effective.rate_burst = config.effective_rate_burst();
   if (effective.compile_deadline.count() == 0) effective.compile_deadline = effective.deadline;
   JsonWriter w;

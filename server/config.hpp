@@ -61,11 +61,22 @@ struct ServerConfig {
   std::size_t cache_entries = 1024;
   // --cache-bytes / FOOTPOINT_CACHE_BYTES: memory the kept geometries may hold (LRU): 256 MiB.
   std::size_t cache_bytes = std::size_t{256} << 20;
+  // --max-geometry-bytes / FOOTPOINT_MAX_GEOMETRY_BYTES: memory one compiled geometry may hold; a
+  // larger one is refused (422 geometry_too_large, with the size reached) and not cached, so that
+  // one post cannot evict every other client's geometries. 0: a quarter of cache_bytes.
+  std::size_t max_geometry_bytes = 0;
+  std::size_t effective_max_geometry_bytes() const {
+    return max_geometry_bytes ? max_geometry_bytes : std::max<std::size_t>(cache_bytes / 4, 1);
+  }
   // --keep-alive-timeout-s / FOOTPOINT_KEEP_ALIVE_TIMEOUT_S: an idle connection is closed after
   // this long (a graceful shutdown closes the idle ones at once).
   int keep_alive_timeout_s = 5;
   // --keep-alive-max / FOOTPOINT_KEEP_ALIVE_MAX: requests served per connection before it closes.
   std::size_t keep_alive_max = 100000;
+  // --probe-port / FOOTPOINT_PROBE_PORT: a second listener, plain HTTP on two threads of its own,
+  // answering only /healthz and /readyz, so that the platform's probes are answered whatever the
+  // API's connections do (slow clients holding every connection thread); 0: none.
+  int probe_port = 0;
   // --io-timeout-s / FOOTPOINT_IO_TIMEOUT_S: socket read/write timeout for a stalled peer.
   int io_timeout_s = 30;
   // --backlog / FOOTPOINT_BACKLOG: the listen queue of not yet accepted connections.

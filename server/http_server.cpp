@@ -196,7 +196,8 @@ bool counts_points(Route r) {
 
 HttpServer::HttpServer(ServerConfig config, Handler handler)
     : config_(std::move(config)),
-      cache_(GeometryCacheOptions{config_.cache_entries, config_.cache_bytes}),
+      cache_(GeometryCacheOptions{config_.cache_entries, config_.cache_bytes,
+                                  config_.effective_max_geometry_bytes()}),
       registry_(start_registry(config_, cache_)),
       pool_(config_.threads),
       api_(config_, cache_, pool_, metrics_, registry_.get()),
@@ -534,6 +535,24 @@ int HttpServer::bind() {
   // retried by the kernel, so listen again with the configured length.
   if (listen_fd_ < 0 || ::listen(listen_fd_, config_.backlog) != 0)
     throw std::runtime_error(std::string("listen() failed: ") + std::strerror(errno));
+  if (config_.probe_port > 0) {
+    // Two threads of its own and short timeouts: a probe is one small request.
+    probes_ = std::make_unique<httplib::Server>();
+    probes_->new_task_queue = [] { return new httplib::ThreadPool(2); };
+    probes_->set_read_timeout(2);
+    probes_->set_write_timeout(2);
+    probes_->set_keep_alive_timeout(2);
+    auto probe = [this](const httplib::Request& req, httplib::Response& res) {
+      ApiResponse r = api_.handle(match_route("GET", req.path), "GET", "");
+      res.status = r.status;
+      res.set_content(r.body, r.content_type);
+    };
+    probes_->Get("/healthz", probe);
+    probes_->Get("/readyz", probe);
+    if (!probes_->bind_to_port(config_.host, config_.probe_port))
+      throw std::runtime_error("cannot listen on " + config_.host + ":" + std::to_string(config_.probe_port) +
+                               " (--probe-port): " + std::strerror(errno));
+  }
   port_ = port;
   return port;
 }
@@ -542,7 +561,19 @@ void HttpServer::run() {
   // Publish "starting" before looking at the shutdown flag: shutdown() sets the flag before
   // reading the state, so one of the two always sees the other.
   run_state_.store(RunState::starting);
+  if (probes_)
+    probe_thread_ = std::thread([this] {
+      probes_->listen_after_bind();
+      probes_done_.store(true);
+    });
   if (!api_.shutting_down() && port_ >= 0) http_->listen_after_bind();
+  if (probes_) {
+    // httplib ignores stop() until its listen loop runs: wait for it to start (or to have failed).
+    while (!probes_->is_running() && !probes_done_.load())
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    probes_->stop();
+    probe_thread_.join();
+  }
   run_state_.store(RunState::finished);
 }
 

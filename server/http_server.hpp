@@ -21,6 +21,7 @@
 #include <memory>
 #include <mutex>
 #include <string_view>
+#include <thread>
 
 #include "access.hpp"
 #include "api.hpp"
@@ -49,8 +50,8 @@ class HttpServer {
   HttpServer(const HttpServer&) = delete;
   HttpServer& operator=(const HttpServer&) = delete;
 
-  // Binds host:port (port 0: a free port) and starts listening; returns the port. Throws
-  // std::runtime_error when the address is unavailable.
+  // Binds host:port (port 0: a free port) and starts listening, and the probe port when there is
+  // one; returns the port. Throws std::runtime_error when an address is unavailable.
   int bind();
   // Serves until shutdown(); returns once in-flight requests are answered.
   void run();
@@ -94,6 +95,10 @@ class HttpServer {
   std::unique_ptr<RateLimiter> limiter_;  // nullptr: no rate limit
   bool custom_handler_;  // handler_ was given (tests, benches): it sees no RequestFormat
   std::unique_ptr<httplib::Server> http_;
+  // The probes' listener (--probe-port), its thread, and whether its listen loop has returned.
+  std::unique_ptr<httplib::Server> probes_;
+  std::thread probe_thread_;
+  std::atomic<bool> probes_done_{false};
   int listen_fd_ = -1;  // the listening socket, seen by httplib's socket options callback
   int port_ = -1;
   enum class RunState { idle, starting, finished };

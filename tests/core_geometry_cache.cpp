@@ -159,3 +159,30 @@ TEST_CASE("the cache stays consistent under concurrent mixed use") {
     if (cache.find(curve(k).id())) ids.insert(curve(k).id());
   CHECK(ids.size() == cache.stats().size);
 }
+
+TEST_CASE("a geometry over max_geometry_bytes is refused with its size and not kept") {
+  // The size each geometry reaches, from a cache without the bound.
+  GeometryCache unbounded({16, std::size_t{1} << 30});
+  const auto small = unbounded.get_or_compile(curve(1)).geometry->memory_bytes();
+  const auto large = unbounded.get_or_compile(surface("sin(3*u)*cos(3*v)")).geometry->memory_bytes();
+  REQUIRE(small < large);
+
+  GeometryCache cache({16, std::size_t{1} << 30, (small + large) / 2});
+  CHECK(cache.get_or_compile(curve(1)).compiled);
+  try {
+    cache.get_or_compile(surface("sin(3*u)*cos(3*v)"));
+    FAIL("a geometry over the bound was accepted");
+  } catch (const GeometryError& e) {
+    CHECK(e.code == "geometry_too_large");
+    CHECK(std::string(e.what()).find(std::to_string(large) + " bytes") != std::string::npos);
+    CHECK(std::string(e.what()).find(std::to_string((small + large) / 2)) != std::string::npos);
+  }
+  const auto stats = cache.stats();
+  CHECK(stats.size == 1);
+  CHECK(stats.bytes == small);
+  CHECK(stats.failed_compilations == 1);
+  CHECK(cache.find(curve(1).id()) != nullptr);
+  // Refused again, not remembered as held.
+  CHECK_THROWS_AS(cache.get_or_compile(surface("sin(3*u)*cos(3*v)")), GeometryError);
+  CHECK(cache.stats().size == 1);
+}

@@ -20,7 +20,7 @@ endif()
 if(TARGET footpoint-server)
   add_test(NAME server_security_e2e
            COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/server_security_e2e.sh $<TARGET_FILE:footpoint-server>)
-  set_tests_properties(server_security_e2e PROPERTIES TIMEOUT 120)
+  set_tests_properties(server_security_e2e PROPERTIES TIMEOUT 300)
 endif()
 
 # The shell scripts users and CI run, when shellcheck is installed (install-deps.sh --test).

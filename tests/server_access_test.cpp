@@ -13,6 +13,7 @@
 #include <fstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -368,6 +369,78 @@ TEST_CASE("rate limit: points per key, 429 with Retry-After, another key not slo
   r = c->Get("/healthz");
   REQUIRE(r);
   CHECK(r->status == 200);
+}
+
+TEST_CASE("isolation: a geometry over --max-geometry-bytes gets 422 and evicts nobody") {
+  TestServer s;  // the default bound: a quarter of the 256 MiB cache
+  auto c = s.client();
+  const std::string kept = create(*c, kCurve);
+  const auto bytes_before = s.server().cache().stats().bytes;
+  // exp(500 t) over [0, 1]: about 143 MB of search structure, measured on 0.1.0.
+  auto r = c->Post("/v1/geometries",
+                   R"J({"type":"parametric_curve","x":"exp(t*500)","y":"t","domain":{"t":[0,1]}})J",
+                   "application/json");
+  REQUIRE(r);
+  CHECK(r->status == 422);
+  CHECK(error_code(r) == "geometry_too_large");
+  CHECK(json::parse(r->body)["error"]["message"].get<std::string>().find("over the limit of 67108864") !=
+        std::string::npos);
+  CHECK(s.server().cache().stats().bytes == bytes_before);
+  r = c->Get(("/v1/geometries/" + kept).c_str());
+  REQUIRE(r);
+  CHECK(r->status == 200);
+}
+
+// A loopback port that was free a moment ago.
+int free_port() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  REQUIRE(fd >= 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  REQUIRE(::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0);
+  socklen_t length = sizeof addr;
+  REQUIRE(::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &length) == 0);
+  ::close(fd);
+  return ntohs(addr.sin_port);
+}
+
+TEST_CASE("isolation: --probe-port answers while slow clients hold every connection thread") {
+  ServerConfig config;
+  config.connection_threads = 4;
+  config.io_timeout_s = 4;
+  config.probe_port = free_port();
+  TestServer s(config);
+  // Four clients that send half a request line and then nothing: each holds a connection thread
+  // until the read timeout.
+  std::vector<int> slow;
+  for (int i = 0; i < 4; ++i) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    REQUIRE(fd >= 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_port = htons(static_cast<std::uint16_t>(s.port()));
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    REQUIRE(::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0);
+    REQUIRE(::send(fd, "GET /healthz HT", 15, MSG_NOSIGNAL) == 15);
+    slow.push_back(fd);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  auto api = s.client();
+  api->set_read_timeout(1, 0);
+  CHECK_FALSE(api->Get("/healthz"));  // queued behind the slow clients
+  httplib::Client probe_client("127.0.0.1", config.probe_port);
+  probe_client.set_read_timeout(1, 0);
+  for (const char* path : {"/healthz", "/readyz"}) {
+    auto r = probe_client.Get(path);
+    REQUIRE(r);
+    CHECK(r->status == 200);
+    CHECK(json::parse(r->body).contains("status"));
+  }
+  auto r = probe_client.Get("/v1/methods");
+  REQUIRE(r);
+  CHECK(r->status == 404);  // the probe port serves the probes only
+  for (const int fd : slow) ::close(fd);
 }
 
 TEST_CASE("TLS: HTTPS only, TLS 1.2 and later, the certificate reread while a request is in flight") {

@@ -94,7 +94,8 @@ points=@$tmp/points.json
 [ "$(status POST "/v1/geometries/$id/project" "" "$reader" "$points")" = 200 ] || fail "20000 points within the burst"
 [ "$(status POST "/v1/geometries/$id/project" "" "$reader" "$points")" = 429 ] || fail "20000 more points: not 429"
 retry=$(grep -i '^Retry-After:' "$tmp/headers" | tr -dc '0-9')
-if [ -z "$retry" ] || [ "$retry" -lt 4 ]; then fail "429 with Retry-After '$retry' (about 10000 points missing at 2000/s)"; fi
+# At most 10,000 points are missing (the first batch left 10,000, refilling at 2000/s): 1 to 5 s.
+if [ -z "$retry" ] || [ "$retry" -lt 1 ] || [ "$retry" -gt 5 ]; then fail "429 with Retry-After '$retry'"; fi
 [ "$(status GET "/v1/geometries/$id" "" "$builder")" = 200 ] || fail "another key slowed by the reader's limit"
 pass "rate limit in points: 429 with Retry-After $retry s, the other key served"
 

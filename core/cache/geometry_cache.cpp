@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <string>
 #include <utility>
+
+#include "geometry/geometry_error.hpp"
 
 namespace footpoint {
 
@@ -39,6 +42,15 @@ GeometryCache::Lookup GeometryCache::get_or_compile(const GeometryDefinition& de
   std::exception_ptr error;
   try {
     geometry = compile_geometry(def, limits);
+    if (const std::size_t bytes = geometry->memory_bytes();
+        options_.max_geometry_bytes > 0 && bytes > options_.max_geometry_bytes) {
+      geometry.reset();
+      throw GeometryError("geometry_too_large", "", -1,
+                          "the compiled geometry holds " + std::to_string(bytes) +
+                              " bytes of search structure, over the limit of " +
+                              std::to_string(options_.max_geometry_bytes) +
+                              " per geometry: narrow the domain or simplify the formulas");
+    }
   } catch (...) {
     error = std::current_exception();
   }

@@ -29,6 +29,10 @@ struct GeometryCacheOptions {
   // At most this many bytes (sum of memory_bytes()) are kept: 256 MiB. A single geometry larger
   // than this is compiled and returned, but not kept.
   std::size_t max_bytes = std::size_t{256} << 20;
+  // A compiled geometry whose memory_bytes() exceeds this is refused (GeometryError
+  // geometry_too_large, naming the size reached) and not kept, so that one definition cannot take
+  // the cache from every other: 0 = no bound beyond max_bytes.
+  std::size_t max_geometry_bytes = 0;
 };
 
 struct GeometryCacheStats {
@@ -54,7 +58,8 @@ class GeometryCache {
   };
 
   // Returns the geometry with def.id(), compiling it when it is not held. Throws GeometryError
-  // when the definition does not compile (nothing is inserted then); concurrent callers
+  // when the definition does not compile or its compiled form is over max_geometry_bytes
+  // (nothing is inserted then); concurrent callers
   // waiting for that same compilation get the same error.
   Lookup get_or_compile(const GeometryDefinition& def, const formula::CompileLimits& limits = {});
 
