@@ -7,7 +7,6 @@
 #include <sstream>
 
 #include <openssl/crypto.h>
-#include <openssl/crypto.h>
 
 namespace footpoint::server {
 

@@ -63,7 +63,8 @@ class Api {
   // after '?' (empty when there is none). Never throws: every failure becomes a JSON error
   // response with its status.
   ApiResponse handle(const RouteMatch& match, std::string_view method, std::string_view body,
-                     std::string_view query = {}, const Caller& caller = {}, const RequestFormat& format = {});
+                     std::string_view query = {}, const Caller& caller = {},
+                     const RequestFormat& format = {});
 
   // While shutting down, /readyz answers 503 (the HTTP layer refuses new API requests).
   void set_shutting_down() { shutting_down_.store(true); }

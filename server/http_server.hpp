@@ -93,7 +93,7 @@ class HttpServer {
   mutable std::mutex keys_mutex_;
   std::shared_ptr<const KeyRing> keys_;
   std::unique_ptr<RateLimiter> limiter_;  // nullptr: no rate limit
-  bool custom_handler_;  // handler_ was given (tests, benches): it sees no RequestFormat
+  bool custom_handler_;                   // handler_ was given (tests, benches): it sees no RequestFormat
   std::unique_ptr<httplib::Server> http_;
   // The probes' listener (--probe-port), its thread, and whether its listen loop has returned.
   std::unique_ptr<httplib::Server> probes_;
