@@ -135,3 +135,37 @@ TEST_CASE("distance bounds over curve intervals hold against dense sampling") {
     }
   }
 }
+
+TEST_CASE("the gradient's signs over surface boxes hold against dense sampling") {
+  // where gradient_signs claims ∂_i f > 0 (< 0) over a box, every sampled ∂_i f is; and the claim
+  // is made on most boxes far from the foot, where the gradient is large against its spread
+  std::mt19937_64 rng(7);
+  int claims = 0, boxes = 0;
+  for (const SurfaceCase& c : kSurfaces) {
+    INFO(std::string(c.z));
+    const SurfaceFormulas s(formula::Program::compile({{"x", c.x}, {"y", c.y}, {"z", c.z}}, {"u", "v"}, {}));
+    std::uniform_real_distribution<double> U(c.lo, c.hi), unit(0.0, 1.0), P(-4.0, 4.0);
+    for (int trial = 0; trial < 300; ++trial) {
+      const double w = (c.hi - c.lo) * std::pow(10.0, -3.0 * unit(rng));
+      const double u0 = std::min(U(rng), c.hi - w), v0 = std::min(U(rng), c.hi - w);
+      const std::array<double, 2> lo{u0, v0}, hi{u0 + w, v0 + w};
+      const Vec3 p{P(rng), P(rng), P(rng)};
+      const PointEnclosure<2> centre = enclose_point<2>(s.program(), {u0 + 0.5 * w, v0 + 0.5 * w});
+      const std::array<int, 2> signs = gradient_signs<2>(enclose_box<2>(s.program(), lo, hi), centre, p);
+      ++boxes;
+      for (int i = 0; i < 2; ++i) {
+        if (signs[static_cast<std::size_t>(i)] == 0) continue;
+        ++claims;
+        constexpr int K = 24;
+        for (int a = 0; a <= K; ++a)
+          for (int b = 0; b <= K; ++b) {
+            const SurfaceJet j = s.jet(lo[0] + w * a / K, lo[1] + w * b / K);
+            const double g = dot(i == 0 ? j.su : j.sv, j.s - p);
+            CHECK(g * signs[static_cast<std::size_t>(i)] > 0.0);
+          }
+      }
+    }
+  }
+  MESSAGE("signs claimed: " << claims << " over " << boxes << " boxes");
+  CHECK(claims > boxes / 2);
+}

@@ -191,6 +191,32 @@ double second_order_lower_bound(const GradientEnclosure<N>& at_q, const Params<N
   return std::isnan(result) ? -kInf : result;
 }
 
+template <int N>
+std::array<int, N> gradient_signs(const BoxEnclosure<N>& box, const PointEnclosure<N>& centre,
+                                  const Vec3& p) {
+  std::array<int, N> signs{};
+  if (!box.bounded || !box.smooth || !centre.valid) return signs;
+  const auto pair = [](int i, int j) { return N == 1 ? 0 : (i == j ? (i == 0 ? 0 : 2) : 1); };
+  for (int i = 0; i < N; ++i) {
+    double g = 0.0, g_rad = 0.0, magnitude = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      // ∂_i s_k over the box: centre value ± its radius and the second partials' reach
+      double d_rad = centre.ds_rad[i][k];
+      for (int j = 0; j < N; ++j) {
+        const std::size_t q = static_cast<std::size_t>(pair(i, j));
+        d_rad += (std::abs(box.d2_mid[q][k]) + box.d2_rad[q][k]) * 0.5 * (box.hi[j] - box.lo[j]);
+      }
+      const double d = centre.ds[i][k], r = box.s_mid[k] - p[k], r_rad = box.s_rad[k];
+      g += d * r;
+      magnitude += std::abs(d * r);
+      g_rad += std::abs(d) * r_rad + d_rad * (std::abs(r) + r_rad);
+    }
+    g_rad = (g_rad + kBoundRounding * magnitude) * (1.0 + kBoundRounding);
+    signs[static_cast<std::size_t>(i)] = g - g_rad > 0.0 ? 1 : (g + g_rad < 0.0 ? -1 : 0);
+  }
+  return signs;
+}
+
 double distance_from_f_lower(double f_lower) {
   if (!(f_lower > 0.0)) return 0.0;
   return std::sqrt(2.0 * f_lower) * (1.0 - 4.0 * kU);
@@ -238,6 +264,8 @@ template double branch_lower_bound<1>(const formula::Program&, const Vec3&, cons
                                       const Params<1>&, const std::vector<Params<1>>&, double);
 template double branch_lower_bound<2>(const formula::Program&, const Vec3&, const Params<2>&,
                                       const Params<2>&, const std::vector<Params<2>>&, double);
+template std::array<int, 1> gradient_signs<1>(const BoxEnclosure<1>&, const PointEnclosure<1>&, const Vec3&);
+template std::array<int, 2> gradient_signs<2>(const BoxEnclosure<2>&, const PointEnclosure<2>&, const Vec3&);
 template struct HessianBounds<1>;
 template struct HessianBounds<2>;
 template HessianBounds<1> hessian_bounds<1>(const BoxEnclosure<1>&, const Vec3&);

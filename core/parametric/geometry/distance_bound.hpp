@@ -81,6 +81,16 @@ double quadratic_lower_bound(const std::array<double, 2>& g, const std::array<st
                              const std::array<double, 2>& lo, const std::array<double, 2>& hi);
 double quadratic_lower_bound_1d(double g, double h, double lo, double hi);
 
+// The monotonicity test (E. Hansen and G. W. Walster, Global Optimization Using Interval
+// Analysis, 2nd ed., Dekker 2004, Section 12.4): the partial derivatives ∂_i f = <∂_i s, s - p>
+// over the box [lo, hi], enclosed from the first partials at its centre c (`centre`, enclosed) and
+// the box's second partials (∂_i s(t) = ∂_i s(c) + Σ_j ∂_i∂_j s(ξ) (t_j - c_j)). Returns, per
+// parameter, +1 where ∂_i f > 0 over the whole box, -1 where it is < 0, 0 otherwise. A box where f
+// rises along t_i and whose low face along i is not on the domain's edge holds no minimiser of f
+// over the domain: from any of its points, a step to lower t_i stays in the domain and lowers f.
+template <int N>
+std::array<int, N> gradient_signs(const BoxEnclosure<N>& box, const PointEnclosure<N>& centre, const Vec3& p);
+
 // The distance that a lower bound of f = ½ d^2 gives: sqrt(2 f), rounded down (0 for f <= 0).
 double distance_from_f_lower(double f_lower);
 
