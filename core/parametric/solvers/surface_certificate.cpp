@@ -9,6 +9,7 @@
 
 #include "parametric/geometry/box_quadratic.hpp"
 #include "parametric/geometry/distance_bound.hpp"
+#include "parametric/geometry/foot_region_bound.hpp"
 #include "parametric/solvers/surface_convergence.hpp"
 #include "solvers/certificate_ledger.hpp"
 
@@ -26,13 +27,16 @@ struct OpenBox {
   std::int32_t cell = -1;                            // the compiled cell, or -1 (a sub-box)
   std::atomic<const SubBoxPair*>* halves = nullptr;  // where its halves are published
   const BoxEnclosure<2>* ancestor = nullptr;         // its own enclosure (a cell's, a sub-box's)
-  double lb = 0.0;                                   // the best lower bound of the distance over it so far
-  HessianBounds<2> hessian;                          // ∇²f over it
-  bool split_u = true;  // bisect along u (the box is longer along u on the surface)
-  bool solved = false;  // a local solve was started from it
-  bool nearer = false;  // its centre is nearer than the answer by more than the gap
-  bool bounded = true;  // the formulas are finite and smooth over it
-  bool finite = true;   // the formulas are finite over it (else: non_finite)
+  const BoxEnclosure<2>* parent = nullptr;           // the box it was bisected from (a sub-box)
+  Params2 parent_lo{}, parent_hi{};
+  double lb = 0.0;           // the best lower bound of the distance over it so far
+  HessianBounds<2> hessian;  // ∇²f over it
+  bool split_u = true;       // bisect along u (the box is longer along u on the surface)
+  bool solved = false;       // a local solve was started from it
+  bool nearer = false;       // its centre is nearer than the answer by more than the gap
+  bool bounded = true;       // the formulas are finite and smooth over it
+  bool finite = true;        // the formulas are finite over it (else: non_finite)
+  bool monotone = false;     // f is monotone along a parameter over it, towards an inner face
 };
 
 struct ByBound {
@@ -45,15 +49,53 @@ struct Known {
   bool enclosed = false;
   PointEnclosure<2> point;  // s and J at t (lazily)
   GradientEnclosure<2> at;  // f and ∇f at t, enclosed (lazily)
+  // The compiled cell holding t (where the walk met it): the second partials about t.
+  const BoxEnclosure<2>* cell = nullptr;
+  Params2 cell_lo{}, cell_hi{};
 };
+
+bool holds(const Params2& lo, const Params2& hi, const Params2& t) {
+  return t[0] >= lo[0] && t[0] <= hi[0] && t[1] >= lo[1] && t[1] <= hi[1];
+}
+
+// Whether the hull of the box [lo, hi] and t lies in the union of that box and [a_lo, a_hi]:
+// each piece of the hull outside the box (at most four rectangles) lies in the other.
+bool hull_in_union(const Params2& lo, const Params2& hi, const Params2& t, const Params2& a_lo,
+                   const Params2& a_hi) {
+  const Params2 h_lo{std::min(lo[0], t[0]), std::min(lo[1], t[1])};
+  const Params2 h_hi{std::max(hi[0], t[0]), std::max(hi[1], t[1])};
+  auto inside = [&](const Params2& r_lo, const Params2& r_hi) {
+    return r_lo[0] >= a_lo[0] && r_hi[0] <= a_hi[0] && r_lo[1] >= a_lo[1] && r_hi[1] <= a_hi[1];
+  };
+  if (h_lo[0] < lo[0] && !inside({h_lo[0], h_lo[1]}, {lo[0], h_hi[1]})) return false;
+  if (h_hi[0] > hi[0] && !inside({hi[0], h_lo[1]}, {h_hi[0], h_hi[1]})) return false;
+  if (h_lo[1] < lo[1] && !inside({lo[0], h_lo[1]}, {hi[0], lo[1]})) return false;
+  if (h_hi[1] > hi[1] && !inside({lo[0], hi[1]}, {hi[0], h_hi[1]})) return false;
+  return true;
+}
+
+// The second partials over the union of two boxes: the hull of their enclosures'.
+BoxEnclosure<2> second_partials_hull(const BoxEnclosure<2>& a, const BoxEnclosure<2>& b) {
+  BoxEnclosure<2> u = a;
+  u.smooth = a.smooth && b.smooth;
+  for (std::size_t q = 0; q < u.d2_mid.size(); ++q)
+    for (int k = 0; k < 3; ++k) {
+      const double lo = std::min(a.d2_mid[q][k] - a.d2_rad[q][k], b.d2_mid[q][k] - b.d2_rad[q][k]);
+      const double hi = std::max(a.d2_mid[q][k] + a.d2_rad[q][k], b.d2_mid[q][k] + b.d2_rad[q][k]);
+      u.d2_mid[q][k] = 0.5 * (lo + hi);
+      u.d2_rad[q][k] = (0.5 * (hi - lo)) * (1.0 + kBoundRounding) + 0x1p-1074;
+    }
+  return u;
+}
 
 class Certifier {
  public:
-  Certifier(const SurfaceCells& cells, const SurfaceFormulas& formulas, const Vec3& p,
+  Certifier(const SurfaceCells& cells, const SurfaceFormulas& formulas, const ParamBox& domain, const Vec3& p,
             const LocalSolution& answer, const std::vector<Params2>& known, const SurfaceLocalSolve& solve,
             bool may_improve, const SurfaceCertifyOptions& options)
       : cells_(cells),
         formulas_(formulas),
+        domain_(domain),
         p_(p),
         solve_(solve),
         may_improve_(may_improve),
@@ -142,7 +184,7 @@ class Certifier {
     }
   }
 
-  // 2.-4. for a compiled cell
+  // 2., 3. and 5. for a compiled cell
   void visit_cell(std::int32_t index, double box_lb) {
     const SurfaceCell& c = cells_.cells()[static_cast<std::size_t>(index)];
     const SurfaceCellBounds& b = cells_.bounds()[static_cast<std::size_t>(index)];
@@ -152,6 +194,12 @@ class Certifier {
     o.cell = index;
     o.halves = &cells_.refinement().cell_slot(static_cast<std::size_t>(index));
     o.ancestor = &b.enclosure;
+    for (Known& k : known_)
+      if (!k.cell && holds(o.lo, o.hi, k.t)) {
+        k.cell = &b.enclosure;
+        k.cell_lo = o.lo;
+        k.cell_hi = o.hi;
+      }
     o.split_u = norm2(c.centre.su) * (c.u1 - c.u0) * (c.u1 - c.u0) >=
                 norm2(c.centre.sv) * (c.v1 - c.v0) * (c.v1 - c.v0);
     o.bounded = b.enclosure.bounded && b.enclosure.smooth && b.centre_valid;
@@ -181,8 +229,23 @@ class Certifier {
                                                 o.hessian, ledger_.target_f());
       o.lb = std::max(o.lb, distance_from_f_lower(f));
       if (o.lb >= ledger_.target()) return close(o.lb);
+      if (monotone(o, b.enclosure, centre)) return close(ledger_.target());
     }
     open_.push(o);
+  }
+
+  // 5. The monotonicity test (distance_bound.hpp: gradient_signs): f rises or falls along a parameter
+  // over the whole box, away from the domain's edge on that side; the least of f over the domain
+  // is elsewhere, and the box closes without a bound of its own.
+  bool monotone(const OpenBox& b, const BoxEnclosure<2>& e, const PointEnclosure<2>& centre) const {
+    if (!b.bounded) return false;
+    const std::array<int, 2> signs = gradient_signs<2>(e, centre, p_);
+    const Params2 dlo{domain_.umin, domain_.vmin}, dhi{domain_.umax, domain_.vmax};
+    for (int i = 0; i < 2; ++i) {
+      const std::size_t a = static_cast<std::size_t>(i);
+      if ((signs[a] > 0 && b.lo[a] > dlo[a]) || (signs[a] < 0 && b.hi[a] < dhi[a])) return true;
+    }
+    return false;
   }
 
   // A known minimiser lies in the box grown by its width on each side.
@@ -195,9 +258,32 @@ class Certifier {
     return std::any_of(known_.begin(), known_.end(), [&](const Known& k) { return near(k, b); });
   }
 
+  // The foot region bound (parametric/geometry/foot_region_bound.hpp) of the box from the known
+  // minimiser k, over the hull of the box and k.t, with the second partials of a box that holds
+  // that hull: the box itself, the box it was bisected from, or its union with k's cell.
+  double foot_region(const OpenBox& b, Known& k) {
+    if (!enclose(k)) return -std::numeric_limits<double>::infinity();
+    const Params2 h_lo{std::min(b.lo[0], k.t[0]), std::min(b.lo[1], k.t[1])};
+    const Params2 h_hi{std::max(b.hi[0], k.t[0]), std::max(b.hi[1], k.t[1])};
+    auto bound = [&](const BoxEnclosure<2>& d2) {
+      return foot_region_lower_bound<2>(k.point, k.at, k.t, d2, h_lo, h_hi, p_);
+    };
+    if (holds(b.lo, b.hi, k.t)) return bound(*b.ancestor);
+    if (b.parent && holds(b.parent_lo, b.parent_hi, k.t)) return bound(*b.parent);
+    if (k.cell && hull_in_union(b.lo, b.hi, k.t, k.cell_lo, k.cell_hi))
+      return bound(second_partials_hull(*b.ancestor, *k.cell));
+    return -std::numeric_limits<double>::infinity();
+  }
+
   // 4. from the known minimisers near the box; true when it closes it
   bool close_from_known(OpenBox& b) {
-    if (!b.bounded || !b.hessian.valid) return false;
+    if (!b.bounded) return false;
+    for (Known& k : known_) {
+      if (!near(k, b)) continue;
+      b.lb = std::max(b.lb, distance_from_f_lower(foot_region(b, k)));
+      if (b.lb >= ledger_.target()) return true;
+    }
+    if (!b.hessian.valid) return false;
     for (Known& k : known_) {
       if (!near(k, b)) continue;
       const Params2 q{std::clamp(k.t[0], b.lo[0], b.hi[0]), std::clamp(k.t[1], b.lo[1], b.hi[1])};
@@ -285,7 +371,7 @@ class Certifier {
       if (close_from_known(b)) return close(b.lb);
       if (b.lb >= ledger_.target()) return close(b.lb);
     }
-    // 5. bisect, into halves kept for later points (parametric/seeding/surface_refinement.hpp)
+    // 6. bisect, into halves kept for later points (parametric/seeding/surface_refinement.hpp)
     if (runtime_boxes_ + 2 > options_.max_boxes) return note_unclosed(b);
     const int axis = b.split_u ? 0 : 1;
     const double mid = 0.5 * (b.lo[axis] + b.hi[axis]);
@@ -296,9 +382,15 @@ class Certifier {
     if (scratch) scratch_.push_back(std::move(scratch));
     for (const SubBox& half : pair.half) {
       OpenBox child = bound_sub_box(half, &half.enclosure);
+      child.parent = b.ancestor;
+      child.lb = std::max(child.lb, b.lb);
+      child.parent_lo = b.lo;
+      child.parent_hi = b.hi;
       if (ledger_.refuted()) return note_unclosed(child);
       if (child.lb >= ledger_.target())
         close(child.lb);
+      else if (child.monotone)
+        close(ledger_.target());
       else
         open_.push(child);
     }
@@ -325,6 +417,7 @@ class Certifier {
     const GradientEnclosure<2> g = enclose_gradient(h.centre, p_);
     b.lb = std::max(b.lb, distance_from_f_lower(
                               second_order_lower_bound(g, c, b.lo, b.hi, b.hessian, ledger_.target_f())));
+    b.monotone = monotone(b, e, h.centre);
     // the centre is a point of the surface: nearer than the answer by more than the gap, it holds
     // a better minimum (or refutes a given answer)
     if (ledger_.nearer_than_answer(h.centre.s, h.centre.s_rad, p_)) {
@@ -336,6 +429,7 @@ class Certifier {
 
   const SurfaceCells& cells_;
   const SurfaceFormulas& formulas_;
+  const ParamBox domain_;
   const Vec3 p_;
   const SurfaceLocalSolve& solve_;
   const bool may_improve_;
@@ -356,8 +450,7 @@ SurfaceCertification certify_surface(const SurfaceCells& cells, const SurfaceFor
                                      const std::vector<std::array<double, 2>>& known,
                                      const SurfaceLocalSolve& solve, bool may_improve,
                                      const SurfaceCertifyOptions& options) {
-  (void)box;  // the cells tile it
-  return Certifier(cells, formulas, p, answer, known, solve, may_improve, options).run();
+  return Certifier(cells, formulas, box, p, answer, known, solve, may_improve, options).run();
 }
 
 Certificate certify_answer(const SurfaceCells& cells, const SurfaceFormulas& formulas, const ParamBox& box,

@@ -10,12 +10,18 @@
 //      the tangent parallelogram, less the proved model error ρ (SurfaceCellBounds::rho);
 //   3. the second-order bound from the cell's centre (its jet with its rounding radii), with λ a
 //      lower bound of the smallest eigenvalue of ∇²f = JᵀJ + Σ (s_k - p_k)∇²s_k over the cell;
-//   4. the same from each known minimiser near the box (the answer, its copies on a periodic or
-//      folded parametrisation, other local minima): where f is convex on the box, the bound from
-//      the minimiser is its value less the rounding - this closes the answer's own cell;
-//   5. what remains open is solved from (auto: a local minimum nearer than the answer replaces
+//   4. from each known minimiser z near the box (the answer, its copies on a periodic or folded
+//      parametrisation, other local minima): the foot region bound (parametric/geometry/
+//      foot_region_bound.hpp) over the hull of the box and z, with the second partials of a box
+//      that holds that hull (the box, the box it was bisected from, or its union with z's cell):
+//      f(z) less the rounding wherever the surface about z bends little against its metric at the
+//      scale of the hull, with no bound of ∇²f over the box; then the second-order bound of 3
+//      from z, where f is convex on the box;
+//   5. the monotonicity test (distance_bound.hpp: gradient_signs): a box over which f rises or
+//      falls along a parameter, towards a face inside the domain, holds no minimiser and closes;
+//   6. what remains open is solved from (auto: a local minimum nearer than the answer replaces
 //      it, and the certificate continues with the new distance), then bisected: each half gets an
-//      interval jet of its own (a runtime sub-box) and the bounds 1, 3, 4 again, within a budget
+//      interval jet of its own (a runtime sub-box) and the bounds 1, 3, 4, 5 again, within a budget
 //      of sub-boxes per point. Sampled estimates order nothing here that decides.
 // L is the least bound of the boxes, not above the target where everything closed (and never
 // above d). certified = d - L <= the gap; otherwise the reason: budget_exhausted, non_finite (a
