@@ -42,6 +42,10 @@ int main(int argc, char** argv) {
   for (const auto& file : files) {
     std::ifstream in(file);
     const json set = json::parse(in);
+    // a parametric surface's set (the implicit surfaces' file holds cases of another shape)
+    if (!set.is_object() || !set.contains("formulas") || !set["formulas"].contains("z") ||
+        !set.contains("points"))
+      continue;
     GeometryDefinition def;
     def.type = GeometryType::parametric_surface;
     for (const char* c : {"x", "y", "z"}) def.formulas.push_back({c, set["formulas"][c].get<std::string>()});
