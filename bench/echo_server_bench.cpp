@@ -119,7 +119,6 @@ ApiResponse echo(const RouteMatch& match, std::string_view body, std::size_t max
 
 int main(int argc, char** argv) {
   block_shutdown_signals();
-  keep_large_buffers_for_reuse();  // the server's buffer policy: the same cost of moving the JSON
   // --replay ID=FILE (repeatable) is this executable's own; the other flags are the server's
   Replays replays;
   std::vector<char*> args{argv[0]};
@@ -146,6 +145,8 @@ int main(int argc, char** argv) {
   const int exit_code =
       configure_from_command_line(static_cast<int>(args.size()), args.data(), "echo_server_bench", config);
   if (exit_code >= 0) return exit_code;
+  // the server's buffer policy: the same cost of moving the JSON
+  keep_large_buffers_for_reuse(config.threads ? config.threads : footpoint::default_threads());
   HttpServer* self = nullptr;
   HttpServer server(
       config, [&self, &config, &replays](const RouteMatch& m, std::string_view method, std::string_view body,

@@ -678,12 +678,14 @@ void HttpServer::close_idle_connections() {
   closedir(dir);
 }
 
-void keep_large_buffers_for_reuse() {
+void keep_large_buffers_for_reuse(unsigned compute_threads) {
   // the largest threshold glibc accepts (half its 64 MiB per-thread heap): below it are the
   // body, points, results and response of batches up to ~90,000 points (a larger one's response
   // is mapped for itself, as before)
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
+  if (std::getenv("MALLOC_ARENA_MAX") == nullptr)
+    mallopt(M_ARENA_MAX, static_cast<int>(std::max(1u, compute_threads)));
 }
 
 }  // namespace footpoint::server

@@ -114,8 +114,15 @@ class HttpServer {
 // 6 MB - are kept by malloc for the next request instead of being mapped and unmapped each time,
 // which costs a page fault per 4 KiB touched (0.16 per point: a fifth of a batch's CPU time).
 // glibc maps blocks above M_MMAP_THRESHOLD and returns free heap tops above M_TRIM_THRESHOLD to
-// the kernel; both are raised. Memory then stays at the high-water mark of the requests in
-// flight, which the body and in-flight point limits bound. Call once, before any thread exists.
-void keep_large_buffers_for_reuse();
+// the kernel; both are raised. glibc keeps what is freed in the arena of the thread that freed
+// it, and gives threads arenas of their own up to 8 per CPU of the machine (not of the
+// container's quota): a batch on each new connection thread left its buffers in another arena,
+// and resident memory grew by one batch's buffers per connection thread (bench/batch_memory.sh:
+// +39 MiB per 100,000-point batch, up to ten threads). The arenas are therefore capped at one
+// per compute thread (`compute_threads`, the core's pool: its threads allocate per point and
+// share no arena), unless MALLOC_ARENA_MAX sets them; connection threads share those, and memory
+// stays at the high-water mark of the requests in flight, which the body and in-flight point
+// limits bound. Call once, before the server's threads exist.
+void keep_large_buffers_for_reuse(unsigned compute_threads);
 
 }  // namespace footpoint::server

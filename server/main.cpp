@@ -27,11 +27,11 @@ int main(int argc, char** argv) {
   using namespace footpoint::server;
   // Before any thread exists, so that every thread inherits the mask.
   block_shutdown_signals();
-  keep_large_buffers_for_reuse();
 
   ServerConfig config;
   const int exit_code = configure_from_command_line(argc, argv, "footpoint-server", config);
   if (exit_code >= 0) return exit_code;
+  keep_large_buffers_for_reuse(config.threads ? config.threads : footpoint::default_threads());
 
   int status = 0;
   try {
