@@ -9,7 +9,13 @@
 // second the same points again. Printed per set and pass: the certified share, the mean certificate boxes
 // (run-time sub-boxes bounded), mean, median and p99 per point of both, and the ratio of the means.
 //
-// Usage: certificate_bench [points per set, default 1000] [--near | --box] [surface names ...]
+// With --classes, a line per surface set says where the boxes go, by the kind of foot point the
+// answer is: on the domain's edge; where the parametrisation is nearly singular (the smaller
+// singular value of J = [s_u s_v] below 0.1 of the larger); near the focal distance (the least
+// eigenvalue of <s_ij, s - p> in the metric's orthonormal frame below -0.5: the distance's
+// Hessian there is less than half the metric's); the rest.
+//
+// Usage: certificate_bench [points per set, default 1000] [--near | --box] [--classes] [names ...]
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -35,6 +41,28 @@ double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : s / static_cast<double>(v.size());
 }
 
+bool g_classes = false;
+
+// The kind of foot point at (u, v) for p (see above): 0 edge, 1 nearly singular J, 2 near the
+// focal distance, 3 the rest.
+int foot_class(const ParametricSurface& s, const Vec3& p, double u, double v) {
+  const ParamBox& b = s.domain();
+  if (u <= b.umin || u >= b.umax || v <= b.vmin || v >= b.vmax) return 0;
+  const SurfaceJet j = s.formulas().jet(u, v);
+  const double E = dot(j.su, j.su), F = dot(j.su, j.sv), G = dot(j.sv, j.sv);
+  const double tr = E + G, root = std::sqrt(std::max(0.0, (E - G) * (E - G) + 4.0 * F * F));
+  if (std::sqrt(std::max(0.0, 0.5 * (tr - root)) / (0.5 * (tr + root))) < 0.1) return 1;
+  // <s_ij, s - p> in the frame w = Lᵀ h (G = L Lᵀ), its least eigenvalue
+  const Vec3 r = j.s - p;
+  const double l00 = std::sqrt(E), l10 = F / l00, l11 = std::sqrt(G - l10 * l10);
+  const double c00 = 1.0 / l00, c01 = -l10 / (l00 * l11), c11 = 1.0 / l11;
+  const double a = dot(r, j.suu), bb = dot(r, j.suv), c = dot(r, j.svv);
+  const double n00 = c00 * c00 * a, n01 = c00 * c01 * a + c00 * c11 * bb,
+               n11 = c01 * c01 * a + 2.0 * c01 * c11 * bb + c11 * c11 * c;
+  const double lambda = 0.5 * (n00 + n11) - std::sqrt(0.25 * (n00 - n11) * (n00 - n11) + n01 * n01);
+  return lambda < -0.5 ? 2 : 3;
+}
+
 void run_set(const CompiledGeometry& g, const char* surface, const char* set, const std::vector<Vec3>& points,
              double overhead) {
   const GeometryMethod m = g.method("auto").value();
@@ -44,6 +72,8 @@ void run_set(const CompiledGeometry& g, const char* surface, const char* set, co
     std::vector<double> tc, tp;
     double boxes = 0.0;
     int share = 0;
+    std::array<double, 4> class_points{}, class_boxes{};
+    const auto* parametric = dynamic_cast<const ParametricSurface*>(&g);
     for (std::size_t i = 0; i < points.size(); ++i) {
       const double p[3] = {points[i].x, points[i].y, points[i].z};
       double c = 0.0, u = 0.0;
@@ -63,6 +93,11 @@ void run_set(const CompiledGeometry& g, const char* surface, const char* set, co
       tc.push_back(c);
       tp.push_back(u);
       boxes += r.summary.certificate.boxes;
+      if (g_classes && parametric && std::isfinite(r.distance)) {
+        const int k = foot_class(*parametric, points[i], r.params[0], r.params[1]);
+        class_points[static_cast<std::size_t>(k)] += 1.0;
+        class_boxes[static_cast<std::size_t>(k)] += r.summary.certificate.boxes;
+      }
       share += r.summary.certificate.certified ? 1 : 0;
     }
     const double mc = mean(tc), mp = mean(tp);
@@ -72,6 +107,15 @@ void run_set(const CompiledGeometry& g, const char* surface, const char* set, co
         surface, set, pass, 100.0 * share / static_cast<double>(points.size()),
         boxes / static_cast<double>(points.size()), mc / 1e3, bench::percentile(tc, 0.5) / 1e3,
         bench::percentile(tc, 0.99) / 1e3, mp / 1e3, bench::percentile(tp, 0.99) / 1e3, mc / mp);
+    if (g_classes && parametric && pass == 2) {
+      static const char* const names[] = {"edge", "singular J", "focal", "rest"};
+      std::printf("%-7s %-5s classes:", surface, set);
+      for (std::size_t k = 0; k < 4; ++k)
+        std::printf("  %s %.1f %% of points, %.1f %% of boxes", names[k],
+                    100.0 * class_points[k] / static_cast<double>(points.size()),
+                    boxes > 0.0 ? 100.0 * class_boxes[k] / boxes : 0.0);
+      std::printf("\n");
+    }
     std::fflush(stdout);
   }
 }
@@ -119,7 +163,8 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
       std::printf(
-          "usage: certificate_bench [points per set, default 1000] [--near | --box] [surface ...]\n"
+          "usage: certificate_bench [points per set, default 1000] [--near | --box] [--classes] [geometry "
+          "...]\n"
           "geometries: S1 S2 S3 A1 torus sphere helix trefoil (default: all)\n");
       return 0;
     }
@@ -127,6 +172,8 @@ int main(int argc, char** argv) {
       box = false;
     else if (!std::strcmp(argv[i], "--box"))
       near = false;
+    else if (!std::strcmp(argv[i], "--classes"))
+      g_classes = true;
     else if (argv[i][0] >= '0' && argv[i][0] <= '9')
       n = std::atoi(argv[i]);
     else
