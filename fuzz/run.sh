@@ -10,6 +10,10 @@
 #   FUZZ_TIMEOUT  seconds one input may run before it counts as a hang (default 60: the request
 #                 target's deadline is 2 s, but compiling a geometry is not bounded by it and
 #                 runs ~20 times slower instrumented: 1 s in Release is 25 s here)
+#   FUZZ_RUNS     executions per fuzzing process instead of a time bound (FUZZ_SECONDS is then
+#                 ignored); fuzz/long_run.sh sets it
+#   FUZZ_KEEP_CORPUS=1  grow the corpus in <build>/corpus/<target> from run to run instead of
+#                 starting from the seeds each time
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 bash "$root/fuzz/install.sh"
@@ -19,6 +23,8 @@ shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then targets=(formula_fuzz request_fuzz); fi
 seconds="${FUZZ_SECONDS:-60}"
+runs="${FUZZ_RUNS:-}"
+keep="${FUZZ_KEEP_CORPUS:-0}"
 jobs="${FUZZ_JOBS:-1}"
 timeout_s="${FUZZ_TIMEOUT:-60}"
 
@@ -40,20 +46,31 @@ for target in "${targets[@]}"; do
   # The corpus the run grows is in the build dir, new each run (a grown corpus would spend the
   # time budget replaying its slow inputs); the repo keeps only the small seed corpus.
   work="$build/corpus/$name"
-  rm -rf "$work"
-  artifacts="$build/artifacts/$target"
+  if [ "$keep" != 1 ]; then rm -rf "$work"; fi
+  artifacts="$build/artifacts/$target"  # this run's findings only
+  rm -rf "$artifacts"
   mkdir -p "$work" "$artifacts"
   log="$build/$target.log"
-  echo "== $target: ${seconds}s from $(find "$seeds" -type f | wc -l) seeds (log: $log)"
+  bound="${seconds}s"
+  if [ -n "$runs" ]; then bound="$runs executions x $jobs process(es)"; fi
+  echo "== $target: $bound from $(find "$seeds" -type f | wc -l) seeds and $(find "$work" -type f | wc -l) kept inputs (log: $log)"
   # -timeout: one input running longer than this is a hang.
   # -rss_limit_mb: a runaway allocation is a failure, not a slow machine.
   # -max_len: room for the 4096-character formula limit and beyond.
-  args=(-max_total_time="$seconds" -timeout="$timeout_s" -rss_limit_mb=2048 -max_len=16384
-        -artifact_prefix="$artifacts/" -print_final_stats=1)
+  args=(-timeout="$timeout_s" -rss_limit_mb=2048 -max_len=16384 -artifact_prefix="$artifacts/"
+        -print_final_stats=1)
+  if [ -n "$runs" ]; then args+=(-runs="$runs"); else args+=(-max_total_time="$seconds"); fi
   # Several processes write their logs as fuzz-<n>.log in the working directory.
   if [ "$jobs" -gt 1 ]; then args+=(-jobs="$jobs" -workers="$jobs"); fi
-  if (cd "$build" && "$build/$target" "${args[@]}" "$work" "$seeds" >"$log" 2>&1); then
+  # (with several processes the parent may exit 0 when one of them failed: an artifact fails too)
+  if (cd "$build" && "$build/$target" "${args[@]}" "$work" "$seeds" >"$log" 2>&1) &&
+    [ -z "$(ls -A "$artifacts")" ]; then
     grep -E "^stat::number_of_executed_units|^stat::peak_rss_mb|Done [0-9]+ runs" "$log" | sed 's/^/   /' || true
+    # with several processes, each writes its own log and final stats
+    if [ "$jobs" -gt 1 ]; then
+      total=$(cat "$build"/fuzz-*.log 2>/dev/null | awk '/^stat::number_of_executed_units/ {n += $2} END {print n + 0}')
+      echo "   executions over the $jobs processes: $total"
+    fi
   else
     status=1
     echo "!! $target FAILED; last lines of $log:"
