@@ -18,12 +18,18 @@ EvaluateRequest read_request(std::string_view body, std::size_t max_rows) {
   bool has_one = false, has_many = false;
   read_object(r, "body", "body", "", [&](const std::string& key, const std::string&) {
     try {
-      if (key == "parameter") {
-        request.length = read_row(r, "parameter", request.values);
+      if (key == "parameter" || key == "point") {
+        if (has_one || has_many)
+          throw ApiError(400, "conflicting_fields", "give one of parameter, parameters, point, points", key);
+        request.length = read_row(r, key, request.values);
         request.count = 1;
+        request.points = key == "point";
         has_one = true;
-      } else if (key == "parameters") {
-        request.count = read_rows(r, "parameters", max_rows, request.values, request.length);
+      } else if (key == "parameters" || key == "points") {
+        if (has_one || has_many)
+          throw ApiError(400, "conflicting_fields", "give one of parameter, parameters, point, points", key);
+        request.count = read_rows(r, key, max_rows, request.values, request.length);
+        request.points = key == "points";
         has_many = true;
       } else if (key == "derivatives") {
         const double d = r.number();
@@ -33,20 +39,13 @@ EvaluateRequest read_request(std::string_view body, std::size_t max_rows) {
       } else if (key == "normals") {
         request.normals = r.boolean();
       } else {
-        throw ApiError(400, "unknown_field",
-                       "unknown field " + key + " (parameter, parameters, derivatives, normals)" +
-                           (key == "point" || key == "points"
-                                ? ": evaluate takes parameters; points are projected with POST "
-                                  "/v1/geometries/{id}/project"
-                                : ""),
-                       key);
+        throw ApiError(
+            400, "unknown_field",
+            "unknown field " + key + " (parameter, parameters, point, points, derivatives, normals)", key);
       }
     } catch (const JsonReadError& e) {
       throw request_error(e, key);
     }
-    if (has_one && has_many)
-      throw ApiError(400, "conflicting_fields", "give either parameter or parameters, not both",
-                     "parameters");
   });
   try {
     r.finish();
@@ -54,7 +53,9 @@ EvaluateRequest read_request(std::string_view body, std::size_t max_rows) {
     throw request_error(e, "body");
   }
   if (!has_one && !has_many)
-    throw ApiError(400, "missing_field", "parameter (one set) or parameters (a batch) is required",
+    throw ApiError(400, "missing_field",
+                   "parameter or parameters (a parametric geometry), point or points (an implicit one) is "
+                   "required",
                    "parameter");
   request.single = has_one;
   return request;
@@ -63,6 +64,37 @@ EvaluateRequest read_request(std::string_view body, std::size_t max_rows) {
 void vector(JsonAppender& o, const Vec3& v, int dim) {
   const double x[3] = {v.x, v.y, v.z};
   o.numbers(x, dim);
+}
+
+// {"geometry_id": ..., "result": or "results": [
+void begin(JsonAppender& o, const CompiledGeometry& geometry, const EvaluateRequest& request) {
+  o.literal("{\"geometry_id\":");
+  o.string(geometry.id());
+  o.literal(request.single ? ",\"result\":" : ",\"results\":[");
+}
+
+// ,"normal": [...] or null
+void normal(JsonAppender& o, bool defined, const Vec3& n, int dim) {
+  o.literal(",\"normal\":");
+  if (defined)
+    vector(o, n, dim);
+  else
+    o.literal("null");
+}
+
+// The end of the results and the counts: {"<rows>": n, "<inside>": k}.
+void stats(JsonAppender& o, const EvaluateRequest& request, std::string_view rows,
+           std::string_view inside_name, std::size_t inside) {
+  o.literal(request.single ? ",\"stats\":{\"" : "],\"stats\":{\"");
+  o.literal(rows);
+  o.literal("\":");
+  o.integer(static_cast<long long>(request.count));
+  o.literal(",\"");
+  o.literal(inside_name);
+  o.literal("\":");
+  o.integer(static_cast<long long>(inside));
+  o.literal("}}");
+  o.flush();
 }
 
 }  // namespace
@@ -75,15 +107,88 @@ EvaluateRequest read_evaluate_request(std::string_view body, std::size_t max_row
   }
 }
 
+namespace {
+
+// An implicit geometry's equations at each point.
+std::string equations_response(const CompiledGeometry& geometry, const EvaluateRequest& request) {
+  const int dim = geometry.point_dim();
+  const char* type = to_string(geometry.definition().type);
+  const char* field = request.single ? "point" : "points";
+  if (request.length != dim)
+    throw ApiError(400, "wrong_dimension",
+                   std::string(field) + " must have " + std::to_string(dim) + " coordinates for this " +
+                       type + ", got " + std::to_string(request.length),
+                   request.single ? "point" : "points[0]");
+  std::string out;
+  out.reserve(128 + request.count * (96 + 64 * request.derivatives * dim + (request.normals ? 64 : 0)));
+  JsonAppender o(out);
+  begin(o, geometry, request);
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < request.count; ++i) {
+    const double* x = request.values.data() + i * static_cast<std::size_t>(dim);
+    EquationEvaluation e;
+    geometry.evaluate_equations(x, e);
+    inside += e.inside_box;
+    const bool two = e.equations == 2;  // a space curve: f1, f2
+    o.literal(i ? ",{\"point\":" : "{\"point\":");
+    o.numbers(x, dim);
+    o.literal(e.inside_box ? ",\"inside_box\":true" : ",\"inside_box\":false");
+    if (two) {
+      o.literal(",\"values\":");
+      o.numbers(e.value.data(), 2);
+    } else {
+      o.literal(",\"value\":");
+      o.number(e.value[0]);
+    }
+    if (request.derivatives >= 1) {
+      o.literal(two ? ",\"gradients\":[" : ",\"gradient\":");
+      for (int k = 0; k < e.equations; ++k) {
+        if (k) o.literal(",");
+        vector(o, e.gradient[static_cast<std::size_t>(k)], dim);
+      }
+      if (two) o.literal("]");
+    }
+    if (request.derivatives >= 2) {
+      o.literal(two ? ",\"hessians\":[" : ",\"hessian\":");
+      for (int k = 0; k < e.equations; ++k) {
+        o.literal(k ? ",[" : "[");
+        for (int row = 0; row < dim; ++row) {
+          if (row) o.literal(",");
+          vector(o, e.hessian[static_cast<std::size_t>(k)][static_cast<std::size_t>(row)], dim);
+        }
+        o.literal("]");
+      }
+      if (two) o.literal("]");
+    }
+    if (request.normals) normal(o, e.normal_defined, e.normal, dim);
+    o.literal("}");
+  }
+  stats(o, request, "points", "inside_box", inside);
+  return out;
+}
+
+}  // namespace
+
 std::string evaluate_response(const CompiledGeometry& geometry, const EvaluateRequest& request) {
   const int params = geometry.num_params();
   const char* type = to_string(geometry.definition().type);
-  if (params == 0)
-    throw ApiError(400, "not_parametric",
-                   with_article(type) +
-                       " has no parameters to evaluate at: project points onto it with POST "
-                       "/v1/geometries/{id}/project, or look at it with GET /v1/geometries/{id}/mesh",
-                   "id");
+  if (params == 0) {
+    if (!request.points)
+      throw ApiError(400, "not_parametric",
+                     with_article(type) +
+                         " has no parameters to evaluate at: evaluate its equations at points with "
+                         "{\"points\": [[x, y, z], ...]}, project points with POST "
+                         "/v1/geometries/{id}/project, or look at it with GET /v1/geometries/{id}/mesh",
+                     request.single ? "parameter" : "parameters");
+    return equations_response(geometry, request);
+  }
+  if (request.points)
+    throw ApiError(
+        400, "not_implicit",
+        with_article(type) +
+            " is evaluated at parameters ({\"parameters\": [[u, v], ...]}, [t] for curves); points "
+            "are projected with POST /v1/geometries/{id}/project",
+        request.single ? "point" : "points");
   if (request.length != params)
     throw ApiError(400, "wrong_dimension",
                    std::string(request.single ? "parameter" : "parameters") + " must have " +
@@ -97,9 +202,7 @@ std::string evaluate_response(const CompiledGeometry& geometry, const EvaluateRe
   std::string out;
   out.reserve(128 + request.count * (64 + 64 * request.derivatives * params + (request.normals ? 64 : 0)));
   JsonAppender o(out);
-  o.literal("{\"geometry_id\":");
-  o.string(geometry.id());
-  o.literal(request.single ? ",\"result\":" : ",\"results\":[");
+  begin(o, geometry, request);
   std::size_t inside = 0;
   for (std::size_t i = 0; i < request.count; ++i) {
     const double* t = request.values.data() + i * static_cast<std::size_t>(params);
@@ -127,21 +230,10 @@ std::string evaluate_response(const CompiledGeometry& geometry, const EvaluateRe
       }
       o.literal("}");
     }
-    if (request.normals) {
-      o.literal(",\"normal\":");
-      if (e.normal_defined)
-        vector(o, e.normal, dim);
-      else
-        o.literal("null");
-    }
+    if (request.normals) normal(o, e.normal_defined, e.normal, dim);
     o.literal("}");
   }
-  o.literal(request.single ? ",\"stats\":{\"parameters\":" : "],\"stats\":{\"parameters\":");
-  o.integer(static_cast<long long>(request.count));
-  o.literal(",\"inside_domain\":");
-  o.integer(static_cast<long long>(inside));
-  o.literal("}}");
-  o.flush();
+  stats(o, request, "parameters", "inside_domain", inside);
   return out;
 }
 

@@ -1,5 +1,7 @@
 // POST /v1/geometries/{id}/evaluate: points, exact first and second derivatives and unit normals
-// of parametric surfaces and curves at given parameters, against closed forms; and its errors.
+// of parametric surfaces and curves at given parameters, and the equations of implicit surfaces
+// and curves (values, gradients, Hessians, normals) at given points, against closed forms; and
+// its errors.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -108,7 +110,9 @@ TEST_CASE("evaluate: every bad request its status, code and field") {
     const char* field;
   };
   const std::vector<Case> cases = {
-      {implicit, {{"parameter", {1}}}, 400, "not_parametric", "id"},
+      {implicit, {{"parameter", {1}}}, 400, "not_parametric", "parameter"},
+      {implicit, {{"parameters", {{1, 2}}}}, 400, "not_parametric", "parameters"},
+      {implicit, {{"point", {1, 2, 3}}}, 400, "wrong_dimension", "point"},
       {surface, {{"parameter", {1}}}, 400, "wrong_dimension", "parameter"},
       {surface, {{"parameters", {{1, 2, 3}}}}, 400, "wrong_dimension", "parameters[0]"},
       {surface, {{"parameters", {{1, 2}, {1}}}}, 400, "wrong_dimension", "parameters[1]"},
@@ -116,7 +120,10 @@ TEST_CASE("evaluate: every bad request its status, code and field") {
       {surface, {{"parameters", json::array()}}, 400, "empty_batch", "parameters"},
       {surface, {{"parameter", {1, 2}}, {"derivatives", 3}}, 400, "invalid_option", "derivatives"},
       {surface, {{"parameter", {1, 2}}, {"normals", "yes"}}, 400, "wrong_type", "normals"},
-      {surface, {{"point", {1, 2, 3}}}, 400, "unknown_field", "point"},
+      {surface, {{"point", {1, 2, 3}}}, 400, "not_implicit", "point"},
+      {surface, {{"points", {{1, 2, 3}}}}, 400, "not_implicit", "points"},
+      {surface, {{"parameter", {1, 2}}, {"point", {1, 2}}}, 400, "conflicting_fields", "point"},
+      {surface, {{"parameter", {1, 2}}, {"values", 1}}, 400, "unknown_field", "values"},
       {surface, {{"derivatives", 1}}, 400, "missing_field", "parameter"},
       {surface, {{"parameter", {1, 2}}, {"parameters", {{1, 2}}}}, 400, "conflicting_fields", "parameters"},
       {"0123456789abcdef0123456789abcdef", {{"parameter", {1, 2}}}, 404, "geometry_not_found", "id"},
@@ -140,4 +147,63 @@ TEST_CASE("evaluate: every bad request its status, code and field") {
   REQUIRE(r);
   CHECK(r->status == 405);
   CHECK(r->get_header_value("Allow") == "POST");
+}
+
+TEST_CASE("evaluate implicit geometries: values, gradients, Hessians and normals at points") {
+  TestServer s;
+  auto c = s.client();
+  // f = (x^2 + y^2 + z^2 - 1)^2 as written: grad f = 4 r (x, y, z), with r = x^2 + y^2 + z^2 - 1,
+  // Hessian 8 x x^T + 4 r I; the normal is the square-free sphere's, (x, y, z) / |(x, y, z)|, also
+  // on the surface where the written gradient vanishes.
+  const std::string sphere = create(
+      *c,
+      R"J({"type":"implicit_surface","equation":"(x^2+y^2+z^2-1)^2","domain":{"x":[-2,2],"y":[-2,2],"z":[-2,2]}})J");
+  const json r =
+      evaluate(*c, sphere, {{"points", {{1, 2, 3}, {0.6, 0.8, 0}}}, {"derivatives", 2}, {"normals", true}});
+  REQUIRE(r["results"].size() == 2);
+  const json& a = r["results"][0];
+  check_near(a["point"], {1, 2, 3});
+  CHECK(a["inside_box"] == false);  // z = 3 is outside [-2, 2]: the equation still answers
+  CHECK(a["value"].get<double>() == 169.0);
+  check_near(a["gradient"], {52, 104, 156});
+  check_near(a["hessian"][0], {8 + 52, 16, 24});
+  check_near(a["hessian"][1], {16, 32 + 52, 48});
+  check_near(a["hessian"][2], {24, 48, 72 + 52});
+  const double n = std::sqrt(14.0);
+  check_near(a["normal"], {1 / n, 2 / n, 3 / n});
+  const json& b = r["results"][1];
+  CHECK(b["inside_box"] == true);
+  CHECK(std::fabs(b["value"].get<double>()) <= 1e-30);
+  check_near(b["gradient"], {0, 0, 0}, 1e-15);
+  check_near(b["normal"], {0.6, 0.8, 0}, 1e-15);
+  CHECK(r["stats"] == json{{"points", 2}, {"inside_box", 1}});
+  // Without options: the point, inside_box and the value.
+  const json plain = evaluate(*c, sphere, {{"point", {0, 0, 0}}});
+  std::set<std::string> keys;
+  for (const auto& [k, v] : plain["result"].items()) keys.insert(k);
+  CHECK(keys == std::set<std::string>{"point", "inside_box", "value"});
+  CHECK(plain["result"]["value"] == 1.0);
+
+  // A planar curve in 2-D: f = x^2 + y^2 - 1 at (1, 2): 4, (2, 4), [[2, 0], [0, 2]].
+  const std::string circle =
+      create(*c, R"J({"type":"implicit_curve","equations":["x^2+y^2-1"],"domain":{"x":[-2,2],"y":[-2,2]}})J");
+  const json p = evaluate(*c, circle, {{"point", {1, 2}}, {"derivatives", 2}, {"normals", true}});
+  CHECK(p["result"]["value"] == 4.0);
+  check_near(p["result"]["gradient"], {2, 4});
+  check_near(p["result"]["hessian"][0], {2, 0});
+  check_near(p["result"]["hessian"][1], {0, 2});
+  check_near(p["result"]["normal"], {1 / std::sqrt(5.0), 2 / std::sqrt(5.0)}, 2e-16);
+
+  // A space curve: two values, two gradients, two Hessians, no normal (a plane of them).
+  const std::string space = create(
+      *c,
+      R"J({"type":"implicit_curve","equations":["x^2+y^2-1","x*z"],"domain":{"x":[-2,2],"y":[-2,2],"z":[-2,2]}})J");
+  const json q = evaluate(*c, space, {{"point", {1, 2, 3}}, {"derivatives", 2}, {"normals", true}});
+  check_near(q["result"]["values"], {4, 3});
+  check_near(q["result"]["gradients"][0], {2, 4, 0});
+  check_near(q["result"]["gradients"][1], {3, 0, 1});
+  check_near(q["result"]["hessians"][0][0], {2, 0, 0});
+  check_near(q["result"]["hessians"][1][0], {0, 0, 1});
+  check_near(q["result"]["hessians"][1][2], {1, 0, 0});
+  CHECK(q["result"]["normal"].is_null());
 }

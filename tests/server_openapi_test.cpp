@@ -269,6 +269,19 @@ TEST_CASE("every response matches openapi.yaml") {
   post(evaluate, "/v1/geometries/" + param_id + "/evaluate",
        R"J({"parameter":[1],"derivatives":1,"normals":true})J");
   post(evaluate, "/v1/geometries/" + curve_id + "/evaluate", R"J({"parameter":[1]})J");  // 400
+  post(evaluate, "/v1/geometries/" + curve_id + "/evaluate",
+       R"J({"points":[[1,2,3],[0,0,0]],"derivatives":2,"normals":true})J");
+  post(evaluate, "/v1/geometries/" + curve_id + "/evaluate", R"J({"point":[1,2,3]})J");
+  {
+    const std::string implicit_surface =
+        R"J({"type":"implicit_surface","equation":"x^2+y^2+z^2-1","domain":{"x":[-2,2],"y":[-2,2],"z":[-2,2]}})J";
+    post("/v1/geometries", "/v1/geometries", implicit_surface);
+    const std::string implicit_id = json::parse(samples.back().body)["geometry_id"];
+    post(evaluate, "/v1/geometries/" + implicit_id + "/evaluate",
+         R"J({"points":[[1,2,3],[0,0,0]],"derivatives":2,"normals":true})J");
+    post(evaluate, "/v1/geometries/" + implicit_id + "/evaluate",
+         R"J({"points":[[1,2,3]],"parameters":[[1]]})J");
+  }
   post(evaluate, "/v1/geometries/00000000000000000000000000000000/evaluate",
        R"J({"parameter":[1]})J");                                         // 404
   record("GET", evaluate, c->Get("/v1/geometries/" + id + "/evaluate"));  // 405

@@ -41,6 +41,23 @@ struct Evaluation {
   bool inside_domain = false;  // the parameters lie in the closed domain (formulas extend beyond it)
 };
 
+// What an implicit geometry's equations are at a point (CompiledGeometry::evaluate_equations):
+// the value of each equation as written in the definition (one for a surface f(x, y, z) = 0 or a
+// planar curve f(x, y) = 0, two for a space curve f1 = f2 = 0), its exact gradient and Hessian
+// (rows). Planar curves: the third coordinate, row and column are 0.
+struct EquationEvaluation {
+  int equations = 0;
+  std::array<double, 2> value{};
+  std::array<Vec3, 2> gradient{};
+  std::array<std::array<Vec3, 3>, 2> hessian{};
+  // grad f / |grad f| of the square-free equation (formula::Program::square_free: the normal of
+  // (x^2 + y^2 + z^2 - 1)^2 = 0 is the sphere's, where the written gradient vanishes); undefined
+  // (normal_defined false) where that gradient is 0 and for space curves (a plane of normals).
+  Vec3 normal;
+  bool normal_defined = false;
+  bool inside_box = false;  // the point lies in the closed box (the equations extend beyond it)
+};
+
 // A method of one compiled geometry, found by name (CompiledGeometry::method): projects the
 // geometry's points with it.
 class GeometryMethod {
@@ -83,6 +100,13 @@ class CompiledGeometry {
   // False for a geometry without parameters (an implicit curve).
   virtual bool evaluate(const double* t, Evaluation& out) const {
     (void)t;
+    (void)out;
+    return false;
+  }
+  // The equations at the point x (point_dim() coordinates). False for a geometry without
+  // equations (a parametric one).
+  virtual bool evaluate_equations(const double* x, EquationEvaluation& out) const {
+    (void)x;
     (void)out;
     return false;
   }

@@ -156,6 +156,33 @@ bool ImplicitCurve::foot_normal(const ProjectionResult& r, std::array<double, 3>
   return true;
 }
 
+bool ImplicitCurve::evaluate_equations(const double* x, EquationEvaluation& out) const {
+  const bool planar = written_.planar();
+  const Vec3 at{x[0], x[1], planar ? 0.0 : x[2]};
+  const ImplicitJet j = written_.jet(at);
+  out.equations = planar ? 1 : 2;
+  for (int e = 0; e < out.equations; ++e) {
+    const std::size_t k = static_cast<std::size_t>(e);
+    out.value[k] = j.f[k];
+    out.gradient[k] = j.grad[k];
+    out.hessian[k] = j.hess[k];
+    if (planar) {  // f(x, y): no z row or column
+      out.gradient[k].z = 0.0;
+      for (int r = 0; r < 3; ++r) out.hessian[k][static_cast<std::size_t>(r)].z = 0.0;
+      out.hessian[k][2] = Vec3{};
+    }
+  }
+  if (planar) {
+    const Vec3 g = equations().jet(at).grad[0];
+    const double length = std::hypot(g.x, g.y);
+    out.normal_defined = length > 0.0 && std::isfinite(length);
+    if (out.normal_defined) out.normal = {g.x / length, g.y / length, 0.0};
+  }
+  out.inside_box = planar ? (at.x >= box_.lo.x && at.x <= box_.hi.x && at.y >= box_.lo.y && at.y <= box_.hi.y)
+                          : box_.contains(at);
+  return true;
+}
+
 const std::vector<MethodInfo>& implicit_curve_methods() { return table(PointDims::any).infos(); }
 
 std::size_t ImplicitCurve::memory_bytes() const {

@@ -31,6 +31,7 @@ class ImplicitCurve final : public CompiledGeometry {
   const std::vector<MethodInfo>& methods() const override;
   std::size_t memory_bytes() const override;
   bool foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const override;
+  bool evaluate_equations(const double* x, EquationEvaluation& out) const override;
 
   // The square-free equations (the written ones when they have no repeated factor).
   const ImplicitEquations& equations() const { return whole_->equations; }

@@ -66,11 +66,27 @@ const MethodTable<ImplicitSurface>& table() {
 
 ImplicitSurface::ImplicitSurface(GeometryDefinition def, formula::Program program, Box3 box)
     : CompiledGeometry(std::move(def)),
-      equation_(program.square_free()),
+      written_(std::move(program)),
+      equation_(written_.program().square_free()),
       box_(box),
       cells_(subdivide_surface(equation_, box_)) {}
 
 const std::vector<MethodInfo>& ImplicitSurface::methods() const { return table().infos(); }
+
+bool ImplicitSurface::evaluate_equations(const double* x, EquationEvaluation& out) const {
+  const Vec3 at{x[0], x[1], x[2]};
+  const ImplicitSurfaceJet j = written_.jet(at);
+  out.equations = 1;
+  out.value[0] = j.f;
+  out.gradient[0] = j.grad;
+  out.hessian[0] = j.hess;
+  const Vec3 g = equation_.jet(at).grad;
+  const double length = norm(g);
+  out.normal_defined = length > 0.0 && std::isfinite(length);
+  if (out.normal_defined) out.normal = g / length;
+  out.inside_box = box_.contains(at);
+  return true;
+}
 
 const std::vector<MethodInfo>& implicit_surface_methods() { return table().infos(); }
 
@@ -80,7 +96,9 @@ ProjectionResult ImplicitSurface::project_with(std::size_t index, const double* 
 }
 
 std::size_t ImplicitSurface::memory_bytes() const {
-  return sizeof(*this) + equation_.program().memory_bytes() + cells_.memory_bytes();
+  const formula::Program& written = written_.program();
+  return sizeof(*this) + equation_.program().memory_bytes() +
+         (written.same_tape(equation_.program()) ? 0 : written.memory_bytes()) + cells_.memory_bytes();
 }
 
 std::shared_ptr<const CompiledGeometry> compile_implicit_surface(const GeometryDefinition& def,

@@ -22,14 +22,18 @@ class ImplicitSurface final : public CompiledGeometry {
   int num_params() const override { return 0; }
   const std::vector<MethodInfo>& methods() const override;
   std::size_t memory_bytes() const override;
+  bool evaluate_equations(const double* x, EquationEvaluation& out) const override;
 
+  // The square-free equation (the written one when it has no repeated factor).
   const ImplicitSurfaceEquation& equation() const { return equation_; }
+  const ImplicitSurfaceEquation& written_equation() const { return written_; }
   const Box3& box() const { return box_; }
   const ImplicitSurfaceCells& cells() const { return cells_; }
 
  private:
   ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
 
+  ImplicitSurfaceEquation written_;
   ImplicitSurfaceEquation equation_;
   Box3 box_;
   ImplicitSurfaceCells cells_;
