@@ -2,8 +2,9 @@
 // references computed independently (tests/tools/gen_surface_implicit_reference.py: sympy, scipy's
 // brentq on dense lines, mpmath at 50 digits; tests/data/surface_implicit_cases.json): sphere,
 // ellipsoid, torus, a cone clipped at its apex, hyperboloids of one and two sheets, a sphere and a
-// plane clipped so that answers lie on faces, edges and corners, far points and points on the
-// surface. The local methods on closed forms (a sphere's foot is p / |p|), and the errors.
+// plane clipped so that answers lie on faces, edges and corners, Goursat's surface, a gyroid
+// (sin x cos y + sin y cos z + sin z cos x, several sheets in its box), a blend of two spheres
+// (f1 f2 = 0.2), far points and points on the surface. The local methods on closed forms (a sphere's foot is p / |p|), and the errors.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -83,7 +84,9 @@ TEST_CASE("implicit surface auto: the references' distances, feet and locations"
     }
   }
   MESSAGE("certified " << certified << " of " << points);
-  CHECK(points >= 40);
+  CHECK(points >= 59);
+  // the one answer left uncertified: a point on the one-sheet hyperboloid's axis (a circle of feet)
+  CHECK(certified >= points - 1);
 }
 
 TEST_CASE("implicit surface: a repeated factor counts once, and the sphere's foot is p / |p|") {
