@@ -4,7 +4,8 @@
 // ellipsoid, torus, a cone clipped at its apex, hyperboloids of one and two sheets, a sphere and a
 // plane clipped so that answers lie on faces, edges and corners, Goursat's surface, a gyroid
 // (sin x cos y + sin y cos z + sin z cos x, several sheets in its box), a blend of two spheres
-// (f1 f2 = 0.2), far points and points on the surface. The local methods on closed forms (a sphere's foot is p / |p|), and the errors.
+// (f1 f2 = 0.2), far points and points on the surface. The local methods on closed forms (a sphere's foot is
+// p / |p|), and the errors.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -75,6 +76,9 @@ TEST_CASE("implicit surface auto: the references' distances, feet and locations"
         CHECK(foot_gap(*r, q["foot"]) <= 1e-9 * std::max(1.0, reference));
         CHECK(r->summary.location == implicit_surface_location(q["type"]));
       }
+      // a tie of the reference's is reported as one (or, on an axis, as a continuum)
+      REQUIRE(r->summary.multiplicity.computed);
+      if (q["ambiguous"].get<bool>()) CHECK(r->summary.multiplicity.kind != Multiplicity::unique);
       const Certificate& cert = r->summary.certificate;
       REQUIRE(cert.computed);
       // No lower bound above the reference distance.
@@ -87,6 +91,48 @@ TEST_CASE("implicit surface auto: the references' distances, feet and locations"
   CHECK(points >= 59);
   // the one answer left uncertified: a point on the one-sheet hyperboloid's axis (a circle of feet)
   CHECK(certified >= points - 1);
+}
+
+TEST_CASE("implicit surface multiplicity: continua at centres of curvature, ties, unique feet") {
+  struct Case {
+    const char* equation;
+    double lo, hi, zlo, zhi;
+    Vec3 p;
+    Multiplicity kind;
+    int feet;
+  };
+  const Case cases[] = {
+      {"x^2+y^2+z^2-1", -2, 2, -2, 2, {0, 0, 0}, Multiplicity::continuum, 0},     // the centre
+      {"x^2+y^2+z^2-1", -2, 2, -2, 2, {0.3, 0.2, 0.1}, Multiplicity::unique, 1},  // p / |p|
+      {"(x^2+y^2+z^2+3.75)^2-16*(x^2+y^2)", -3, 3, -1, 1, {0, 0, 0.3}, Multiplicity::continuum, 0},  // axis
+      {"(x^2+y^2+z^2+3.75)^2-16*(x^2+y^2)", -3, 3, -1, 1, {2, 0, 0}, Multiplicity::continuum, 0},    // core
+      {"(x^2+y^2+z^2+3.75)^2-16*(x^2+y^2)", -3, 3, -1, 1, {2.1, 0.1, 0.05}, Multiplicity::unique, 1},
+      {"x^2/4+y^2+4*z^2-1", -3, 3, -3, 3, {0, 0, 0}, Multiplicity::tied, 2},  // (0, 0, ±0.5)
+      {"x^2/4+y^2+4*z^2-1", -3, 3, -3, 3, {0, 0.1, 0}, Multiplicity::tied, 2},
+      {"((x-2)^2+y^2+z^2-1)*((x+2)^2+y^2+z^2-1)", -4, 4, -4, 4, {0, 0.3, 0.2}, Multiplicity::tied, 2},
+      {"((x-2)^2+y^2+z^2-1)*((x+2)^2+y^2+z^2-1)", -4, 4, -4, 4, {0.1, 0.3, 0.2}, Multiplicity::unique, 1},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.equation);
+    CAPTURE(c.p.x);
+    CAPTURE(c.p.y);
+    CAPTURE(c.p.z);
+    const auto g = implicit_surface_of(c.equation, c.lo, c.hi, c.zlo, c.zhi);
+    const double p[3] = {c.p.x, c.p.y, c.p.z};
+    const auto r = g->project(p, "auto", {});
+    REQUIRE(r);
+    const AnswerMultiplicity& m = r->summary.multiplicity;
+    REQUIRE(m.computed);
+    CHECK(m.kind == c.kind);
+    if (c.kind == Multiplicity::tied) {
+      CHECK(m.count == c.feet);
+      // mirror images of each other: equal distances, feet apart
+      REQUIRE(m.feet.size() == 2);
+      const Vec3 a{m.feet[0][0], m.feet[0][1], m.feet[0][2]}, b{m.feet[1][0], m.feet[1][1], m.feet[1][2]};
+      CHECK(std::fabs(norm(a - c.p) - norm(b - c.p)) <= 1e-12);
+      CHECK(norm(a - b) > 0.5);
+    }
+  }
 }
 
 TEST_CASE("implicit surface: a repeated factor counts once, and the sphere's foot is p / |p|") {

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "geometry/certificate.hpp"
 #include "implicit/geometry/implicit_curve_differentials.hpp"
 
 namespace footpoint::curve {
@@ -23,14 +22,7 @@ AnswerMultiplicity implicit_curve_multiplicity(const ImplicitJet& at_answer, Vec
     m.kind = Multiplicity::continuum;
     return m;
   }
-  const double gap =
-      std::fmax(Certificate::kRelativeGap * r.distance, Certificate::absolute_gap_at(p, answer));
-  m.feet.push_back(r.foot);
-  for (const ImplicitMinimum& f : found)
-    if (std::abs(f.distance - r.distance) <= gap)
-      m.add_distinct({f.foot.x, f.foot.y, f.foot.z}, kDistinctFoot * (1.0 + norm(f.foot)));
-  m.settle();
-  return m;
+  return tied_feet(r, p, found);
 }
 
 }  // namespace footpoint::curve

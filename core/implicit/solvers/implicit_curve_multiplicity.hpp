@@ -15,13 +15,11 @@
 
 #include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
+#include "solvers/auto_result.hpp"
 
 namespace footpoint::curve {
 
-struct ImplicitMinimum {
-  Vec3 foot;
-  double distance;
-};
+using ImplicitMinimum = ReachedFoot;
 
 // at_answer: the jets at r's foot.
 AnswerMultiplicity implicit_curve_multiplicity(const ImplicitJet& at_answer, Vec3 p,

@@ -8,6 +8,7 @@
 #include "implicit/solvers/implicit_surface_certificate.hpp"
 #include "implicit/solvers/implicit_surface_lagrange.hpp"
 #include "implicit/solvers/implicit_surface_methods.hpp"
+#include "implicit/solvers/implicit_surface_multiplicity.hpp"
 #include "solvers/iteration_control.hpp"
 
 namespace footpoint::surface_implicit {
@@ -19,6 +20,8 @@ constexpr int kLocalIterations = 50;
 constexpr int kFirstOrderIterations = 200;
 constexpr int kRounds = 6;
 constexpr std::size_t kStartsPerRound = 4;
+// Solves from samples that may lie by another foot at the answer's distance (a tie).
+constexpr std::size_t kTieStarts = 8;
 
 struct Candidate {
   Vec3 x;
@@ -36,6 +39,7 @@ class Search {
 
   void consider(Vec3 x, Location location, int iterations = 0, double step = 0.0) {
     const double d = norm(p_ - x);
+    reached_.push_back({x, d});
     if (d < best_.distance) best_ = {x, d, location, iterations, step};
   }
 
@@ -144,7 +148,9 @@ class Search {
   // Whether no other sample within `radius` of sample i is nearer to p (a discrete local minimum of
   // the distance over the samples: a start of its own for all_minima).
   bool discrete_minimum(int i, double radius) const {
-    const Vec3 s = cells_.samples[static_cast<std::size_t>(i)];
+    return discrete_minimum(cells_.samples[static_cast<std::size_t>(i)], radius);
+  }
+  bool discrete_minimum(Vec3 s, double radius) const {
     const double d2 = norm2(p_ - s);
     std::vector<std::int32_t> stack{0};
     while (!stack.empty()) {
@@ -155,15 +161,36 @@ class Search {
         for (std::int32_t c = 0; c < cell.children; ++c) stack.push_back(cell.first_child + c);
         continue;
       }
-      if (cell.sample < 0 || cell.sample == i) continue;
+      if (cell.sample < 0) continue;
       const Vec3 t = cells_.samples[static_cast<std::size_t>(cell.sample)];
+      if (t.x == s.x && t.y == s.y && t.z == s.z) continue;
       if (norm2(t - s) <= radius * radius && norm2(p_ - t) < d2) return false;
     }
     return true;
   }
 
+  // Other feet at the answer's distance (a tie): the certificate's rivals (samples within a leaf
+  // diagonal of every point of S at the answer's distance outside its convex box) that lie away
+  // from the answer and are discrete local minima of the distance over the samples start solves,
+  // nearest first, at most kTieStarts.
+  void solve_from_rivals(std::vector<Vec3> rivals) {
+    if (!std::isfinite(best_.distance)) return;
+    const double h = cells_.leaf_diagonal;
+    const Vec3 answer = best_.x;
+    std::sort(rivals.begin(), rivals.end(), [&](Vec3 a, Vec3 b) { return norm2(p_ - a) < norm2(p_ - b); });
+    std::size_t started = 0;
+    for (const Vec3& s : rivals) {
+      if (started >= kTieStarts) break;
+      if (norm(s - answer) <= 2.0 * h || !discrete_minimum(s, 2.0 * h)) continue;
+      solve_from(s);
+      ++started;
+    }
+  }
+
   const Candidate& best() const { return best_; }
   int starts() const { return starts_; }
+  // Every point of S considered: the solves' ends, the box's edge points, the singular points.
+  const std::vector<curve::ReachedFoot>& reached() const { return reached_; }
 
  private:
   const ImplicitSurfaceEquation& equation_;
@@ -172,6 +199,7 @@ class Search {
   const curve::IterationControl& control_;
   Candidate best_;
   int starts_ = 0;
+  std::vector<curve::ReachedFoot> reached_;
   std::vector<Candidate>* minima_ = nullptr;
 };
 
@@ -212,12 +240,21 @@ ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
       SurfaceCertificate c =
           certify_surface_answer(equation, cells, p, search.best().x, search.best().distance);
       certificate = c.certificate;
-      if (certificate.certified || c.nearer.empty()) break;
-      std::sort(c.nearer.begin(), c.nearer.end(),
-                [&](Vec3 a, Vec3 b) { return norm2(p - a) < norm2(p - b); });
+      if (certificate.certified) {
+        search.solve_from_rivals(std::move(c.rivals));  // a tie's other feet
+        break;
+      }
       const double before = search.best().distance;
-      for (std::size_t i = 0; i < std::min(c.nearer.size(), kStartsPerRound); ++i)
-        search.solve_from(c.nearer[i]);
+      if (c.nearer.empty()) {
+        // nothing sampled is nearer, yet the bound stayed below: the answer may be off a flat
+        // minimum (a continuum), whose other points are among the rivals
+        search.solve_from_rivals(std::move(c.rivals));
+      } else {
+        std::sort(c.nearer.begin(), c.nearer.end(),
+                  [&](Vec3 a, Vec3 b) { return norm2(p - a) < norm2(p - b); });
+        for (std::size_t i = 0; i < std::min(c.nearer.size(), kStartsPerRound); ++i)
+          search.solve_from(c.nearer[i]);
+      }
       if (!(search.best().distance < before)) break;
     }
   }
@@ -242,6 +279,7 @@ ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
   r.summary.starts = search.starts();
   r.summary.certificate = certificate;
   if (!certify) r.summary.certificate.computed = false;
+  r.summary.multiplicity = implicit_surface_multiplicity(equation, p, r, search.reached());
   r.trace = std::move(trace);
   if (options.all_minima) {
     // The answer first, then the other local minima found, nearest first, each foot once.

@@ -279,6 +279,8 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     if (cell.sample >= 0) {
       const Vec3 s = cells.samples[static_cast<std::size_t>(cell.sample)];
       if (norm(p - s) < distance - gap) out.nearer.push_back(s);
+      if (!(have_k && k.contains(cell.box)) && norm(p - s) <= distance + cells.leaf_diagonal)
+        out.rivals.push_back(s);
     }
     pieces.push_back({cell.box, 0});
   }

@@ -15,7 +15,9 @@
 //    are r's components along the faces x* lies on, of the sign that makes r . (x - x*) >= 0).
 //    L(x*) and r are enclosed with interval arithmetic at the point x*.
 // The leaves' sample points nearer than the answer are reported (nearer), for the search to start
-// from them.
+// from them; so are the samples of the leaves that meet the ball of the answer's radius about p
+// away from the foot's convex box K (rivals): every other foot at the answer's distance lies in
+// such a leaf, within a leaf diagonal of its sample.
 #pragma once
 #include <vector>
 
@@ -28,6 +30,9 @@ struct SurfaceCertificate {
   Certificate certificate;
   // Samples nearer to p than the answer by more than the gap (only when not certified).
   std::vector<Vec3> nearer;
+  // Samples of the leaves that meet the ball |x - p| < distance outside K, within the answer's
+  // distance plus a leaf diagonal of p: where another foot at the same distance (a tie) can be.
+  std::vector<Vec3> rivals;
 };
 
 // The box budget of one certificate (pieces of leaves subdivided for this point).
