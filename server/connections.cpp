@@ -10,6 +10,10 @@
 
 namespace footpoint::server {
 
+namespace {
+constexpr std::chrono::milliseconds kJiffySlack{20};
+}  // namespace
+
 int port_of(const sockaddr_storage& a) {
   if (a.ss_family == AF_INET) return ntohs(reinterpret_cast<const sockaddr_in&>(a).sin_port);
   if (a.ss_family == AF_INET6) return ntohs(reinterpret_cast<const sockaddr_in6&>(a).sin6_port);
@@ -125,7 +129,9 @@ std::size_t ReadDeadline::scan(int local_port, Clock::time_point now) {
         tcp_info info{};
         socklen_t length = sizeof info;
         if (::getsockopt(fd, IPPROTO_TCP, TCP_INFO, &info, &length) != 0) return;
-        if (now - std::chrono::milliseconds(info.tcpi_last_data_recv) <= progress.since) {
+        // tcpi_last_data_recv counts whole jiffies (up to 10 ms): data within kJiffySlack after the
+        // answer is taken for the answered request's.
+        if (now - std::chrono::milliseconds(info.tcpi_last_data_recv) <= progress.since + kJiffySlack) {
           seen.arriving = {};  // idle since its last answer
           return;
         }

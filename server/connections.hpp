@@ -58,7 +58,8 @@ class ConnectionWatch {
 //   - headers read, body not yet: since the headers were read, or since its bytes were first
 //     seen arriving, the earlier;
 //   - between requests: since the scan that first saw bytes received after the last answer (the
-//     kernel's tcpi_last_data_recv, TCP_INFO): idle time on a keep-alive connection does not count.
+//     kernel's tcpi_last_data_recv, TCP_INFO, in whole clock ticks: bytes within 20 ms of the
+//     answer are taken for its request's): idle time on a keep-alive connection does not count.
 // A late connection is shut down (both directions): its thread's read fails and it closes. The
 // bounds hold to within one interval.
 class ReadDeadline {
