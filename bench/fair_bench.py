@@ -16,6 +16,11 @@ default settings (numerical threads = the CPUs), posts the [GSA] Example 1 surfa
      --clients keep-alive connections (a single's latency counts from when it was due, so a client
      held up by a slow answer does not hide the wait); the batch's wall time and the single
      points' latencies are recorded.
+With --keys, fair shares between API keys instead: the server gets two keys; key "flood" has
+--flood clients posting --flood-points-point batches without pause, and a --light-points batch is
+timed alone, then beside the flood sent with key "light" (its own tenant: with fair queues per key
+it gets about half the workers), then with key "flood" (one more job among the flood's: about
+1/(flood + 1) of them).
 The default half-width 25 is the reference cases' domain, where the surface covers itself ~16
 times and the batch's time is mostly projection (at 3 it is mostly reading and writing JSON).
 Printed per binary: the medians over the runs of the idle p50, the single points' p50 and p90
@@ -25,6 +30,7 @@ Only 127.0.0.1 is contacted; each run is bounded by timeouts.
 import argparse
 import http.client
 import json
+import os
 import random
 import socket
 import statistics
@@ -40,8 +46,11 @@ def free_port():
         return s.getsockname()[1]
 
 
-def post(conn, path, body):
-    conn.request("POST", path, body=body, headers={"Content-Type": "application/json"})
+def post(conn, path, body, key=None):
+    headers = {"Content-Type": "application/json"}
+    if key:
+        headers["Authorization"] = "Bearer " + key
+    conn.request("POST", path, body=body, headers=headers)
     r = conn.getresponse()
     data = r.read()
     if r.status != 200 and r.status != 201:
@@ -49,8 +58,8 @@ def post(conn, path, body):
     return data
 
 
-def start(server, port):
-    proc = subprocess.Popen([server, "--host", "127.0.0.1", "--port", str(port), "--log-level", "warn"],
+def start(server, port, *flags):
+    proc = subprocess.Popen([server, "--host", "127.0.0.1", "--port", str(port), "--log-level", "warn", *flags],
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     for _ in range(200):
         try:
@@ -150,6 +159,73 @@ def one_run(server, args, batch_body):
             proc.kill()
 
 
+def keys_run(server, args):
+    """--keys: one key floods the server with batches; how long does another key's batch take?"""
+    import hashlib
+    import tempfile
+    secrets = {"flood": "flood-secret-0123456789", "light": "light-secret-0123456789"}
+    with tempfile.NamedTemporaryFile("w", suffix=".keys", delete=False) as f:
+        for name, secret in secrets.items():
+            f.write("%s project,write %s\n" % (name, hashlib.sha256(secret.encode()).hexdigest()))
+        keys_file = f.name
+    port = free_port()
+    proc = start(server, port, "--api-keys", keys_file, "--max-inflight-points", "10000000")
+    try:
+        w = args.half_width
+        surface = {"type": "parametric_surface", "x": "u+v", "y": "sin(u)+2*cos(v)", "z": "sin(u+v)",
+                   "domain": {"u": [-w, w], "v": [-w, w]}}
+        c = http.client.HTTPConnection("127.0.0.1", port, timeout=600)
+        gid = json.loads(post(c, "/v1/geometries", json.dumps(surface), secrets["flood"]))["geometry_id"]
+        path = f"/v1/geometries/{gid}/project"
+        rng = random.Random(3)
+        light_body = json.dumps({"points": [random_point(rng) for _ in range(args.light_points)]}).encode()
+        flood_body = json.dumps({"points": [random_point(rng) for _ in range(args.flood_points)]}).encode()
+
+        def light(key):
+            t = time.perf_counter()
+            post(c, path, light_body, secrets[key])
+            return time.perf_counter() - t
+
+        alone = light("light")
+        stop = threading.Event()
+
+        def flood_client():
+            f = http.client.HTTPConnection("127.0.0.1", port, timeout=600)
+            while not stop.is_set():
+                post(f, path, flood_body, secrets["flood"])
+            f.close()
+
+        flood = [threading.Thread(target=flood_client) for _ in range(args.flood)]
+        for t in flood:
+            t.start()
+        time.sleep(args.head_start * 3)  # every flood batch read and queued
+        own, shared = light("light"), light("flood")
+        stop.set()
+        for t in flood:
+            t.join()
+        return {"alone": alone, "own": own, "shared": shared}
+    finally:
+        proc.terminate()
+        proc.wait(timeout=120)
+        os.unlink(keys_file)
+
+
+def main_keys(args):
+    results = {s: [] for s in args.servers}
+    for r in range(args.runs):
+        for s in args.servers:
+            res = keys_run(s, args)
+            results[s].append(res)
+            print(f"run {r + 1} {s}: light batch alone {res['alone']:.2f} s, beside the flood with its own key "
+                  f"{res['own']:.2f} s, with the flood's key {res['shared']:.2f} s", file=sys.stderr, flush=True)
+    print(f"{args.light_points}-point batch beside {args.flood} clients posting {args.flood_points}-point batches "
+          f"without pause, half-width {args.half_width:g}, medians of {args.runs} interleaved runs:")
+    for s, rs in results.items():
+        med = {k: statistics.median(r[k] for r in rs) for k in rs[0]}
+        print(f"  {s}: alone {med['alone']:.2f} s | own key {med['own']:.2f} s ({med['own'] / med['alone']:.1f}x) | "
+              f"the flood's key {med['shared']:.2f} s ({med['shared'] / med['alone']:.1f}x)")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("servers", nargs="+")
@@ -159,7 +235,13 @@ def main():
     p.add_argument("--head-start", type=float, default=0.3, help="seconds between the batch and the singles")
     p.add_argument("--period", type=float, default=0.1, help="seconds between two singles' due times")
     p.add_argument("--clients", type=int, default=4, help="connections the singles are sent on")
+    p.add_argument("--keys", action="store_true", help="the API-key flood comparison instead (see above)")
+    p.add_argument("--flood", type=int, default=4, help="--keys: clients posting batches without pause")
+    p.add_argument("--flood-points", type=int, default=20000, help="--keys: points of each flood batch")
+    p.add_argument("--light-points", type=int, default=2000, help="--keys: points of the other key's batch")
     args = p.parse_args()
+    if args.keys:
+        return main_keys(args)
     rng = random.Random(11)
     batch_body = json.dumps({"points": [random_point(rng) for _ in range(args.points)]}).encode()
     results = {s: [] for s in args.servers}
