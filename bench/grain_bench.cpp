@@ -8,6 +8,7 @@
 //
 // Usage: grain_bench [runs, default 7] [points, default 100000]
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "batch/batch.hpp"
+#include "bench_args.hpp"
 #include "footpoint.hpp"
 
 using namespace footpoint;
@@ -47,8 +49,14 @@ GeometryDefinition definition(GeometryType type, std::vector<std::pair<std::stri
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int runs = argc > 1 ? std::max(1, std::atoi(argv[1])) : 7;
-  const std::size_t count = argc > 2 ? static_cast<std::size_t>(std::max(1, std::atoi(argv[2]))) : 100000;
+  const char* usage =
+      "usage: grain_bench [runs, default 7] [points, default 100000]\n"
+      "  project_batch on 2 workers with grains sized by time against fixed 1,024-point chunks\n";
+  bench::exit_on_help(argc, argv, usage);
+  if (argc > 3) bench::refuse_argument(argv[0], "unexpected argument", argv[3], usage);
+  const int runs = argc > 1 ? static_cast<int>(bench::count_argument(argv[0], argv[1], usage)) : 7;
+  const std::size_t count =
+      argc > 2 ? static_cast<std::size_t>(bench::count_argument(argv[0], argv[2], usage)) : 100000;
   const double two_pi = 6.283185307179586;
   const std::vector<Case> cases{
       {"circle, newton",
