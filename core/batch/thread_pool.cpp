@@ -56,7 +56,7 @@ struct ThreadPool::Job {
   const JobOptions* options = nullptr;
   std::size_t n = 0, max_grain = 1;
   std::size_t next = 0;                // first item not claimed (pool mutex)
-  std::atomic<std::size_t> grain{1};   // items of the next grain (see thread_pool.hpp)
+  std::atomic<std::size_t> grain{0};   // items of the next grain (see thread_pool.hpp)
   std::atomic<bool> cancelled{false};  // options->cancelled answered true
   std::mutex mutex;
   std::condition_variable done;
@@ -173,6 +173,7 @@ std::size_t ThreadPool::parallel_for(std::size_t n, std::size_t max_grain,
   job->options = &options;
   job->n = n;
   job->max_grain = max_grain == 0 ? 1 : max_grain;
+  job->grain = std::min(kFirstGrain, job->max_grain);
   job->remaining = n;
   {
     std::lock_guard lock(mutex_);

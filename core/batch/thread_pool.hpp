@@ -2,11 +2,13 @@
 //
 // Each call of parallel_for is a job over the items [0, n). Workers take one grain (a run of
 // consecutive items) at a time, and grains are sized by time, not by count: a job's first grain is
-// one item, and after each grain the next is sized so that it lasts about `grain_time` at the
-// speed just measured (growing at most fourfold per grain, never above the caller's maximum). A
-// worker is therefore never busy with one job for much longer than `grain_time` before it looks
-// at the queue again, whatever a point costs (a plane's foot point or a surface covering itself
-// many times), while a grain still holds enough items that claiming it costs a negligible share.
+// kFirstGrain items (project_batch reads the clock for its deadline before every fourth point of a
+// grain: a batch of up to four points is one grain, one read), and after each grain the next is
+// sized so that it lasts about `grain_time` at the speed just measured (growing at most fourfold
+// per grain, never above the caller's maximum). A worker is therefore never busy with one job for
+// much longer than `grain_time` before it looks at the queue again, whatever a point costs (a
+// plane's foot point or a surface covering itself many times), while a grain still holds enough
+// items that claiming it costs a negligible share.
 //
 // Fairness: jobs are queued per tenant (an opaque label; the server passes the API key's name,
 // "" without keys). Workers serve the tenants with waiting grains round-robin, one grain each, and
@@ -55,6 +57,8 @@ class ThreadPool {
  public:
   // The time a grain aims at (see above).
   static constexpr std::chrono::microseconds kDefaultGrainTime{500};
+  // The items of a job's first grain (at most the caller's maximum).
+  static constexpr std::size_t kFirstGrain = 4;
 
   explicit ThreadPool(unsigned threads,  // 0 -> default_threads()
                       std::chrono::nanoseconds grain_time = kDefaultGrainTime);
