@@ -483,6 +483,7 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
     stream->request = std::move(request);
     stream->deadline = Clock::now() + config_.deadline;
     stream->pool = &pool_;
+    stream->tenant = std::string(caller.key);
     stream->metrics = &metrics_;
     // The stream runs after this returns: it keeps its own counts of requests and points in flight
     // (one window of points).
@@ -518,7 +519,20 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
   batch.initials = std::move(request.initials);
   const auto solve_start = Clock::now();
   batch.deadline = solve_start + config_.deadline;
-  const std::vector<ProjectionResult> results = project_batch(pool_, batch);
+  batch.tenant = std::string(caller.key);
+  batch.cancelled = caller.client_gone;
+  std::vector<ProjectionResult> results;
+  try {
+    results = project_batch(pool_, batch);
+  } catch (const BatchCancelled& cancelled) {
+    metrics_.add_cancelled(cancelled.dropped());
+    log_event(spdlog::level::info, "batch cancelled: the client closed the connection",
+              {{"points", request.count}, {"done", cancelled.done()}, {"dropped", cancelled.dropped()}});
+    throw ApiError(
+        499, "client_closed_request",
+        "the client closed the connection before the answer: " + std::to_string(cancelled.dropped()) +
+            " of the " + std::to_string(request.count) + " points were not projected");
+  }
   const double elapsed_ms = ms_since(solve_start);
 
   std::array<std::uint64_t, Metrics::kStatusCount> by_status{};

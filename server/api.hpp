@@ -51,6 +51,10 @@ struct Caller {
   // Takes a request's points from the caller's rate limit; throws ApiError (429 rate_limited,
   // with Retry-After) when they are not there. Empty: no limit.
   std::function<void(std::size_t points)> charge;
+  // Whether the client has closed its connection, asked between the grains of a batch answered
+  // whole (JSON): its points not started are then dropped (499 client_closed_request, which nobody
+  // reads, in the log and footpoint_batches_cancelled_total). Empty: never.
+  std::function<bool()> client_gone;
 };
 
 class Api {

@@ -146,6 +146,13 @@ const std::vector<Setting>& settings() {
          c.probe_port = parse_integer<int>(n, v, 0, 65535);
        },
        [](const ServerConfig& c) { return std::to_string(c.probe_port); }},
+      {"read-timeout-s", "FOOTPOINT_READ_TIMEOUT_S",
+       "seconds a request (headers and body) may take to arrive from its first byte, else its connection "
+       "closes (0: no bound)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.read_timeout_s = parse_integer<int>(n, v, 0, 3600);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.read_timeout_s); }},
       {"io-timeout-s", "FOOTPOINT_IO_TIMEOUT_S", "socket read/write timeout in seconds",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
          c.io_timeout_s = parse_integer<int>(n, v, 1, 3600);

@@ -77,6 +77,10 @@ struct ServerConfig {
   // answering only /healthz and /readyz, so that the platform's probes are answered whatever the
   // API's connections do (slow clients holding every connection thread); 0: none.
   int probe_port = 0;
+  // --read-timeout-s / FOOTPOINT_READ_TIMEOUT_S: a request (line, headers and body) must arrive
+  // whole within this long of its first byte, or its connection is closed (slow-loris clients;
+  // ReadDeadline, connections.hpp); 0: no bound but the per-read --io-timeout-s.
+  int read_timeout_s = 30;
   // --io-timeout-s / FOOTPOINT_IO_TIMEOUT_S: socket read/write timeout for a stalled peer.
   int io_timeout_s = 30;
   // --backlog / FOOTPOINT_BACKLOG: the listen queue of not yet accepted connections.

@@ -1,6 +1,5 @@
 #include "http_server.hpp"
 
-#include <dirent.h>
 #include <malloc.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
@@ -18,6 +17,7 @@
 
 #include <httplib.h>
 
+#include "connections.hpp"
 #include "project_stream.hpp"
 #include "request_log.hpp"
 
@@ -48,13 +48,6 @@ struct ConnectionSlot {
   std::atomic<int>* port = nullptr;
 };
 thread_local ConnectionSlot t_slot;
-
-// The port of a socket's address (IPv4 or IPv6), or -1.
-int port_of(const sockaddr_storage& a) {
-  if (a.ss_family == AF_INET) return ntohs(reinterpret_cast<const sockaddr_in&>(a).sin_port);
-  if (a.ss_family == AF_INET6) return ntohs(reinterpret_cast<const sockaddr_in6&>(a).sin6_port);
-  return -1;
-}
 
 std::string lower(std::string s) {
   for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -211,6 +204,17 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       custom_handler_(static_cast<bool>(handler_)),
       http_(make_listener(tls_.get())),
       busy_ports_(std::make_unique<std::atomic<int>[]>(config_.connection_threads)) {
+  if (config_.read_timeout_s > 0) {
+    const std::chrono::milliseconds timeout(1000 * config_.read_timeout_s);
+    read_deadline_ = std::make_unique<ReadDeadline>(
+        timeout, std::min<std::chrono::milliseconds>(timeout / 4, std::chrono::seconds(1)),
+        [this](const std::string& host, int port) {
+          metrics_.add_read_timeout();
+          log_event(spdlog::level::warn,
+                    "connection closed: its request did not arrive within --read-timeout-s",
+                    {{"remote", host}, {"port", port}, {"read_timeout_s", config_.read_timeout_s}});
+        });
+  }
   init_logging(config_.log_level);
   if (keys_)
     log_event(spdlog::level::info, "API keys loaded", {{"file", config_.api_keys}, {"keys", keys_->size()}});
@@ -248,6 +252,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     ctx.active = true;
     ctx.start = Clock::now();
     mark_busy(req.remote_port);
+    if (read_deadline_) read_deadline_->admitted(req.remote_addr, req.remote_port);
     // httplib would compress the response by the client's Accept-Encoding (brotli at quality 11
     // costs far more than the projection) and cut it by Range: the service sends plain, whole
     // bodies. The request object is httplib's own mutable one, handed over as const.
@@ -427,6 +432,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
   });
 
   auto handle = [this](const httplib::Request& req, httplib::Response& res) {
+    if (read_deadline_) read_deadline_->handling(req.remote_addr, req.remote_port);
     const RouteMatch match = match_route(req.method, req.path);
     const auto question = req.target.find('?');
     const std::string_view query = question == std::string::npos
@@ -434,6 +440,10 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
                                        : std::string_view(req.target).substr(question + 1);
     Caller caller;
     caller.key = t_request.key;
+    if (req.method == "POST") {
+      auto watch = std::make_shared<ConnectionWatch>(port_, req.remote_addr, req.remote_port);
+      caller.client_gone = [watch] { return watch->closed(); };
+    }
     if (limiter_ && counts_points(match.route))
       caller.charge = [this](std::size_t points) {
         const std::string& key = t_request.key;
@@ -513,6 +523,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       record.duration_ms = seconds * 1e3;
       record.key = ctx.active ? std::string_view(ctx.key) : std::string_view();
       log_request(record);
+      if (read_deadline_) read_deadline_->answered(req.remote_addr, req.remote_port);
       stream_started();  // an answer that was no stream (an error), or one never started
       ctx.active = false;
       ctx.key.clear();
@@ -566,7 +577,9 @@ void HttpServer::run() {
       probes_->listen_after_bind();
       probes_done_.store(true);
     });
+  if (read_deadline_ && port_ >= 0) read_deadline_->start(port_);
   if (!api_.shutting_down() && port_ >= 0) http_->listen_after_bind();
+  if (read_deadline_) read_deadline_->stop();
   if (probes_) {
     // httplib ignores stop() until its listen loop runs: wait for it to start (or to have failed).
     while (!probes_->is_running() && !probes_done_.load())
@@ -659,23 +672,10 @@ void HttpServer::close_idle_connections() {
     if (const int port = busy_ports_[i].load(); port > 0) busy.insert(port);
   // The process's sockets connected from this server's port: its connections. httplib keeps no
   // list of them, the kernel does.
-  DIR* dir = opendir("/proc/self/fd");
-  if (!dir) return;
-  while (const dirent* entry = readdir(dir)) {
-    if (entry->d_name[0] == '.') continue;
-    const int fd = std::atoi(entry->d_name);
-    int type = 0;
-    socklen_t type_length = sizeof type;
-    sockaddr_storage local{}, peer{};
-    socklen_t local_length = sizeof local, peer_length = sizeof peer;
-    if (::getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &type_length) != 0 || type != SOCK_STREAM) continue;
-    if (::getsockname(fd, reinterpret_cast<sockaddr*>(&local), &local_length) != 0 || port_of(local) != port_)
-      continue;
-    if (::getpeername(fd, reinterpret_cast<sockaddr*>(&peer), &peer_length) != 0) continue;
+  for_each_connection(port_, [&busy](int fd, const sockaddr_storage& peer) {
     // Its thread waits for the next request: it reads the end of the stream and closes.
     if (busy.count(port_of(peer)) == 0) ::shutdown(fd, SHUT_RDWR);
-  }
-  closedir(dir);
+  });
 }
 
 void keep_large_buffers_for_reuse(unsigned compute_threads) {

@@ -15,6 +15,10 @@
 // route's scope (401, 403 from pre-routing, access.hpp), and --rate-limit takes each request's
 // points from its key's token bucket (429 with Retry-After). reload() (SIGHUP) reads the keys and
 // the TLS files again.
+// Isolation (docs/operations.md, "Fair scheduling and cancellation"): the key's name is the tenant
+// of the numerical pool's fair queue; a batch answered whole is cancelled when its client closes
+// the connection (ConnectionWatch); a request that does not arrive whole within --read-timeout-s
+// of its first byte has its connection closed (ReadDeadline).
 #pragma once
 #include <atomic>
 #include <functional>
@@ -28,6 +32,7 @@
 #include "batch/thread_pool.hpp"
 #include "cache/geometry_cache.hpp"
 #include "config.hpp"
+#include "connections.hpp"
 #include "geometry_registry.hpp"
 #include "metrics.hpp"
 #include "tls.hpp"
@@ -106,6 +111,7 @@ class HttpServer {
   std::mutex stop_mutex_;
   bool stopped_ = false;
   std::atomic<int> streams_starting_{0};            // streamed answers admitted and not yet started
+  std::unique_ptr<ReadDeadline> read_deadline_;     // nullptr with --read-timeout-s 0
   std::unique_ptr<std::atomic<int>[]> busy_ports_;  // config_.connection_threads slots
   std::atomic<unsigned> slots_taken_{0};
 };

@@ -71,6 +71,11 @@ void Metrics::add_projections(const std::array<std::uint64_t, kStatusCount>& by_
   points_.fetch_add(total, std::memory_order_relaxed);
 }
 
+void Metrics::add_cancelled(std::size_t dropped_points) {
+  batches_cancelled_.fetch_add(1, std::memory_order_relaxed);
+  points_cancelled_.fetch_add(dropped_points, std::memory_order_relaxed);
+}
+
 std::string Metrics::render(const Gauges& g) const {
   std::string out;
   out.reserve(8192);
@@ -118,6 +123,17 @@ std::string Metrics::render(const Gauges& g) const {
     line(out, "footpoint_projections_total",
          std::string("status=\"") + to_string(static_cast<Status>(s)) + "\"",
          static_cast<double>(projections_[s].load(std::memory_order_relaxed)));
+  header(out, "footpoint_batches_cancelled_total", "counter",
+         "Batches dropped because their client closed the connection.");
+  line(out, "footpoint_batches_cancelled_total", "",
+       static_cast<double>(batches_cancelled_.load(std::memory_order_relaxed)));
+  header(out, "footpoint_points_cancelled_total", "counter", "Points of those batches never started.");
+  line(out, "footpoint_points_cancelled_total", "",
+       static_cast<double>(points_cancelled_.load(std::memory_order_relaxed)));
+  header(out, "footpoint_read_timeouts_total", "counter",
+         "Connections closed because a request did not arrive within --read-timeout-s.");
+  line(out, "footpoint_read_timeouts_total", "",
+       static_cast<double>(read_timeouts_.load(std::memory_order_relaxed)));
   header(out, "footpoint_geometry_compile_seconds", "histogram", "Time to compile a new geometry.");
   histogram_lines(out, "footpoint_geometry_compile_seconds", "", compile_, kCompileBuckets);
   header(out, "footpoint_geometry_compilations_total", "counter", "Geometry compilations, by result.");
@@ -138,7 +154,7 @@ std::string Metrics::render(const Gauges& g) const {
   line(out, "footpoint_geometry_cache_evictions_total", "", static_cast<double>(g.cache.evictions));
   header(out, "footpoint_worker_threads", "gauge", "Threads of the numerical pool.");
   line(out, "footpoint_worker_threads", "", g.worker_threads);
-  header(out, "footpoint_worker_queue_tasks", "gauge", "Chunks of points waiting for a worker.");
+  header(out, "footpoint_worker_queue_tasks", "gauge", "Jobs (requests' points) waiting for a worker.");
   line(out, "footpoint_worker_queue_tasks", "", static_cast<double>(g.worker_queue));
   header(out, "footpoint_shutting_down", "gauge", "1 while the server drains before exiting.");
   line(out, "footpoint_shutting_down", "", g.shutting_down ? 1.0 : 0.0);

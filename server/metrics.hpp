@@ -8,6 +8,8 @@
 //   footpoint_points_in_flight                               gauge
 //   footpoint_points_projected_total                         counter
 //   footpoint_projections_total{status}                      counter (solver statuses)
+//   footpoint_batches_cancelled_total, footpoint_points_cancelled_total   counters (client gone)
+//   footpoint_read_timeouts_total                            counter (--read-timeout-s)
 //   footpoint_geometry_compile_seconds                       histogram
 //   footpoint_geometry_cache_{entries,bytes}                 gauges
 //   footpoint_geometry_cache_{hits,misses,evictions}_total   counters
@@ -43,6 +45,10 @@ class Metrics {
   // The statuses of the points of one request (indexed by Status).
   static constexpr int kStatusCount = static_cast<int>(Status::deadline_exceeded) + 1;
   void add_projections(const std::array<std::uint64_t, kStatusCount>& by_status);
+  // One batch dropped because its client closed the connection, and its points never started.
+  void add_cancelled(std::size_t dropped_points);
+  // One connection closed because its request did not arrive within --read-timeout-s.
+  void add_read_timeout() { read_timeouts_.fetch_add(1, std::memory_order_relaxed); }
 
   struct Gauges {
     GeometryCacheStats cache;
@@ -63,8 +69,8 @@ class Metrics {
 
  private:
   // Statuses counted by name; anything else lands in "other".
-  static constexpr std::array<int, 19> kHttpStatuses{200, 201, 204, 400, 401, 403, 404, 405, 408, 411,
-                                                     413, 414, 415, 416, 422, 429, 500, 503, 0};
+  static constexpr std::array<int, 20> kHttpStatuses{200, 201, 204, 400, 401, 403, 404, 405, 408, 411,
+                                                     413, 414, 415, 416, 422, 429, 499, 500, 503, 0};
   static int status_index(int status);
 
   std::array<std::array<std::atomic<std::uint64_t>, kHttpStatuses.size()>, kRouteCount> requests_{};
@@ -72,6 +78,7 @@ class Metrics {
   Histogram<kCompileBuckets.size()> compile_{};
   std::array<std::atomic<std::uint64_t>, kStatusCount> projections_{};
   std::atomic<std::uint64_t> points_{0};
+  std::atomic<std::uint64_t> batches_cancelled_{0}, points_cancelled_{0}, read_timeouts_{0};
   // Requests by key name and status: as many names as the keys file holds.
   mutable std::mutex keys_mutex_;
   std::map<std::pair<std::string, int>, std::uint64_t> by_key_;

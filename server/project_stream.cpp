@@ -53,6 +53,7 @@ bool run_stream(const ProjectStream& stream, const std::function<bool(std::strin
       batch.initials.assign(request.initials.begin() + static_cast<std::ptrdiff_t>(begin),
                             request.initials.begin() + static_cast<std::ptrdiff_t>(end));
     batch.deadline = stream.deadline;
+    batch.tenant = stream.tenant;
     const std::vector<ProjectionResult> results = project_batch(*stream.pool, batch);
 
     out.clear();

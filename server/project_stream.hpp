@@ -9,6 +9,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <string>
 #include <string_view>
 
 #include "batch/thread_pool.hpp"
@@ -34,6 +35,7 @@ struct ProjectStream {
   BinaryLayout layout;  // binary
   std::chrono::steady_clock::time_point deadline;
   ThreadPool* pool = nullptr;
+  std::string tenant;  // the pool's fair queue (BatchRequest::tenant): the API key's name
   Metrics* metrics = nullptr;
 };
 

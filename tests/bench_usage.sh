@@ -6,7 +6,7 @@ set -u
 dir=$1
 failed=0
 fail() { echo "FAIL: $*"; failed=1; }
-for bench in surface_bench json_bench closure_bench formula_bench curve_bench; do
+for bench in surface_bench json_bench closure_bench formula_bench curve_bench grain_bench; do
   out=$("$dir/$bench" --help 2>&1); code=$?
   [ "$code" -eq 0 ] || fail "$bench --help exits $code"
   case $out in "usage: $bench"*) ;; *) fail "$bench --help prints: $out" ;; esac
@@ -14,7 +14,8 @@ for bench in surface_bench json_bench closure_bench formula_bench curve_bench; d
 done
 for args in "surface_bench abc" "surface_bench 0" "surface_bench 10 -3" "surface_bench --reps x --peer" \
             "surface_bench --sections 9" "surface_bench --bogus" "json_bench 12x" "json_bench 0" \
-            "closure_bench 5" "formula_bench --fast" "curve_bench 100"; do
+            "closure_bench 5" "formula_bench --fast" "curve_bench 100" "grain_bench 0" "grain_bench 3 x" \
+            "grain_bench 1 2 3"; do
   read -r bench rest <<<"$args"
   # shellcheck disable=SC2086 # the arguments split as written
   err=$("$dir/$bench" $rest 2>&1 >/dev/null); code=$?

@@ -1,5 +1,7 @@
-// The core's thread pool: every index runs exactly once, chunks honour their bounds, exceptions
-// reach the caller, and concurrent callers share the pool safely.
+// The core's thread pool: every index runs exactly once, grains honour their bounds, exceptions
+// reach the caller, concurrent callers share the pool safely, grains are sized by time, tenants
+// take turns, and a cancelled job drops its grains not started. The scheduling tests count grains
+// and items, never wall time.
 #include <doctest/doctest.h>
 
 #include <atomic>
@@ -14,6 +16,7 @@
 
 #include "batch/thread_pool.hpp"
 
+using footpoint::JobOptions;
 using footpoint::ThreadPool;
 
 TEST_CASE("parallel_for visits every index once, in chunks of at most the given size") {
@@ -38,8 +41,8 @@ TEST_CASE("parallel_for visits every index once, in chunks of at most the given 
 TEST_CASE("an exception in a chunk is rethrown to the caller and the pool keeps working") {
   ThreadPool pool(2);
   CHECK_THROWS_AS(pool.parallel_for(100, 10,
-                                    [](std::size_t b, std::size_t) {
-                                      if (b == 50) throw std::runtime_error("chunk failed");
+                                    [](std::size_t b, std::size_t e) {
+                                      if (b <= 50 && 50 < e) throw std::runtime_error("chunk failed");
                                     }),
                   std::runtime_error);
   std::atomic<int> count{0};
@@ -79,6 +82,124 @@ TEST_CASE("a small job is not stuck behind a large one: jobs share the workers r
   big.join();
   // With first-in-first-out scheduling every chunk of the big job would run before the small one.
   CHECK(big_chunks_after_small > 150);
+}
+
+namespace {
+
+// Waits (politely) until `condition` holds.
+template <class F>
+void wait_until(F condition) {
+  while (!condition()) std::this_thread::sleep_for(std::chrono::microseconds(50));
+}
+
+}  // namespace
+
+TEST_CASE("a single point waits for one grain of each tenant ahead, not for a tenant's queued jobs") {
+  // One worker. Tenant "flood" has six large jobs queued (one grain each in turn, each grain one
+  // item); tenant "other" then submits one item. The worker is held inside flood's first grain
+  // until both are queued, so the order is fixed: the rotation is [flood, other] and other's item
+  // runs after at most two of flood's grains (the held one and one more). Queued per job instead
+  // of per tenant, it would wait for a grain of each of flood's six jobs.
+  ThreadPool pool(1);
+  std::atomic<bool> release{false};
+  std::atomic<int> flood_grains{0};
+  std::vector<std::thread> flood;
+  for (int j = 0; j < 6; ++j)
+    flood.emplace_back([&] {
+      JobOptions options;
+      options.tenant = "flood";
+      pool.parallel_for(
+          200, 1,
+          [&](std::size_t, std::size_t) {
+            wait_until([&] { return release.load(); });
+            ++flood_grains;
+          },
+          options);
+    });
+  // the worker holds one flood grain and all six jobs are queued (the held one's job is put back)
+  wait_until([&] { return pool.queued() == 6; });
+  std::atomic<int> flood_grains_before_other{-1};
+  std::thread other([&] {
+    JobOptions options;
+    options.tenant = "other";
+    pool.parallel_for(
+        1, 1, [&](std::size_t, std::size_t) { flood_grains_before_other = flood_grains.load(); }, options);
+  });
+  wait_until([&] { return pool.queued() == 7; });
+  release = true;
+  other.join();
+  for (auto& t : flood) t.join();
+  CHECK(flood_grains_before_other.load() >= 1);
+  CHECK(flood_grains_before_other.load() <= 2);
+  CHECK(flood_grains == 6 * 200);
+}
+
+TEST_CASE("grains are sized by time: a single point does not wait for a batch's large grains") {
+  // One worker, grains aiming at 1 ms; the batch lets the pool take up to 50,000 items at once.
+  // Each item sleeps at least 20 us, so a grain sized by time holds at most 1 ms / 20 us = 50 items
+  // and the single waits for the rest of the grain in progress and one more: fewer than a few
+  // hundred of the batch's items. With grains of the caller's maximum it would wait for tens of
+  // thousands. The batch is then cancelled, which also shows that its grains not started are dropped.
+  ThreadPool pool(1, std::chrono::milliseconds(1));
+  std::atomic<std::size_t> items{0};
+  std::atomic<bool> stop{false};
+  std::size_t ran = 0;
+  std::thread batch([&] {
+    JobOptions options;
+    options.cancelled = [&] { return stop.load(); };
+    ran = pool.parallel_for(
+        100000, 50000,
+        [&](std::size_t b, std::size_t e) {
+          for (std::size_t i = b; i < e; ++i) {
+            std::this_thread::sleep_for(std::chrono::microseconds(20));
+            ++items;
+          }
+        },
+        options);
+  });
+  wait_until([&] { return items.load() > 0 && pool.queued() == 1; });
+  const std::size_t items_at_submission = items.load();
+  std::size_t items_at_single = 0;
+  pool.parallel_for(1, 1, [&](std::size_t, std::size_t) { items_at_single = items.load(); });
+  stop = true;
+  batch.join();
+  INFO("batch items run while the single waited: " << items_at_single - items_at_submission);
+  CHECK(items_at_single - items_at_submission <= 200);
+  CHECK(ran < 100000);
+  CHECK(ran == items.load());
+}
+
+TEST_CASE("a cancelled job drops the grains not started; the pool keeps working") {
+  for (unsigned threads : {1u, 2u}) {
+    ThreadPool pool(threads);
+    std::vector<std::atomic<int>> seen(5000);
+    std::atomic<bool> cancel{false};
+    std::atomic<int> grains_after_cancel{0};
+    JobOptions options;
+    options.cancelled = [&] { return cancel.load(); };
+    const std::size_t ran = pool.parallel_for(
+        seen.size(), 1,
+        [&](std::size_t b, std::size_t) {
+          if (cancel) ++grains_after_cancel;
+          seen[b]++;
+          if (b == 100) cancel = true;
+        },
+        options);
+    std::size_t visited = 0;
+    for (auto& s : seen) {
+      CHECK(s <= 1);
+      visited += static_cast<std::size_t>(s.load());
+    }
+    CHECK(ran == visited);
+    CHECK(ran < seen.size());
+    // grains claimed before the cancellation was seen: at most one per other worker
+    CHECK(grains_after_cancel <= static_cast<int>(threads) - 1);
+    CHECK(pool.queued() == 0);
+    std::atomic<int> count{0};
+    CHECK(pool.parallel_for(100, 10,
+                            [&](std::size_t b, std::size_t e) { count += static_cast<int>(e - b); }) == 100);
+    CHECK(count == 100);
+  }
 }
 
 namespace {

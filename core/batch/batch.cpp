@@ -15,10 +15,13 @@ std::vector<ProjectionResult> project_batch(ThreadPool& pool, const BatchRequest
   std::vector<ProjectionResult> results(request.count);
   const CompiledGeometry& geometry = request.method.geometry();
   const int dim = geometry.point_dim();
-  // Chunks small enough to balance the pool and to check the deadline often, large enough that
-  // the per-task overhead stays negligible next to the solves.
-  const std::size_t chunk = std::clamp<std::size_t>(request.count / (8 * pool.size() + 1), 16, 1024);
-  pool.parallel_for(request.count, chunk, [&](std::size_t begin, std::size_t end) {
+  // The pool sizes grains by time (batch/thread_pool.hpp); this caps them so that a batch still
+  // splits into several grains per worker (balance at its end) when its points are cheap.
+  const std::size_t max_grain = std::clamp<std::size_t>(request.count / (8 * pool.size() + 1), 16, 1024);
+  JobOptions job;
+  job.tenant = request.tenant;
+  job.cancelled = request.cancelled;
+  const auto project_grain = [&](std::size_t begin, std::size_t end) {
     Options options = request.options;
     bool late = false;
     for (std::size_t i = begin; i < end; ++i) {
@@ -36,7 +39,9 @@ std::vector<ProjectionResult> project_batch(ThreadPool& pool, const BatchRequest
       if (!request.initials.empty()) options.initial = request.initials[i];
       r = request.method.project(request.points + i * dim, options);
     }
-  });
+  };
+  const std::size_t done = pool.parallel_for(request.count, max_grain, project_grain, job);
+  if (done < request.count) throw BatchCancelled(done, request.count - done);
   return results;
 }
 
