@@ -12,10 +12,15 @@ signed_distance, diagnostics.status). Printed per format and count, medians of t
 points/s (wall time of the whole request, from the first byte sent to the last received), answer
 bytes per point, request bytes per point, the time to the first result (first line or record),
 and the server's peak resident memory above its idle size during the request (VmHWM after
-/proc/PID/clear_refs reset it to the current size before the request).
+/proc/PID/clear_refs reset it to the current size before the request); then the most any run
+reached above the server's size before its first request (memory freed by a request is kept for
+the next, so that a run after a larger one may need no more: run one format and count at a time,
+as below, for a stream's whole footprint).
 
     bench/inspection_bench.py --server build/footpoint-server [--counts 100000 1000000] [--runs 3]
         [--formats json ndjson binary duplex]
+    for n in 1000000 3000000 10000000; do
+        bench/inspection_bench.py --server build/footpoint-server --counts $n --runs 3 --formats duplex; done
 """
 import array
 import argparse
@@ -100,7 +105,8 @@ def read_answer(fmt, response, start, pid, idle):
         size += len(piece)
     elapsed = time.perf_counter() - start
     peak = status_kib(pid, "VmHWM")
-    return {"seconds": elapsed, "first": first_at, "bytes": size, "peak_mib": (peak - idle) / 1024.0}
+    return {"seconds": elapsed, "first": first_at, "bytes": size, "peak_mib": (peak - idle) / 1024.0,
+            "peak_kib": peak}
 
 
 def run_duplex(port, pid, geometry_id, body):
@@ -167,7 +173,9 @@ def main():
         c.request("POST", "/v1/geometries", body=json.dumps(TORUS), headers={"Content-Type": "application/json"})
         geometry_id = json.loads(c.getresponse().read())["geometry_id"]
         c.close()
-        print("format  points   points/s  answer B/pt  request B/pt  first result ms  peak RSS above idle MiB")
+        start_kib = status_kib(server.pid, "VmRSS")
+        print("format  points   points/s  answer B/pt  request B/pt  first result ms  peak RSS above idle MiB"
+              "  most above start MiB")
         for n in args.counts:
             bodies = {}
             if "json" in args.formats or "ndjson" in args.formats:
@@ -181,11 +189,12 @@ def main():
                                      else run(port, server.pid, geometry_id, fmt, bodies[fmt]))
             for fmt in args.formats:
                 r = runs[fmt]
-                print("%-7s %-8d %9.0f  %11.1f  %12.1f  %15.1f  %8.1f   (runs: %s s)" % (
+                print("%-7s %-8d %9.0f  %11.1f  %12.1f  %15.1f  %8.1f  %19.1f   (runs: %s s; %s MiB)" % (
                     fmt, n, n / median([x["seconds"] for x in r]), median([x["bytes"] for x in r]) / n,
                     len(bodies[fmt]) / n, 1e3 * median([x["first"] for x in r]),
-                    median([x["peak_mib"] for x in r]),
-                    ", ".join("%.2f" % x["seconds"] for x in r)), flush=True)
+                    median([x["peak_mib"] for x in r]), (max(x["peak_kib"] for x in r) - start_kib) / 1024.0,
+                    ", ".join("%.2f" % x["seconds"] for x in r), ", ".join("%.1f" % x["peak_mib"] for x in r)),
+                      flush=True)
     finally:
         server.terminate()
         server.wait(timeout=60)

@@ -500,9 +500,10 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
       const std::size_t record = binary_record_bytes(request, geometry->point_dim());
       stream->body = std::make_shared<StreamedBody>(*format.source, record, kStreamWindow * record,
                                                     kStreamAhead * kStreamWindow * record);
-      const std::size_t first = stream->body->wait_first();
+      std::string raw;
+      const std::size_t first = stream->body->wait_first(raw);
       std::vector<double> points(first * static_cast<std::size_t>(geometry->point_dim()));
-      decode_points(request, stream->body->held().data(), first, points.data());
+      decode_points(request, raw.data(), first, points.data());
       check_finite(request, 0, points.data(), first);
       if (first < std::min(request.count, kStreamWindow))
         throw body_incomplete(stream->body->bytes_read(), format.source->length);

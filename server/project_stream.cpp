@@ -64,12 +64,16 @@ bool run_stream(const ProjectStream& stream, const std::function<bool(std::strin
       if (body) body->stop();
     }
   } stop_reader{body};
-  // the body's reader knows when the answer is being written (streamed_body.hpp)
+  // the body's reader knows when the answer is being written, in pieces (streamed_body.hpp)
   auto send = [&](std::string_view piece) {
-    if (body) body->writing(true);
-    const bool sent = write(piece);
-    if (body) body->writing(false);
-    return sent;
+    if (!body) return write(piece);
+    for (std::size_t at = 0; at < piece.size(); at += StreamedBody::kWritePiece) {
+      body->writing(true);
+      const bool sent = write(piece.substr(at, StreamedBody::kWritePiece));
+      body->writing(false);
+      if (!sent) return false;
+    }
+    return true;
   };
   std::vector<double> window_points;
   std::string raw;
