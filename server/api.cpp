@@ -462,9 +462,23 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
   // A streamed answer holds one window of results at a time: --max-points bounds the batches held
   // whole, the body's size (--max-body-bytes) a stream.
   const std::size_t max_points = streamed ? std::numeric_limits<std::size_t>::max() : config_.max_points;
+  // A body still to be read is read whole unless it is a stream's binary points.
+  std::string whole_body;
+  if (format.source && !(binary_in && streamed)) {
+    whole_body.reserve(format.source->length);
+    if (!format.source->read([&](const char* data, std::size_t size) {
+          whole_body.append(data, size);
+          return true;
+        }))
+      throw body_incomplete(whole_body.size(), format.source->length);
+    body = whole_body;
+  }
+  const bool read_as_sent = format.source && binary_in && streamed;
   ProjectRequest request =
-      binary_in ? read_binary_project_request(body, query, geometry->point_dim(), max_points, streamed)
-                : read_project_request(body, inline_geometry, max_points);
+      read_as_sent
+          ? read_binary_project_options(query, geometry->point_dim(), format.source->length, max_points)
+      : binary_in ? read_binary_project_request(body, query, geometry->point_dim(), max_points)
+                  : read_project_request(body, inline_geometry, max_points);
   if (inline_geometry) geometry = compile(*request.geometry, "geometry.").geometry;
   const GeometryMethod method = check_project_request(request, *geometry);
   if (caller.charge) caller.charge(request.count);
@@ -480,6 +494,20 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
     if (answer == AnswerFormat::binary)
       stream->layout =
           binary_layout(request.fields, request.fields_given, geometry->point_dim(), geometry->num_params());
+    if (read_as_sent) {
+      // the first window is read and checked before the answer starts: what is wrong there is
+      // answered with its status (project_stream.hpp tells what a later fault answers)
+      const std::size_t record = binary_record_bytes(request, geometry->point_dim());
+      stream->body = std::make_shared<StreamedBody>(*format.source, record, kStreamWindow * record,
+                                                    kStreamAhead * kStreamWindow * record);
+      std::string raw;
+      const std::size_t first = stream->body->wait_first(raw);
+      std::vector<double> points(first * static_cast<std::size_t>(geometry->point_dim()));
+      decode_points(request, raw.data(), first, points.data());
+      check_finite(request, 0, points.data(), first);
+      if (first < std::min(request.count, kStreamWindow))
+        throw body_incomplete(stream->body->bytes_read(), format.source->length);
+    }
     stream->request = std::move(request);
     stream->deadline = Clock::now() + config_.deadline;
     stream->pool = &pool_;
@@ -499,6 +527,7 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
     } else {
       r.content_type = "application/x-ndjson";
     }
+    if (stream->body) r.release = [body = stream->body] { body->stop(); };
     r.stream = [stream, reserved, counted](const ApiResponse::Write& write) {
       try {
         return run_stream(*stream, write);

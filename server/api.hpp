@@ -19,6 +19,7 @@
 #include "geometry_registry.hpp"
 #include "metrics.hpp"
 #include "route.hpp"
+#include "streamed_body.hpp"
 
 namespace footpoint::server {
 
@@ -26,6 +27,9 @@ namespace footpoint::server {
 struct RequestFormat {
   std::string content_type;  // the body's media type, lower case, no parameters ("application/json")
   std::string accept;        // the Accept header as sent ("" when none)
+  // The body not read yet (then `body` is empty): a streamed projection of binary points reads it
+  // as it answers; other requests read it whole first. nullptr: `body` is the whole body.
+  const BodySource* source = nullptr;
 };
 
 struct ApiResponse {
@@ -43,6 +47,9 @@ struct ApiResponse {
   // then closes the connection, so that the client sees the answer cut).
   using Write = std::function<bool(std::string_view)>;
   std::function<bool(const Write&)> stream;
+  // Stops what the answer keeps running beside `stream` (the reader of a body read as it is
+  // answered). The HTTP layer calls it once the response is done, whether or not the stream ran.
+  std::function<void()> release;
 };
 
 // Who is calling, for what the Api decides once a body is read. Empty: no keys, no limit.

@@ -60,4 +60,10 @@ std::string with_article(std::string_view noun) {
   return (vowel ? "an " : "a ") + std::string(noun);
 }
 
+ApiError body_incomplete(std::size_t got, std::size_t length) {
+  return ApiError(
+      400, "body_incomplete",
+      "the body ended after " + std::to_string(got) + " of its " + std::to_string(length) + " bytes", "body");
+}
+
 }  // namespace footpoint::server

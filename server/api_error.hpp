@@ -47,4 +47,8 @@ std::string with_article(std::string_view noun);
 // The JSON body of an error response.
 std::string error_body(const ApiError& error);
 
+// 400 body_incomplete: a body that ended after `got` of its Content-Length `length` bytes (the
+// client closed, or sent nothing for the read timeout).
+ApiError body_incomplete(std::size_t got, std::size_t length);
+
 }  // namespace footpoint::server

@@ -1,19 +1,24 @@
 #include "http_server.hpp"
 
 #include <malloc.h>
+#include <netdb.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
+#include <sys/uio.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include <httplib.h>
 
@@ -39,6 +44,9 @@ struct RequestContext {
   bool admitted = false;        // already checked when the client asked "Expect: 100-continue"
   std::string key;              // the API key's name, "" without keys or before authentication
   bool stream_pending = false;  // a streamed answer admitted and not yet started (streams_starting_)
+  // the body's bytes read so far when it is read as it is answered (else req.body holds it)
+  std::shared_ptr<std::atomic<std::size_t>> body_read;
+  std::function<void()> release;  // ApiResponse::release of the answer
 };
 thread_local RequestContext t_request;
 
@@ -48,6 +56,54 @@ struct ConnectionSlot {
   std::atomic<int>* port = nullptr;
 };
 thread_local ConnectionSlot t_slot;
+
+// The socket of the connection a request came on (httplib does not hand it to handlers), found by
+// both ends' addresses as httplib wrote them (numeric host); -1 when there is none.
+int connection_socket(const httplib::Request& req) {
+  int found = -1;
+  for_each_connection(req.local_port, [&](int fd, const sockaddr_storage& peer) {
+    if (found < 0 && port_of(peer) == req.remote_port && host_of(peer) == req.remote_addr) found = fd;
+  });
+  return found;
+}
+
+// Sends `piece` on fd as one chunk of a chunked HTTP/1.1 body (RFC 9112 section 7.1), waiting up
+// to timeout_s for room each time the socket is full; false when the peer is gone or the time
+// passed.
+bool send_chunk(int fd, std::string_view piece, int timeout_s) {
+  char size_line[24];
+  const int n = std::snprintf(size_line, sizeof size_line, "%zx\r\n", piece.size());
+  char crlf[] = "\r\n";
+  iovec parts[3] = {
+      {size_line, static_cast<std::size_t>(n)}, {const_cast<char*>(piece.data()), piece.size()}, {crlf, 2}};
+  iovec* part = parts;
+  std::size_t left = 3;
+  while (left > 0) {
+    pollfd p{fd, POLLOUT, 0};
+    const int ready = ::poll(&p, 1, timeout_s * 1000);
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0 || (p.revents & (POLLERR | POLLHUP | POLLNVAL))) return false;
+    msghdr message{};
+    message.msg_iov = part;
+    message.msg_iovlen = left;
+    const ssize_t sent = ::sendmsg(fd, &message, MSG_NOSIGNAL | MSG_DONTWAIT);
+    if (sent < 0) {
+      if (errno == EINTR || errno == EAGAIN || errno == EWOULDBLOCK) continue;
+      return false;
+    }
+    auto done = static_cast<std::size_t>(sent);
+    while (left > 0 && done >= part->iov_len) {
+      done -= part->iov_len;
+      ++part;
+      --left;
+    }
+    if (left > 0) {
+      part->iov_base = static_cast<char*>(part->iov_base) + done;
+      part->iov_len -= done;
+    }
+  }
+  return true;
+}
 
 std::string lower(std::string s) {
   for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -71,11 +127,13 @@ bool parse_length(const std::string& text, std::size_t& length) {
   return true;
 }
 
-void set_response(httplib::Response& res, ApiResponse&& r) {
+// `socket` >= 0: a stream's pieces are sent on it directly (see the POST handler).
+void set_response(httplib::Response& res, ApiResponse&& r, int socket = -1, int timeout_s = 0) {
   t_request.error_code = std::move(r.error_code);
   res.status = r.status;
   res.body = std::move(r.body);
-  if (!r.content_type.empty()) res.set_header("Content-Type", r.content_type);
+  // (a stream's type is set with its provider, which would add a second header)
+  if (!r.content_type.empty() && !r.stream) res.set_header("Content-Type", r.content_type);
   if (!r.location.empty()) res.set_header("Location", r.location);
   if (r.retry_after_s > 0) res.set_header("Retry-After", std::to_string(r.retry_after_s));
   for (const auto& [name, value] : r.headers) res.set_header(name, value);
@@ -83,14 +141,16 @@ void set_response(httplib::Response& res, ApiResponse&& r) {
     // Sent with chunked transfer as it is produced; the provider is called once (the stream
     // loops over its windows itself) and must not write an empty piece: httplib takes one for
     // the end of the stream.
-    res.set_chunked_content_provider(
-        r.content_type, [stream = std::move(r.stream)](std::size_t, httplib::DataSink& sink) {
-          const bool whole = stream([&sink](std::string_view piece) {
-            return piece.empty() || (sink.is_writable() && sink.write(piece.data(), piece.size()));
-          });
-          if (whole) sink.done();
-          return whole;
-        });
+    res.set_chunked_content_provider(r.content_type, [stream = std::move(r.stream), socket, timeout_s](
+                                                         std::size_t, httplib::DataSink& sink) {
+      const bool whole = stream([&sink, socket, timeout_s](std::string_view piece) {
+        if (piece.empty()) return true;
+        if (socket >= 0) return send_chunk(socket, piece, timeout_s);
+        return sink.is_writable() && sink.write(piece.data(), piece.size());
+      });
+      if (whole) sink.done();
+      return whole;
+    });
   }
 }
 
@@ -431,7 +491,10 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     return admit(req, res);
   });
 
-  auto handle = [this](const httplib::Request& req, httplib::Response& res) {
+  // `source`: the body, when it is read as it is answered (req.body is empty then), and `socket`
+  // the connection's, on which the answer is then written.
+  auto answer = [this](const httplib::Request& req, httplib::Response& res, const BodySource* source,
+                       int socket) {
     if (read_deadline_) read_deadline_->handling(req.remote_addr, req.remote_port);
     const RouteMatch match = match_route(req.method, req.path);
     const auto question = req.target.find('?');
@@ -462,20 +525,71 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
                         ? handler_(match, req.method, req.body, query, caller)
                         : api_.handle(match, req.method, req.body, query, caller,
                                       RequestFormat{media_type(req.get_header_value("Content-Type")),
-                                                    req.get_header_value("Accept")});
+                                                    req.get_header_value("Accept"), source});
     t_request.points = r.points;
+    t_request.release = std::move(r.release);
+    // an answer that left part of the body unread is the connection's last: the rest cannot be
+    // taken for the next request
+    if (source && !r.stream && t_request.body_read->load() < source->length)
+      res.set_header("Connection", "close");
     if (r.stream)
       r.stream = [this, stream = std::move(r.stream)](const ApiResponse::Write& write) {
         stream_started();
         return stream(write);
       };
-    set_response(res, std::move(r));
+    set_response(res, std::move(r), socket, config_.io_timeout_s);
     // A request answered while the server shuts down is the connection's last.
     if (api_.shutting_down()) res.set_header("Connection", "close");
   };
+  auto handle = [answer](const httplib::Request& req, httplib::Response& res) {
+    answer(req, res, nullptr, -1);
+  };
   http.Get(".*", handle);
-  http.Post(".*", handle);
+  http.Post(".*", handle);  // without a body
   http.Delete(".*", handle);
+  // A POST with a body. The binary points of a streamed projection are read as they are answered
+  // (streamed_body.hpp), so that the memory a stream holds does not grow with its points; other
+  // bodies are read whole first. One thread reads the body through httplib while the connection's
+  // thread writes the answer; that one writes on the socket itself: httplib checks before each
+  // write that the peer is alive by peeking at the socket when it is readable, a peek that blocks
+  // when the reading thread took the bytes in between. Over TLS the points are read whole: an
+  // OpenSSL connection cannot be read by one thread while another writes it.
+  http.Post(".*", [this, answer](const httplib::Request& req, httplib::Response& res,
+                                 const httplib::ContentReader& content_reader) {
+    const RouteMatch match = match_route(req.method, req.path);
+    const bool as_sent = !custom_handler_ && !tls_ &&
+                         (match.route == Route::geometry_project || match.route == Route::project) &&
+                         media_type(req.get_header_value("Content-Type")) == "application/octet-stream" &&
+                         answer_format(req.get_header_value("Accept")) != AnswerFormat::json;
+    std::size_t length = 0;
+    parse_length(req.get_header_value("Content-Length"), length);  // checked by pre-routing
+    const int socket = as_sent ? connection_socket(req) : -1;
+    if (socket < 0) {
+      auto& mutable_req = const_cast<httplib::Request&>(req);
+      mutable_req.body.reserve(length);
+      // false: the body ended short, and httplib set the status (400)
+      if (!content_reader([&mutable_req](const char* data, std::size_t size) {
+            mutable_req.body.append(data, size);
+            return true;
+          })) {
+        res.set_header("Connection", "close");
+        return;
+      }
+      answer(req, res, nullptr, -1);
+      return;
+    }
+    auto read = std::make_shared<std::atomic<std::size_t>>(0);
+    t_request.body_read = read;
+    BodySource source;
+    source.length = length;
+    source.read = [content_reader, read](const BodySource::Receiver& receive) {
+      return content_reader([&](const char* data, std::size_t size) {
+        read->fetch_add(size);
+        return receive(data, size);
+      });
+    };
+    answer(req, res, &source, socket);
+  });
 
   // Called for every status >= 400. Errors httplib answers itself (malformed request line or
   // headers, URI too long, a body that could not be read) get the same JSON error shape.
@@ -505,6 +619,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
   http.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
     try {
       RequestContext& ctx = t_request;
+      if (ctx.release) std::exchange(ctx.release, nullptr)();
       const double seconds =
           ctx.active ? std::chrono::duration<double>(Clock::now() - ctx.start).count() : 0.0;
       const Route route = ctx.active ? ctx.route : Route::none;
@@ -519,7 +634,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       record.status = res.status;
       record.code = ctx.error_code;
       record.points = ctx.active ? ctx.points : 0;
-      record.body_bytes = req.body.size();
+      record.body_bytes = ctx.active && ctx.body_read ? ctx.body_read->load() : req.body.size();
       record.duration_ms = seconds * 1e3;
       record.key = ctx.active ? std::string_view(ctx.key) : std::string_view();
       log_request(record);
@@ -528,6 +643,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       ctx.active = false;
       ctx.key.clear();
       ctx.error_code.clear();
+      ctx.body_read.reset();
       mark_idle();
     } catch (...) {
     }

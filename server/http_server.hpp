@@ -10,6 +10,8 @@
 // connections at once (httplib alone would wait out their keep-alive timeout), answer 503 to a request
 // that arrives on an open connection meanwhile, let in-flight requests finish (their responses say
 // Connection: close); run() returns when every connection is closed.
+// Bodies are read whole before the Api sees them, except the binary points of a streamed
+// projection over plain HTTP, read as they are answered (streamed_body.hpp).
 // Exposure (docs/security.md): with --tls-cert/--tls-key the server speaks HTTPS only (tls.hpp);
 // with --api-keys every API request needs `Authorization: Bearer SECRET` of a key with the
 // route's scope (401, 403 from pre-routing, access.hpp), and --rate-limit takes each request's

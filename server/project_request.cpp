@@ -324,8 +324,8 @@ struct QueryOptionValue {
 
 }  // namespace
 
-ProjectRequest read_binary_project_request(std::string_view body, std::string_view query, int point_dim,
-                                           std::size_t max_points, bool keep_raw) {
+ProjectRequest read_binary_project_options(std::string_view query, int point_dim, std::size_t body_bytes,
+                                           std::size_t max_points) {
   ProjectRequest request;
   bool fields_given = false;
   for (const auto& [name, value] : query_parameters(
@@ -356,15 +356,15 @@ ProjectRequest read_binary_project_request(std::string_view body, std::string_vi
       set_option(request, name, name, v);
     }
   }
-  const std::size_t record = static_cast<std::size_t>(point_dim) * (request.raw_float32 ? 4 : 8);
-  if (body.size() % record != 0)
+  const std::size_t record = binary_record_bytes(request, point_dim);
+  if (body_bytes % record != 0)
     throw ApiError(400, "wrong_shape",
-                   "the body has " + std::to_string(body.size()) + " bytes, not a whole number of " +
+                   "the body has " + std::to_string(body_bytes) + " bytes, not a whole number of " +
                        std::to_string(record) + "-byte points (" + std::to_string(point_dim) +
                        " little-endian " + (request.raw_float32 ? "float32" : "float64") +
-                       " numbers each); " + std::to_string(body.size() % record) + " bytes are left over",
+                       " numbers each); " + std::to_string(body_bytes % record) + " bytes are left over",
                    "body");
-  request.count = body.size() / record;
+  request.count = body_bytes / record;
   if (request.count == 0) throw ApiError(400, "missing_field", "the body holds no point", "body");
   if (request.count > max_points)
     throw ApiError(413, "too_many_points",
@@ -372,43 +372,29 @@ ProjectRequest read_binary_project_request(std::string_view body, std::string_vi
                        std::to_string(max_points) + " (--max-points): split the batch",
                    "body");
   request.point_length = point_dim;
-  request.raw_points = body;
-  // Every coordinate finite, as JSON can only write them: checked now, before a stream starts
-  // (a stream decodes its points again a window at a time).
-  constexpr std::size_t kBlock = 4096;
-  std::vector<double> block;
-  if (!keep_raw) request.coords.reserve(request.count * static_cast<std::size_t>(point_dim));
-  for (std::size_t begin = 0; begin < request.count; begin += kBlock) {
-    const std::size_t end = std::min(request.count, begin + kBlock);
-    double* out = nullptr;
-    if (keep_raw) {
-      block.resize((end - begin) * static_cast<std::size_t>(point_dim));
-      out = block.data();
-    } else {
-      request.coords.resize(end * static_cast<std::size_t>(point_dim));
-      out = request.coords.data() + begin * static_cast<std::size_t>(point_dim);
-    }
-    decode_points(request, begin, end, out);
-    for (std::size_t i = 0; i < (end - begin) * static_cast<std::size_t>(point_dim); ++i) {
-      if (std::isfinite(out[i])) continue;
-      const std::size_t point = begin + i / static_cast<std::size_t>(point_dim);
-      const std::string field = indexed("points", point) + "[" + std::to_string(i % point_dim) + "]";
-      throw ApiError(400, "number_out_of_range",
-                     field + " is " + (std::isnan(out[i]) ? "NaN" : "infinite") + " (body bytes from " +
-                         std::to_string((point * point_dim + i % point_dim) * (request.raw_float32 ? 4 : 8)) +
-                         "): every coordinate must be a finite number",
-                     field);
-    }
-  }
   settle_request(request, fields_given);
   return request;
 }
 
-void decode_points(const ProjectRequest& request, std::size_t begin, std::size_t end, double* out) {
+ProjectRequest read_binary_project_request(std::string_view body, std::string_view query, int point_dim,
+                                           std::size_t max_points) {
+  ProjectRequest request = read_binary_project_options(query, point_dim, body.size(), max_points);
+  request.coords.resize(request.count * static_cast<std::size_t>(point_dim));
+  decode_points(request, body.data(), request.count, request.coords.data());
+  // Every coordinate finite, as JSON can only write them.
+  check_finite(request, 0, request.coords.data(), request.count);
+  return request;
+}
+
+std::size_t binary_record_bytes(const ProjectRequest& request, int point_dim) {
+  return static_cast<std::size_t>(point_dim) * (request.raw_float32 ? 4 : 8);
+}
+
+void decode_points(const ProjectRequest& request, const char* raw, std::size_t points, double* out) {
   const std::size_t dim = static_cast<std::size_t>(request.point_length);
   const std::size_t width = request.raw_float32 ? 4 : 8;
-  const char* p = request.raw_points.data() + begin * dim * width;
-  for (std::size_t i = 0; i < (end - begin) * dim; ++i, p += width) {
+  const char* p = raw;
+  for (std::size_t i = 0; i < points * dim; ++i, p += width) {
     unsigned char bytes[8];
     std::memcpy(bytes, p, width);
     if constexpr (std::endian::native == std::endian::big) std::reverse(bytes, bytes + width);
@@ -420,6 +406,29 @@ void decode_points(const ProjectRequest& request, std::size_t begin, std::size_t
       std::memcpy(&out[i], bytes, 8);
     }
   }
+}
+
+std::size_t first_not_finite(const ProjectRequest& request, const double* coords, std::size_t points) {
+  const std::size_t dim = static_cast<std::size_t>(request.point_length);
+  for (std::size_t i = 0; i < points * dim; ++i)
+    if (!std::isfinite(coords[i])) return i / dim;
+  return points;
+}
+
+void check_finite(const ProjectRequest& request, std::size_t first_point, const double* coords,
+                  std::size_t points) {
+  const std::size_t dim = static_cast<std::size_t>(request.point_length);
+  const std::size_t bad = first_not_finite(request, coords, points);
+  if (bad == points) return;
+  std::size_t i = bad * dim;
+  while (std::isfinite(coords[i])) ++i;
+  const std::size_t point = first_point + bad, coordinate = i % dim;
+  const std::string field = indexed("points", point) + "[" + std::to_string(coordinate) + "]";
+  throw ApiError(400, "number_out_of_range",
+                 field + " is " + (std::isnan(coords[i]) ? "NaN" : "infinite") + " (body bytes from " +
+                     std::to_string((point * dim + coordinate) * (request.raw_float32 ? 4 : 8)) +
+                     "): every coordinate must be a finite number",
+                 field);
 }
 
 GeometryMethod check_project_request(const ProjectRequest& request, const CompiledGeometry& geometry) {

@@ -30,10 +30,7 @@ struct ProjectRequest {
   ResultFields fields;
   bool fields_given = false;   // "fields" was given (else fields holds the defaults)
   DeviationOptions deviation;  // options.histogram_bins, options.tolerance_band (stats.deviation)
-  // A binary body (read_binary_project_request): its points as sent, little-endian float64 or
-  // float32 (raw_float32), point_length numbers each; coords holds them decoded unless the
-  // request keeps them raw (a stream decodes a window at a time).
-  std::string_view raw_points;
+  // A binary body (read_binary_project_options): little-endian float32 (else float64) numbers.
   bool raw_float32 = false;
 };
 
@@ -45,13 +42,25 @@ ProjectRequest read_project_request(std::string_view body, bool inline_geometry,
 // A body of points in binary (Content-Type application/octet-stream): count records of point_dim
 // little-endian float64 numbers (float32 with ?dtype=float32), the options as query parameters
 // (method, fields=a,b,..., tolerance, max_iterations, initial=a,b, all_minima, max_minima, trace,
-// max_distance, certify, histogram_bins, tolerance_band=lo,hi). A length that is no whole number
-// of records is 400 wrong_shape with the byte counts. `keep_raw`: coords is left empty and
-// raw_points refers into `body` (decode_points reads it).
+// max_distance, certify, histogram_bins, tolerance_band=lo,hi). Reads the query and checks the
+// body's length: one that is no whole number of records is 400 wrong_shape with the byte counts.
+// The points are not read (coords stays empty): a stream reads them as they arrive.
+ProjectRequest read_binary_project_options(std::string_view query, int point_dim, std::size_t body_bytes,
+                                           std::size_t max_points);
+// The same with the whole body at hand: its points decoded into coords and checked finite.
 ProjectRequest read_binary_project_request(std::string_view body, std::string_view query, int point_dim,
-                                           std::size_t max_points, bool keep_raw);
-// The points [begin, end) of a binary request, decoded to doubles (point_length each) into out.
-void decode_points(const ProjectRequest& request, std::size_t begin, std::size_t end, double* out);
+                                           std::size_t max_points);
+// The bytes of one point of a binary request.
+std::size_t binary_record_bytes(const ProjectRequest& request, int point_dim);
+// `points` records of a binary request at `raw`, decoded to doubles (point_length each) into out.
+void decode_points(const ProjectRequest& request, const char* raw, std::size_t points, double* out);
+// The index of the first of `points` decoded points with a coordinate that is NaN or infinite
+// (JSON cannot write them), or `points` when there is none.
+std::size_t first_not_finite(const ProjectRequest& request, const double* coords, std::size_t points);
+// Throws 400 number_out_of_range naming the first such coordinate (its point counted from
+// `first_point`, and its byte offset in the body).
+void check_finite(const ProjectRequest& request, std::size_t first_point, const double* coords,
+                  std::size_t points);
 
 // Checks the request against the geometry it targets (point dimension, method, starts) and returns
 // the geometry's method it names.

@@ -1,10 +1,20 @@
 // Streamed answers of a projection (Accept: application/x-ndjson or application/octet-stream):
 // the points are projected a window at a time on the core's thread pool (project_batch, the
 // deadline of the request for every window), and each window's answers are written before the
-// next is started, so the memory held is one window's, whatever the number of points. NDJSON:
-// one result per line, in order, then a last line {"geometry_id", "stats"}; binary: one
-// fixed-size record per point (result_binary.hpp), no statistics. A write that fails (the
-// client is gone) stops the work.
+// next is started, so the memory held is one window's, whatever the number of points. Points
+// sent in binary are read from the connection as they are answered (StreamedBody), JSON ones
+// were parsed whole. NDJSON: one result per line, in order, then a last line {"geometry_id",
+// "stats"}; binary: one fixed-size record per point (result_binary.hpp), no statistics. A write
+// that fails (the client is gone) stops the work.
+//
+// A binary body found bad once the answer has started (a NaN or infinite coordinate beyond the
+// first window, which the handler checks before the status line): the points before it are
+// answered; NDJSON then ends with the line {"error": {...}} (400 number_out_of_range naming the
+// point) in place of the stats, the rest of the body is read and dropped; binary records have no
+// room for an error, so the answer is cut (no last chunk, the connection closes). A body that
+// stops before its Content-Length (the client sent nothing for --io-timeout-s) cuts the answer
+// after the last whole point that arrived; a client that closes its side is gone (httplib stops
+// writing to a socket whose peer closed), its answer stops there.
 #pragma once
 #include <chrono>
 #include <functional>
@@ -17,6 +27,7 @@
 #include "metrics.hpp"
 #include "project_request.hpp"
 #include "result_binary.hpp"
+#include "streamed_body.hpp"
 
 namespace footpoint::server {
 
@@ -31,6 +42,7 @@ struct ProjectStream {
   std::shared_ptr<const CompiledGeometry> geometry;  // keeps `method` valid
   GeometryMethod method;
   ProjectRequest request;
+  std::shared_ptr<StreamedBody> body;  // binary points still being read (else request.coords)
   AnswerFormat format = AnswerFormat::ndjson;
   BinaryLayout layout;  // binary
   std::chrono::steady_clock::time_point deadline;
@@ -39,9 +51,11 @@ struct ProjectStream {
   Metrics* metrics = nullptr;
 };
 
-// The most points a stream holds at once, and its first window (small, for the first answers to
-// leave soon; the windows then double up to the most).
-inline constexpr std::size_t kStreamWindow = 8192, kFirstStreamWindow = 256;
+// The most points a stream solves at once, and its first window (small, for the first answers to
+// leave soon; the windows then double up to the most). A binary body's first kStreamWindow points
+// are read and checked before the answer starts; kStreamAhead windows of it at most wait unread
+// for a client that reads as it sends (streamed_body.hpp).
+inline constexpr std::size_t kStreamWindow = 8192, kFirstStreamWindow = 256, kStreamAhead = 4;
 
 // Projects and writes every point of the stream with `write` (false: the client is gone); false
 // when it stopped early.

@@ -310,7 +310,9 @@ void append_stats(std::string& out, const BatchStats& stats, const DeviationOpti
       if (k) o.literal(",");
       o.integer(static_cast<long long>(d.counts[k]));
     }
-    o.literal("]}");
+    o.literal("],\"resolution\":");
+    o.number(d.histogram_resolution);
+    o.literal("}");
   } else {
     o.literal("null");
   }

@@ -194,3 +194,79 @@ TEST_CASE("deviation: unsigned distances count where no normal is, points withou
   CHECK(one.edges == std::vector<double>{1.0, 1.0});
   CHECK(one.counts == std::vector<std::size_t>{1});
 }
+
+TEST_CASE(
+    "deviation: one pass over many deviations keeps the moments exact and the histogram within its "
+    "resolution") {
+  // 300,000 deviations that start in [-0.01, 0.01] and reach out to [-3, 5] later (the fine
+  // range widens both ways several times), against counts made here from the edges.
+  const std::size_t n = 300000;
+  std::vector<double> values(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / n;
+    const double reach = 0.01 + (t < 0.5 ? 0.0 : 8.0 * (t - 0.5) * (t - 0.5) * 4.0);
+    const double s = std::sin(12.9898 * static_cast<double>(i));
+    values[i] = s >= 0 ? s * reach * 1.25 : s * reach * 0.75;
+  }
+  for (const int bins : {1, 7, 20, 500}) {
+    DeviationOptions options;
+    options.histogram_bins = bins;
+    options.tolerance_band = std::array<double, 2>{-0.5, 0.25};
+    DeviationAccumulator a(options);
+    for (std::size_t i = 0; i < n; ++i) a.add(values[i], i % 3 != 0);
+    const DeviationStats s = a.stats();
+    double lo = values[0], hi = values[0], sum = 0, squares = 0;
+    std::size_t band = 0;
+    for (const double d : values) {
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+      sum += d;
+      squares += d * d;
+      band += d >= -0.5 && d <= 0.25;
+    }
+    INFO("bins " << bins);
+    CHECK(s.count == n);
+    CHECK(s.signed_count == n - (n + 2) / 3);
+    CHECK(s.min == lo);
+    CHECK(s.max == hi);
+    CHECK(s.mean == doctest::Approx(sum / n).epsilon(1e-12));
+    CHECK(s.rms == doctest::Approx(std::sqrt(squares / n)).epsilon(1e-12));
+    CHECK(s.within_band == band);
+    REQUIRE(s.counts.size() == static_cast<std::size_t>(bins));
+    // resolution: positive, and a fine bin's share of a few times [min, max] (the fine range
+    // doubles from one end or the other until it holds every value)
+    const double fine_bins = static_cast<double>(
+        std::max(DeviationAccumulator::kMinFineBins, DeviationAccumulator::kFineBinsPerBin * bins));
+    CHECK(s.histogram_resolution > 0);
+    CHECK(s.histogram_resolution <= 8 * (hi - lo) / fine_bins);
+    std::size_t total = 0;
+    for (int k = 0; k < bins; ++k) {
+      const double e0 = lo + (hi - lo) * k / bins, e1 = k + 1 == bins ? hi : lo + (hi - lo) * (k + 1) / bins;
+      std::size_t exact = 0, near_edge = 0;
+      for (const double d : values) {
+        exact += d >= e0 && (d < e1 || (k + 1 == bins && d <= e1));
+        near_edge += (k > 0 && std::fabs(d - e0) <= s.histogram_resolution) ||
+                     (k + 1 < bins && std::fabs(d - e1) <= s.histogram_resolution);
+      }
+      INFO("bin " << k << " exact " << exact << " counted " << s.counts[k] << " near an edge " << near_edge);
+      CHECK(static_cast<double>(s.counts[k]) >= static_cast<double>(exact) - static_cast<double>(near_edge));
+      CHECK(static_cast<double>(s.counts[k]) <= static_cast<double>(exact) + static_cast<double>(near_edge));
+      total += s.counts[k];
+    }
+    CHECK(total == n);
+  }
+  // up to kExactValues the histogram is exact: the two-pass batch statistics' counts
+  std::vector<ProjectionResult> results(1000);
+  DeviationOptions options;
+  options.histogram_bins = 9;
+  DeviationAccumulator a(options);
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    results[i].distance = std::fabs(values[n - 1 - i]);
+    results[i].signed_distance = values[n - 1 - i];
+    a.add(results[i]);
+  }
+  const DeviationStats one_pass = a.stats(), two_pass = deviation_stats(results, options);
+  CHECK(one_pass.histogram_resolution == 0);
+  CHECK(one_pass.counts == two_pass.counts);
+  CHECK(one_pass.edges == two_pass.edges);
+}

@@ -23,9 +23,7 @@ using json = nlohmann::json;
 
 namespace {
 
-const std::string kInspectionSphere =
-    R"J({"type":"parametric_surface","x":"2*sin(v)*cos(u)","y":"2*sin(v)*sin(u)","z":"2*cos(v)",)J"
-    R"J("domain":{"u":[0,"2*_pi"],"v":[0,"_pi"]}})J";
+const std::string& kInspectionSphere = kSphereRadius2;
 
 // n points at radii 1.5 .. 2.5 in directions away from the poles, and their signed distances.
 std::vector<double> inspection_points(int n, std::vector<double>* signed_distances = nullptr) {
@@ -44,11 +42,7 @@ json inspection_json_points(const std::vector<double>& p) {
   return points;
 }
 
-std::string as_float64(const std::vector<double>& p) {
-  std::string body(p.size() * 8, '\0');
-  std::memcpy(body.data(), p.data(), body.size());
-  return body;
-}
+std::string as_float64(const std::vector<double>& p) { return float64_bytes(p); }
 
 std::vector<double> decode_float64(const std::string& body) {
   std::vector<double> x(body.size() / 8);
@@ -340,11 +334,7 @@ TEST_CASE("inspection: a client that goes away stops the stream's work") {
   ::shutdown(fd, SHUT_RDWR);
   ::close(fd);
   // the request ends long before its points would all be projected (~1 µs... tens of µs each)
-  const auto start = std::chrono::steady_clock::now();
-  while (s.server().api().in_flight() > 0 &&
-         std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  CHECK(s.server().api().in_flight() == 0);
+  CHECK(wait_until_idle(s.server()));
   auto m = c->Get("/metrics");
   REQUIRE(m);
   const auto at = m->body.find("footpoint_projections_total{status=\"converged\"} ");

@@ -8,11 +8,13 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <doctest/doctest.h>
 #include <httplib.h>
@@ -144,6 +146,28 @@ inline nlohmann::json raw_json(const std::string& response) {
   REQUIRE(length_at != std::string::npos);
   const std::size_t length = std::stoul(response.substr(length_at + 16));
   return nlohmann::json::parse(response.substr(start + 4, length));
+}
+
+// A sphere of radius 2 about the origin, (u, v) longitude and colatitude: its s_u x s_v points
+// inwards, so that the signed distance of p is 2 - |p| and its foot 2 p / |p|.
+inline const std::string kSphereRadius2 =
+    R"J({"type":"parametric_surface","x":"2*sin(v)*cos(u)","y":"2*sin(v)*sin(u)","z":"2*cos(v)",)J"
+    R"J("domain":{"u":[0,"2*_pi"],"v":[0,"_pi"]}})J";
+
+// Numbers as a binary body: little-endian float64 (this machine's order, checked by the tests'
+// decoding against closed forms).
+inline std::string float64_bytes(const std::vector<double>& x) {
+  std::string body(x.size() * 8, '\0');
+  std::memcpy(body.data(), x.data(), body.size());
+  return body;
+}
+
+// Waits up to `limit` for the server to answer no API request; true when it does not.
+inline bool wait_until_idle(HttpServer& server, std::chrono::seconds limit = std::chrono::seconds(60)) {
+  const auto start = std::chrono::steady_clock::now();
+  while (server.api().in_flight() > 0 && std::chrono::steady_clock::now() - start < limit)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  return server.api().in_flight() == 0;
 }
 
 // Posts a geometry definition (201 or 200) and returns its id.
