@@ -99,7 +99,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     start = end + 1;
   }
   const std::map<std::string, double> constants{{"a", 2.5}, {"big", 1e300}, {"tiny", 1e-300}};
-  CompileLimits limits;  // the defaults the server starts from: 4096 characters, 20,000 nodes
+  CompileLimits limits;  // the defaults the server starts from: 19,999 characters, 20,000 nodes
 
   Program program;
   try {

@@ -56,7 +56,8 @@ for target in "${targets[@]}"; do
   echo "== $target: $bound from $(find "$seeds" -type f | wc -l) seeds and $(find "$work" -type f | wc -l) kept inputs (log: $log)"
   # -timeout: one input running longer than this is a hang.
   # -rss_limit_mb: a runaway allocation is a failure, not a slow machine.
-  # -max_len: room for the 4096-character formula limit and beyond.
+  # -max_len: formulas long enough to reach the 20,000-node limit (the 19,999-character one is
+  # muparser's, checked by the unit tests).
   args=(-timeout="$timeout_s" -rss_limit_mb=2048 -max_len=16384 -artifact_prefix="$artifacts/"
         -print_final_stats=1)
   if [ -n "$runs" ]; then args+=(-runs="$runs"); else args+=(-max_total_time="$seconds"); fi
