@@ -147,12 +147,19 @@ ProjectionResult ImplicitCurve::project_with(std::size_t index, const double* p,
   return table(dims()).project(index, *this, {p[0], p[1], equations().planar() ? 0.0 : p[2]}, options);
 }
 
-bool ImplicitCurve::foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const {
-  if (!equations().planar() || r.summary.location == Location::singular_point) return false;
-  const Vec3 g = equations().jet({r.foot[0], r.foot[1], 0.0}).grad[0];
+bool ImplicitCurve::planar_normal(double x, double y, Vec3& n) const {
+  const Vec3 g = equations().jet({x, y, 0.0}).grad[0];
   const double length = std::hypot(g.x, g.y);
   if (!(length > 0.0 && std::isfinite(length))) return false;
   n = {g.x / length, g.y / length, 0.0};
+  return true;
+}
+
+bool ImplicitCurve::foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const {
+  if (!equations().planar() || r.summary.location == Location::singular_point) return false;
+  Vec3 u;
+  if (!planar_normal(r.foot[0], r.foot[1], u)) return false;
+  n = {u.x, u.y, 0.0};
   return true;
 }
 
@@ -172,12 +179,7 @@ bool ImplicitCurve::evaluate_equations(const double* x, EquationEvaluation& out)
       out.hessian[k][2] = Vec3{};
     }
   }
-  if (planar) {
-    const Vec3 g = equations().jet(at).grad[0];
-    const double length = std::hypot(g.x, g.y);
-    out.normal_defined = length > 0.0 && std::isfinite(length);
-    if (out.normal_defined) out.normal = {g.x / length, g.y / length, 0.0};
-  }
+  if (planar) out.normal_defined = planar_normal(at.x, at.y, out.normal);
   out.inside_box = planar ? (at.x >= box_.lo.x && at.x <= box_.hi.x && at.y >= box_.lo.y && at.y <= box_.hi.y)
                           : box_.contains(at);
   return true;

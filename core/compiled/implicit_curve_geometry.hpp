@@ -45,6 +45,8 @@ class ImplicitCurve final : public CompiledGeometry {
 
  private:
   PointDims dims() const;
+  // grad f / |grad f| of the square-free planar equation at (x, y); false where grad f = 0.
+  bool planar_normal(double x, double y, Vec3& n) const;
   ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
 
   ImplicitEquations written_;

@@ -53,9 +53,7 @@ class Search {
   void keep_if_minimum(Vec3 x, double l, int axis = -1, double bound = 0.0) {
     if (!minima_) return;
     const ImplicitSurfaceJet j = equation_.jet(x);
-    Mat3 a;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) a[r][c] = (r == c ? 1.0 : 0.0) + l * j.hess[r][c];
+    const Mat3 a = lagrangian_hessian(j, l);
     const double scale = 1e-10 * (1.0 + std::fabs(l) * norm(j.hess[0]) + std::fabs(l) * norm(j.hess[1]) +
                                   std::fabs(l) * norm(j.hess[2]));
     const double g = norm(j.grad);
@@ -69,10 +67,9 @@ class Search {
       const Vec3 t = cross(n, e);
       if (!(norm(t) > 0.0) || dot(t, a * t) < -scale * norm2(t)) return;
     } else {
-      // An orthonormal basis (t1, t2) of the tangent plane; the 2 x 2 form must be >= 0.
-      const Vec3 helper = std::fabs(n.x) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
-      const Vec3 t1 = cross(n, helper) / norm(cross(n, helper)), t2 = cross(n, t1);
-      const double a11 = dot(t1, a * t1), a22 = dot(t2, a * t2), a12 = dot(t1, a * t2);
+      // the form on the tangent plane must be >= 0
+      const TangentForm t = tangent_form(a, n);
+      const double a11 = t.a11, a12 = t.a12, a22 = t.a22;
       if (a11 < -scale || a22 < -scale || a11 * a22 - a12 * a12 < -scale * (std::fabs(a11) + std::fabs(a22)))
         return;
     }

@@ -9,19 +9,29 @@
 
 namespace footpoint::surface_implicit {
 
+Mat3 lagrangian_hessian(const ImplicitSurfaceJet& j, double l) {
+  Mat3 a;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) a[r][c] = (r == c ? 1.0 : 0.0) + l * j.hess[r][c];
+  return a;
+}
+
+double TangentForm::least_eigenvalue() const {
+  return 0.5 * (a11 + a22) - std::sqrt(0.25 * (a11 - a22) * (a11 - a22) + a12 * a12);
+}
+
+TangentForm tangent_form(const Mat3& a, Vec3 n) {
+  const Vec3 helper = std::fabs(n.x) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
+  const Vec3 t1 = cross(n, helper) / norm(cross(n, helper)), t2 = cross(n, t1);
+  return {dot(t1, a * t1), dot(t1, a * t2), dot(t2, a * t2)};
+}
+
 namespace {
 
 Vec3 axis_vector(int axis) {
   Vec3 e{0.0, 0.0, 0.0};
   e[axis] = 1.0;
   return e;
-}
-
-Mat3 lagrangian_hessian(const ImplicitSurfaceJet& j, double l) {
-  Mat3 a;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) a[r][c] = (r == c ? 1.0 : 0.0) + l * j.hess[r][c];
-  return a;
 }
 
 // At a solution whose Newton system is singular (p at a centre of curvature of the foot, where

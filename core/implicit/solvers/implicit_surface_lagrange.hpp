@@ -34,6 +34,20 @@ SurfaceMinimum lagrange_newton_interior(const ImplicitSurfaceEquation& equation,
 SurfaceMinimum lagrange_newton_face(const ImplicitSurfaceEquation& equation, Vec3 p, Vec3 x0, int axis,
                                     double value, double max_step, const curve::IterationControl& control);
 
+// The Lagrangian's Hessian A = I + l H at a point of the surface, restricted to its tangent plane
+// (grad f != 0, n = grad f / |grad f|), in the orthonormal basis t1 = n x e / |n x e| (e the
+// axis least aligned with n among x, y), t2 = n x t1: [a11 a12; a12 a22]. Positive semidefinite
+// at a local minimum of the distance on the surface ([NW06] Theorem 12.5); singular where p is
+// a centre of curvature of the surface.
+struct TangentForm {
+  double a11 = 0.0, a12 = 0.0, a22 = 0.0;
+  double least_eigenvalue() const;
+};
+// The Lagrangian's Hessian I + l H at the jet.
+Mat3 lagrangian_hessian(const ImplicitSurfaceJet& j, double l);
+// `a` = I + l H; `n` the unit normal.
+TangentForm tangent_form(const Mat3& a, Vec3 n);
+
 // Where x lies in the box: interior, box_face, box_edge or box_corner by how many coordinates
 // are at a bound (within `slack`).
 Location box_location(const Box3& box, Vec3 x, double slack = 0.0);
