@@ -135,6 +135,29 @@ TEST_CASE("implicit surface multiplicity: continua at centres of curvature, ties
   }
 }
 
+TEST_CASE("implicit surface: the foot's normal and the signed distance") {
+  // the unit sphere written squared: the normal is the square-free equation's, outwards
+  const auto sphere = implicit_surface_of("(x^2+y^2+z^2-1)^2", -2, 2, -2, 2);
+  for (const double scale : {2.0, 0.5}) {
+    const double p[3] = {0.6 * scale, 0.0, 0.8 * scale};
+    const auto r = sphere->project(p, "auto", {});
+    REQUIRE(r);
+    REQUIRE(r->has_normal());
+    CHECK(std::fabs(r->normal[0] - 0.6) <= 1e-15);
+    CHECK(std::fabs(r->normal[1]) <= 1e-15);
+    CHECK(std::fabs(r->normal[2] - 0.8) <= 1e-15);
+    CHECK(std::fabs(r->signed_distance - (scale - 1.0)) <= 1e-15);
+  }
+  // none at a cone's apex (a singular point)
+  const auto cone = implicit_surface_of("x^2+y^2-z^2", -1, 1, 0, 1);
+  const double below[3] = {0.0, 0.0, -1.0};
+  const auto r = cone->project(below, "auto", {});
+  REQUIRE(r);
+  CHECK(r->summary.location == Location::singular_point);
+  CHECK_FALSE(r->has_normal());
+  CHECK(std::isnan(r->signed_distance));
+}
+
 TEST_CASE("implicit surface: a repeated factor counts once, and the sphere's foot is p / |p|") {
   const auto squared = implicit_surface_of("(x^2+y^2+z^2-1)^2", -2, 2, -2, 2);
   std::mt19937 rng(7);

@@ -113,8 +113,9 @@ class CompiledGeometry {
   // The unit normal at r's foot point (first point_dim() coordinates of n), or false where the
   // geometry has none there: parametric surfaces s_u x s_v / |s_u x s_v| (none at a pole or where
   // s_u x s_v = 0); planar parametric curves the tangent c' turned by +90 degrees in the plane,
-  // (-y', x') / |c'|; planar implicit curves grad f / |grad f| of the square-free equation (none
-  // at a singular point); space curves none (their normals form a plane). r has a finite answer.
+  // (-y', x') / |c'|; implicit surfaces and planar implicit curves grad f / |grad f| of the
+  // square-free equation (none at a singular point); space curves none (their normals form a plane). r has a
+  // finite answer.
   virtual bool foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const {
     (void)r;
     (void)n;

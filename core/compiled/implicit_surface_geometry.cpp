@@ -80,11 +80,24 @@ bool ImplicitSurface::evaluate_equations(const double* x, EquationEvaluation& ou
   out.value[0] = j.f;
   out.gradient[0] = j.grad;
   out.hessian[0] = j.hess;
-  const Vec3 g = equation_.jet(at).grad;
-  const double length = norm(g);
-  out.normal_defined = length > 0.0 && std::isfinite(length);
-  if (out.normal_defined) out.normal = g / length;
+  out.normal_defined = unit_normal(at, out.normal);
   out.inside_box = box_.contains(at);
+  return true;
+}
+
+bool ImplicitSurface::unit_normal(Vec3 x, Vec3& n) const {
+  const Vec3 g = equation_.jet(x).grad;
+  const double length = norm(g);
+  if (!(length > 0.0 && std::isfinite(length))) return false;
+  n = g / length;
+  return true;
+}
+
+bool ImplicitSurface::foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const {
+  Vec3 u;
+  if (r.summary.location == Location::singular_point || !unit_normal({r.foot[0], r.foot[1], r.foot[2]}, u))
+    return false;
+  n = {u.x, u.y, u.z};
   return true;
 }
 

@@ -23,6 +23,8 @@ class ImplicitSurface final : public CompiledGeometry {
   const std::vector<MethodInfo>& methods() const override;
   std::size_t memory_bytes() const override;
   bool evaluate_equations(const double* x, EquationEvaluation& out) const override;
+  // grad f / |grad f| of the square-free equation at the foot (none at a singular point).
+  bool foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const override;
 
   // The square-free equation (the written one when it has no repeated factor).
   const ImplicitSurfaceEquation& equation() const { return equation_; }
@@ -31,6 +33,8 @@ class ImplicitSurface final : public CompiledGeometry {
   const ImplicitSurfaceCells& cells() const { return cells_; }
 
  private:
+  // grad f / |grad f| of the square-free equation at x; false where grad f = 0.
+  bool unit_normal(Vec3 x, Vec3& n) const;
   ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
 
   ImplicitSurfaceEquation written_;
