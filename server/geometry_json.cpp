@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -13,6 +14,12 @@
 namespace footpoint::server {
 
 namespace {
+
+struct NumberTree {
+  bool is_array = false;
+  double number = 0.0;
+  std::vector<NumberTree> items;
+};
 
 // A bound as posted: a number, or a constant expression in the formula syntax ("2*_pi"), which
 // is evaluated once the definition's constants are known.
@@ -35,7 +42,67 @@ struct RawDefinition {
   std::optional<std::vector<std::pair<std::string, Interval>>> domain;
   std::map<std::string, double> constants;
   std::optional<std::vector<std::string>> periodic;
+  // bspline_curve, bspline_surface: as posted, shapes checked once the type is known
+  std::optional<NumberTree> degree, knots, control_points, weights;
+  std::optional<std::pair<NumberTree, NumberTree>> knots_uv;  // a surface's {"u": [...], "v": [...]}
 };
+
+// A number, or an array of number trees: what the B-spline members are made of.
+NumberTree read_number_tree(JsonReader& r, const std::string& field) {
+  NumberTree t;
+  try {
+    if (r.peek() == JsonReader::Type::number) {
+      t.number = r.number();
+      return t;
+    }
+    r.begin_array();
+  } catch (const JsonReadError& e) {
+    throw request_error(e, field);
+  }
+  t.is_array = true;
+  for (;;) {
+    const std::string item = field + "[" + std::to_string(t.items.size()) + "]";
+    try {
+      if (!r.next_element()) break;
+    } catch (const JsonReadError& e) {
+      throw request_error(e, item);
+    }
+    t.items.push_back(read_number_tree(r, item));
+  }
+  return t;
+}
+
+// The tree as nested vectors of `depth` levels of arrays (0: a number), or 400 wrong_shape naming
+// the element at fault.
+void shape_error(const std::string& field, int depth) {
+  static const char* const kinds[] = {"a number", "an array of numbers", "an array of arrays of numbers",
+                                      "an array of arrays of arrays of numbers"};
+  throw ApiError(400, "wrong_shape", field + " must be " + kinds[depth], field);
+}
+double tree_number(const NumberTree& t, const std::string& field) {
+  if (t.is_array) shape_error(field, 0);
+  return t.number;
+}
+std::vector<double> tree_numbers(const NumberTree& t, const std::string& field) {
+  if (!t.is_array) shape_error(field, 1);
+  std::vector<double> out;
+  for (std::size_t i = 0; i < t.items.size(); ++i)
+    out.push_back(tree_number(t.items[i], field + "[" + std::to_string(i) + "]"));
+  return out;
+}
+std::vector<std::vector<double>> tree_rows(const NumberTree& t, const std::string& field) {
+  if (!t.is_array) shape_error(field, 2);
+  std::vector<std::vector<double>> out;
+  for (std::size_t i = 0; i < t.items.size(); ++i)
+    out.push_back(tree_numbers(t.items[i], field + "[" + std::to_string(i) + "]"));
+  return out;
+}
+int tree_degree(const NumberTree& t, const std::string& field) {
+  const double d = tree_number(t, field);
+  if (d != std::floor(d) || d < 0 || d > 1000)
+    throw ApiError(400, "wrong_type", field + " must be a whole number", field);
+  return static_cast<int>(d);
+}
 
 // [lo, hi], each a number or a constant expression string.
 Interval read_interval(JsonReader& r, const std::string& field) {
@@ -121,6 +188,29 @@ RawDefinition read_members(JsonReader& r, const std::string& prefix) {
         domain.emplace_back(name, read_interval(r, item));
       });
       raw.domain = std::move(domain);
+    } else if (key == "degree") {
+      raw.degree = read_number_tree(r, field);
+    } else if (key == "knots") {
+      if (r.peek() == JsonReader::Type::object) {
+        std::optional<NumberTree> u, v;
+        read_object(r, field, field, field + ".", [&](const std::string& name, const std::string& item) {
+          if (name == "u")
+            u = read_number_tree(r, item);
+          else if (name == "v")
+            v = read_number_tree(r, item);
+          else
+            throw ApiError(400, "unknown_field", "unknown field " + item + " (u, v)", item);
+        });
+        if (!u || !v)
+          throw ApiError(400, "missing_field", field + " needs u and v", field + (u ? ".v" : ".u"));
+        raw.knots_uv = std::make_pair(std::move(*u), std::move(*v));
+      } else {
+        raw.knots = read_number_tree(r, field);
+      }
+    } else if (key == "control_points") {
+      raw.control_points = read_number_tree(r, field);
+    } else if (key == "weights") {
+      raw.weights = read_number_tree(r, field);
     } else if (key == "constants") {
       read_object(r, field, field, field + ".", [&](const std::string& name, const std::string& item) {
         try {
@@ -138,12 +228,75 @@ RawDefinition read_members(JsonReader& r, const std::string& prefix) {
                          "with the definition inline",
                      field);
     } else {
-      throw ApiError(400, "unknown_field",
-                     "unknown field " + field + " (type, x, y, z, equation, equations, domain, constants)",
-                     field);
+      throw ApiError(
+          400, "unknown_field",
+          "unknown field " + field +
+              " (type, x, y, z, equation, equations, domain, constants, periodic; B-splines: degree, "
+              "knots, control_points, weights)",
+          field);
     }
   });
   return raw;
+}
+
+}  // namespace
+
+namespace {
+
+// A bspline_curve or bspline_surface: its net in the shapes the type has (400 wrong_shape naming
+// the element); the values are checked when it compiles (422 bad_bspline).
+GeometryDefinition read_bspline(RawDefinition& raw, const std::string& prefix, bool surface) {
+  const std::string& type = *raw.type;
+  auto forbid = [&](bool present, const char* name) {
+    if (present)
+      throw ApiError(400, "unknown_field", prefix + name + " is not a field of " + type, prefix + name);
+  };
+  forbid(raw.x.has_value(), "x");
+  forbid(raw.y.has_value(), "y");
+  forbid(raw.z.has_value(), "z");
+  forbid(raw.equation.has_value(), "equation");
+  forbid(raw.equations.has_value(), "equations");
+  forbid(raw.domain.has_value(), "domain");
+  forbid(!raw.constants.empty(), "constants");
+  forbid(raw.periodic.has_value(), "periodic");
+  auto require = [&](bool present, const char* name) {
+    if (!present)
+      throw ApiError(400, "missing_field", prefix + name + " is required for " + type, prefix + name);
+  };
+  require(raw.degree.has_value(), "degree");
+  require(raw.control_points.has_value(), "control_points");
+  require(raw.knots.has_value() || raw.knots_uv.has_value(), "knots");
+  GeometryDefinition def;
+  BSplineNet& net = def.bspline;
+  if (surface) {
+    def.type = GeometryType::bspline_surface;
+    const std::vector<double> degree = tree_numbers(*raw.degree, prefix + "degree");
+    if (degree.size() != 2)
+      throw ApiError(400, "wrong_shape", prefix + "degree must be [p, q]", prefix + "degree");
+    net.degree = {tree_degree(raw.degree->items[0], prefix + "degree[0]"),
+                  tree_degree(raw.degree->items[1], prefix + "degree[1]")};
+    if (!raw.knots_uv)
+      throw ApiError(400, "wrong_shape", prefix + "knots must be {\"u\": [...], \"v\": [...]} for a surface",
+                     prefix + "knots");
+    net.knots = {tree_numbers(raw.knots_uv->first, prefix + "knots.u"),
+                 tree_numbers(raw.knots_uv->second, prefix + "knots.v")};
+    const NumberTree& rows = *raw.control_points;
+    if (!rows.is_array) shape_error(prefix + "control_points", 3);
+    for (std::size_t i = 0; i < rows.items.size(); ++i)
+      net.control_points.push_back(
+          tree_rows(rows.items[i], prefix + "control_points[" + std::to_string(i) + "]"));
+    if (raw.weights) net.weights = tree_rows(*raw.weights, prefix + "weights");
+  } else {
+    def.type = GeometryType::bspline_curve;
+    net.degree = {tree_degree(*raw.degree, prefix + "degree")};
+    if (!raw.knots)
+      throw ApiError(400, "wrong_shape", prefix + "knots must be an array of numbers for a curve",
+                     prefix + "knots");
+    net.knots = {tree_numbers(*raw.knots, prefix + "knots")};
+    net.control_points = {tree_rows(*raw.control_points, prefix + "control_points")};
+    if (raw.weights) net.weights = {tree_numbers(*raw.weights, prefix + "weights")};
+  }
+  return def;
 }
 
 }  // namespace
@@ -153,6 +306,14 @@ GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
   GeometryDefinition def;
   if (!raw.type) throw ApiError(400, "missing_field", prefix + "type is required", prefix + "type");
   const std::string& type = *raw.type;
+  if (type == "bspline_surface" || type == "bspline_curve")
+    return read_bspline(raw, prefix, type == "bspline_surface");
+  for (const auto& [present, name] : {std::pair{raw.degree.has_value(), "degree"},
+                                      std::pair{raw.knots.has_value() || raw.knots_uv.has_value(), "knots"},
+                                      std::pair{raw.control_points.has_value(), "control_points"},
+                                      std::pair{raw.weights.has_value(), "weights"}})
+    if (present)
+      throw ApiError(400, "unknown_field", prefix + name + " is not a field of " + type, prefix + name);
   std::vector<std::string> names;  // the domain's variables, in order
   auto forbid = [&](bool present, const char* name) {
     if (present)
@@ -206,7 +367,8 @@ GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
   } else {
     throw ApiError(400, "unknown_geometry_type",
                    "unknown geometry type '" + type +
-                       "' (parametric_surface, parametric_curve, implicit_curve, implicit_surface)",
+                       "' (parametric_surface, parametric_curve, implicit_curve, implicit_surface, "
+                       "bspline_surface, bspline_curve)",
                    prefix + "type");
   }
 
@@ -270,10 +432,69 @@ GeometryDefinition read_geometry(JsonReader& r, const std::string& prefix) {
   return def;
 }
 
+namespace {
+
+void write_numbers(JsonWriter& w, const std::vector<double>& xs) {
+  w.begin_array();
+  for (const double x : xs) w.number(x);
+  w.end_array();
+}
+
+// A B-spline's net as posted: degree, knots, control_points, weights (when rational).
+void write_bspline(JsonWriter& w, const BSplineNet& net, bool surface) {
+  w.key("degree");
+  if (surface) {
+    w.begin_array();
+    for (const int d : net.degree) w.number(d);
+    w.end_array();
+  } else {
+    w.number(net.degree[0]);
+  }
+  w.key("knots");
+  if (surface) {
+    w.begin_object();
+    w.key("u");
+    write_numbers(w, net.knots[0]);
+    w.key("v");
+    write_numbers(w, net.knots[1]);
+    w.end_object();
+  } else {
+    write_numbers(w, net.knots[0]);
+  }
+  auto rows = [&](const auto& each) {
+    if (surface) w.begin_array();
+    for (const auto& row : each) {
+      w.begin_array();
+      for (const auto& point : row) write_numbers(w, point);
+      w.end_array();
+    }
+    if (surface) w.end_array();
+  };
+  w.key("control_points");
+  rows(net.control_points);
+  if (!net.weights.empty()) {
+    w.key("weights");
+    if (surface) {
+      w.begin_array();
+      for (const auto& row : net.weights) write_numbers(w, row);
+      w.end_array();
+    } else {
+      write_numbers(w, net.weights[0]);
+    }
+  }
+}
+
+}  // namespace
+
 void write_geometry(JsonWriter& w, const GeometryDefinition& def) {
   w.begin_object();
   w.key("type");
   w.string(to_string(def.type));
+  if (def.type == GeometryType::bspline_surface || def.type == GeometryType::bspline_curve) {
+    write_bspline(w, def.bspline, def.type == GeometryType::bspline_surface);
+    w.end_object();
+    return;
+  }
   if (def.type == GeometryType::implicit_curve) {
     w.key("equations");
     w.begin_array();

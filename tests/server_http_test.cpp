@@ -134,7 +134,7 @@ TEST_CASE("every endpoint answers as documented") {
   REQUIRE(methods);
   CHECK(methods->status == 200);
   const json m = json::parse(methods->body);
-  REQUIRE(m["geometry_types"].size() == 4);
+  REQUIRE(m["geometry_types"].size() == 6);
   for (const auto& t : m["geometry_types"]) {
     CAPTURE(t["type"]);
     REQUIRE(!t["methods"].empty());

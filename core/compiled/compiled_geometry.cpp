@@ -6,6 +6,7 @@
 #include <system_error>
 #include <vector>
 
+#include "compiled/bspline_geometry.hpp"
 #include "geometry/compile_budget.hpp"
 
 namespace footpoint {
@@ -44,6 +45,10 @@ const std::vector<MethodInfo>& methods_of(GeometryType type) {
       break;
     case GeometryType::implicit_surface:
       return implicit_surface_methods();
+    case GeometryType::bspline_surface:
+      return bspline_surface_methods();
+    case GeometryType::bspline_curve:
+      return bspline_curve_methods();
   }
   return implicit_curve_methods();
 }
@@ -103,6 +108,10 @@ std::shared_ptr<const CompiledGeometry> compile_geometry(const GeometryDefinitio
       return compile_implicit_curve(def, limits);
     case GeometryType::implicit_surface:
       return compile_implicit_surface(def, limits);
+    case GeometryType::bspline_surface:
+      return compile_bspline_surface(def, limits);
+    case GeometryType::bspline_curve:
+      return compile_bspline_curve(def, limits);
   }
   throw GeometryError("bad_type", "type", -1, "unknown geometry type");
 }

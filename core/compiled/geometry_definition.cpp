@@ -23,6 +23,10 @@ const char* to_string(GeometryType t) {
       return "implicit_curve";
     case GeometryType::implicit_surface:
       return "implicit_surface";
+    case GeometryType::bspline_surface:
+      return "bspline_surface";
+    case GeometryType::bspline_curve:
+      return "bspline_curve";
   }
   return "unknown";
 }
@@ -36,11 +40,68 @@ std::string shortest(double x) {
   return std::string(buf, r.ptr);
 }
 
+// A list of numbers as [a,b,...] in shortest form. (Strings are appended piece by piece: GCC 12
+// warns falsely about operator+ on a literal and a temporary string, -Wrestrict.)
+std::string number_list(const std::vector<double>& xs) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    if (i) s += ',';
+    s += shortest(xs[i]);
+  }
+  s += ']';
+  return s;
+}
+
+bool is_bspline(GeometryType t) {
+  return t == GeometryType::bspline_surface || t == GeometryType::bspline_curve;
+}
+
+// The net's members: degree=p[,q];knots.u=[...][;knots.v=[...]];control_points=[...][;weights=[...]],
+// a curve's points and weights as one list, a surface's as a list of rows.
+std::string canonical_net(const BSplineNet& net, bool surface) {
+  std::string s = ";degree=";
+  for (std::size_t i = 0; i < net.degree.size(); ++i) {
+    if (i) s += ',';
+    s += std::to_string(net.degree[i]);
+  }
+  static const char* const names[2] = {"u", "v"};
+  for (std::size_t i = 0; i < net.knots.size() && i < 2; ++i) {
+    s += ";knots.";
+    s += names[i];
+    s += '=';
+    s += number_list(net.knots[i]);
+  }
+  // A curve's one row as it is, a surface's rows in a list.
+  auto rows = [&](std::string& out, std::size_t count, const auto& append_row) {
+    if (surface) out += '[';
+    for (std::size_t r = 0; r < count; ++r) {
+      if (r) out += ',';
+      append_row(out, r);
+    }
+    if (surface) out += ']';
+  };
+  s += ";control_points=";
+  rows(s, net.control_points.size(), [&](std::string& out, std::size_t r) {
+    out += '[';
+    for (std::size_t j = 0; j < net.control_points[r].size(); ++j) {
+      if (j) out += ',';
+      out += number_list(net.control_points[r][j]);
+    }
+    out += ']';
+  });
+  if (!net.weights.empty()) {
+    s += ";weights=";
+    rows(s, net.weights.size(), [&](std::string& out, std::size_t r) { out += number_list(net.weights[r]); });
+  }
+  return s;
+}
+
 }  // namespace
 
 std::string GeometryDefinition::canonical() const {
   std::string s = "footpoint/1;type=";
   s += to_string(type);
+  if (is_bspline(type)) return s + canonical_net(bspline, type == GeometryType::bspline_surface);
   for (const auto& f : formulas) {
     s += ';' + f.name + '=';
     for (char ch : f.expression)
@@ -112,6 +173,93 @@ const TypeLayout* layout_of(std::string_view type, std::size_t formulas) {
   return nullptr;
 }
 
+// A nested list of numbers, [[1,2],[3]]: its depth must be `depth` (1: a list of numbers) and
+// every entry at the same depth; read into nested vectors by the caller.
+struct NestedList {
+  double number = 0.0;
+  std::vector<NestedList> items;
+  bool is_list = false;
+};
+
+NestedList read_nested(std::string_view& text, int depth) {
+  NestedList out;
+  if (depth == 0) {
+    const std::size_t end = text.find_first_of(",]");
+    out.number = read_number(text.substr(0, end));
+    text.remove_prefix(end == std::string_view::npos ? text.size() : end);
+    return out;
+  }
+  if (text.empty() || text.front() != '[') bad_canonical("a list does not start with [");
+  text.remove_prefix(1);
+  out.is_list = true;
+  while (true) {
+    out.items.push_back(read_nested(text, depth - 1));
+    if (text.empty()) bad_canonical("a list is not closed");
+    const char c = text.front();
+    text.remove_prefix(1);
+    if (c == ']') break;
+    if (c != ',') bad_canonical("a list's entries are not separated by commas");
+  }
+  return out;
+}
+
+NestedList read_whole(std::string_view text, int depth) {
+  NestedList out = read_nested(text, depth);
+  if (!text.empty()) bad_canonical("text after a list");
+  return out;
+}
+
+std::vector<double> numbers_of(const NestedList& list) {
+  std::vector<double> out;
+  for (const NestedList& x : list.items) out.push_back(x.number);
+  return out;
+}
+
+// The members after type= of a bspline_curve or bspline_surface.
+BSplineNet parse_net(const std::vector<std::string_view>& members, bool surface) {
+  BSplineNet net;
+  for (const std::string_view member : members) {
+    const auto eq = member.find('=');
+    if (eq == std::string_view::npos) bad_canonical("member '" + std::string(member) + "' has no name=");
+    const std::string_view name = member.substr(0, eq), value = member.substr(eq + 1);
+    if (name == "degree") {
+      for (std::size_t start = 0;;) {
+        const auto comma = value.find(',', start);
+        const std::string_view part =
+            value.substr(start, comma == std::string_view::npos ? comma : comma - start);
+        int d = 0;
+        const auto r = std::from_chars(part.data(), part.data() + part.size(), d);
+        if (r.ec != std::errc() || r.ptr != part.data() + part.size()) bad_canonical("bad degree");
+        net.degree.push_back(d);
+        if (comma == std::string_view::npos) break;
+        start = comma + 1;
+      }
+    } else if (name == "knots.u" || name == "knots.v") {
+      net.knots.push_back(numbers_of(read_whole(value, 1)));
+    } else if (name == "control_points") {
+      const NestedList list = read_whole(value, surface ? 3 : 2);
+      if (surface)
+        for (const NestedList& row : list.items) {
+          net.control_points.emplace_back();
+          for (const NestedList& point : row.items) net.control_points.back().push_back(numbers_of(point));
+        }
+      else {
+        net.control_points.emplace_back();
+        for (const NestedList& point : list.items) net.control_points.back().push_back(numbers_of(point));
+      }
+    } else if (name == "weights") {
+      const NestedList list = read_whole(value, surface ? 2 : 1);
+      if (surface)
+        for (const NestedList& row : list.items) net.weights.push_back(numbers_of(row));
+      else
+        net.weights.push_back(numbers_of(list));
+    } else {
+      bad_canonical("member '" + std::string(name) + "' is not one of a B-spline's");
+    }
+  }
+  return net;
+}
+
 }  // namespace
 
 GeometryDefinition parse_canonical(std::string_view text) {
@@ -127,6 +275,14 @@ GeometryDefinition parse_canonical(std::string_view text) {
   if (parts.size() < 2 || parts[0] != "footpoint/1" || parts[1].substr(0, kType.size()) != kType)
     bad_canonical("it does not start with footpoint/1;type=");
   const std::string_view type = parts[1].substr(kType.size());
+  for (const GeometryType t : {GeometryType::bspline_surface, GeometryType::bspline_curve})
+    if (type == to_string(t)) {
+      GeometryDefinition def;
+      def.type = t;
+      def.bspline = parse_net({parts.begin() + 2, parts.end()}, t == GeometryType::bspline_surface);
+      if (def.canonical() != text) bad_canonical("it is not in canonical form");
+      return def;
+    }
 
   // name=value members: the formulas first, then the domain, then the constants, then the
   // periodic parameters (a comma-separated list).

@@ -15,11 +15,29 @@
 
 namespace footpoint {
 
-enum class GeometryType { parametric_surface, parametric_curve, implicit_curve, implicit_surface };
+enum class GeometryType {
+  parametric_surface,
+  parametric_curve,
+  implicit_curve,
+  implicit_surface,
+  bspline_surface,
+  bspline_curve
+};
 inline constexpr GeometryType kGeometryTypes[] = {
     GeometryType::parametric_surface, GeometryType::parametric_curve, GeometryType::implicit_curve,
-    GeometryType::implicit_surface};
+    GeometryType::implicit_surface,   GeometryType::bspline_surface,  GeometryType::bspline_curve};
 const char* to_string(GeometryType t);
+
+// A B-spline or NURBS as posted (parametric/geometry/nurbs.hpp checks it): one degree per parameter,
+// the full knot vectors (u, then v), the control points in rows (a curve: one row of points of 2 or
+// 3 coordinates; a surface: control_points[i][j] = P_ij, i along u) and the weights in the same
+// rows (empty: every weight 1, non-rational).
+struct BSplineNet {
+  std::vector<int> degree;
+  std::vector<std::vector<double>> knots;
+  std::vector<std::vector<std::vector<double>>> control_points;
+  std::vector<std::vector<double>> weights;
+};
 
 struct GeometryDefinition {
   GeometryType type = GeometryType::parametric_surface;
@@ -30,6 +48,9 @@ struct GeometryDefinition {
   // Parameter domain (surfaces: u, v; curves: t) or box (implicit: x, y[, z]), in that order.
   std::vector<std::pair<std::string, std::array<double, 2>>> domain;
   std::map<std::string, double> constants;
+  // bspline_curve and bspline_surface: the net (no formulas, domain or constants: the domain is
+  // [knots[p], knots[n]] of each parameter).
+  BSplineNet bspline;
   // Parameters declared periodic (parametric/geometry/surface_closure.hpp, curve_closure.hpp): "u", "v" of a
   // surface, "t" of a curve; none for implicit curves. Any order; repeats count once.
   std::vector<std::string> periodic;

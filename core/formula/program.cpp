@@ -306,8 +306,11 @@ struct Jet3Arith : JetLeaves<Jet3<N>, N> {
 
 Program Program::compile(const std::vector<NamedFormula>& formulas, const std::vector<std::string>& variables,
                          const std::map<std::string, double>& constants, const CompileLimits& limits) {
+  return from_tape(build_tape(formulas, variables, constants, limits));
+}
+
+Program Program::from_tape(Tape tape) {
   Program p;
-  Tape tape = build_tape(formulas, variables, constants, limits);
   tape.polynomial = polynomial_form(tape);
   p.tape_ = std::make_shared<const Tape>(std::move(tape));
   return p;

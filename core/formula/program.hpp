@@ -162,6 +162,10 @@ class Program {
   struct Tape;  // opaque
 
  private:
+  friend class ExpressionBuilder;
+  // The Program of a tape written by ExpressionBuilder (its polynomial form found as compile's).
+  static Program from_tape(Tape tape);
+
   std::shared_ptr<const Tape> tape_;
 };
 

@@ -1,0 +1,433 @@
+#include "compiled/bspline_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "geometry/compile_budget.hpp"
+#include "parametric/geometry/nurbs_patches.hpp"
+#include "solvers/piecewise_nearest.hpp"
+
+namespace footpoint {
+
+namespace {
+
+// The cells of one Bézier piece: a piece is a polynomial of low degree over one knot span, far
+// smoother than the formulas the defaults are set for (parametric/seeding/surface_cells.hpp).
+SurfaceSeedingOptions piece_seeding() {
+  SurfaceSeedingOptions o;
+  o.min_cells = 16;
+  o.target_cells = 256;
+  o.max_bytes = std::size_t{256} << 10;
+  return o;
+}
+
+// The distinct knots within [lo, hi], both ends included.
+std::vector<double> breaks_of(const std::vector<double>& knots, double lo, double hi) {
+  std::vector<double> out;
+  for (const double k : knots)
+    if (k >= lo && k <= hi && (out.empty() || k > out.back())) out.push_back(k);
+  return out;
+}
+
+// The index b of the span [breaks[b], breaks[b + 1]] holding x (the last one at the upper end).
+std::size_t span_of(const std::vector<double>& breaks, double x) {
+  const auto it = std::upper_bound(breaks.begin(), breaks.end(), x);
+  const auto b = static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - breaks.begin() - 1, 0));
+  return std::min(b, breaks.size() - 2);
+}
+
+Vec3 euclidean(const std::array<double, 4>& h) { return {h[0] / h[3], h[1] / h[3], h[2] / h[3]}; }
+
+// Two Bézier control points equal to the rounding of the blossom (nurbs_patches.hpp).
+bool same_point(const std::array<double, 4>& a, const std::array<double, 4>& b, double magnitude) {
+  return norm(euclidean(a) - euclidean(b)) <= 0x1p-40 * magnitude;
+}
+
+double magnitude_of(const std::vector<std::array<double, 4>>& weighted) {
+  double m = 0.0;
+  for (const auto& h : weighted) {
+    const Vec3 x = euclidean(h);
+    m = std::max({m, std::abs(x.x), std::abs(x.y), std::abs(x.z)});
+  }
+  return m;
+}
+
+// Unit vectors differ by more than the rounding of two evaluations: a kink between two pieces.
+bool directions_differ(Vec3 a, Vec3 b) {
+  const double la = norm(a), lb = norm(b);
+  if (!(la > 0.0) || !(lb > 0.0)) return false;
+  return norm(a / la - b / lb) > 1e-8;
+}
+
+GeometryDefinition piece_definition(
+    GeometryType type, const std::vector<std::pair<std::string, std::array<double, 2>>>& domain) {
+  GeometryDefinition def;
+  def.type = type;
+  def.domain = domain;
+  return def;
+}
+
+// The global parameter of the local s in [0, 1] on [a, b]: the ends exactly.
+double global_of(double s, double a, double b) { return s <= 0.0 ? a : s >= 1.0 ? b : a + (b - a) * s; }
+
+// The pieces' certified `auto` answers combined (solvers/piecewise_nearest.hpp). `to_local(k, t,
+// s)` maps options.initial's global parameters to piece k's local ones (false: not on piece k);
+// `finish(k, r)` locates piece k's answer on the whole geometry and maps its parameters back.
+template <class Pieces, class ToLocal, class Finish>
+ProjectionResult nearest_piece(const Pieces& pieces, const std::vector<Box3>& hulls, const Vec3& p,
+                               const Options& options, ToLocal to_local, Finish finish) {
+  return nearest_over_pieces(hulls, p, options,
+                             [&](std::size_t k, const Options& o) {
+                               Options piece_options = o;
+                               std::array<double, 3> local{};
+                               if (o.initial && to_local(k, *o.initial, local))
+                                 piece_options.initial = local;
+                               else
+                                 piece_options.initial.reset();
+                               const double point[3] = {p.x, p.y, p.z};
+                               ProjectionResult r = pieces[k]->project(point, "auto", piece_options).value();
+                               // The normal is the whole geometry's (foot_normal), not the piece's: none on a
+                               // kink.
+                               r.normal.fill(std::numeric_limits<double>::quiet_NaN());
+                               r.signed_distance = std::numeric_limits<double>::quiet_NaN();
+                               finish(k, r);
+                               return r;
+                             })
+      .result;
+}
+
+constexpr std::uint32_t kAutoStatuses =
+    statuses({Status::converged, Status::max_iterations, Status::non_finite, Status::degenerate,
+              Status::beyond_max_distance, Status::deadline_exceeded});
+
+constexpr Method<BSplineSurface> kSurfaceMethods[] = {
+    {{"auto",
+      "global nearest point over the closed domain: a branch and bound over the Bézier pieces (the boxes of "
+      "their control points), each piece by the parametric surfaces' certified auto; options.initial is a "
+      "warm start",
+      "",
+      {},
+      kGlobalOptions | option_initial | option_max_minima,
+      kAutoStatuses},
+     [](const BSplineSurface& s, Vec3 p, const Options& o) { return s.project_auto(p, o); }},
+};
+constexpr Method<BSplineCurve> kCurveMethods[] = {
+    {{"auto",
+      "global nearest point over the closed domain: a branch and bound over the Bézier pieces (the boxes of "
+      "their control points), each piece by the parametric curves' certified auto",
+      "",
+      {},
+      kGlobalOptions | option_max_minima,
+      kAutoStatuses},
+     [](const BSplineCurve& c, Vec3 p, const Options& o) { return c.project_auto(p, o); }},
+};
+
+const MethodTable<BSplineSurface>& surface_table() {
+  static const MethodTable<BSplineSurface> t(kSurfaceMethods, PointDims::spatial);
+  return t;
+}
+const MethodTable<BSplineCurve>& curve_table() {
+  static const MethodTable<BSplineCurve> t(kCurveMethods, PointDims::any);
+  return t;
+}
+
+GeometryError bspline_error(const nurbs::DefinitionError& e) {
+  return GeometryError("bad_bspline", e.field, -1, e.field + " " + e.message);
+}
+
+std::vector<nurbs::SurfacePiece> surface_pieces(const nurbs::Surface& s, std::size_t max_nodes) {
+  try {
+    return nurbs::bezier_pieces(s, max_nodes);
+  } catch (const formula::FormulaError& e) {
+    throw GeometryError(formula::to_string(e.kind), "control_points", -1, e.what());
+  }
+}
+std::vector<nurbs::CurvePiece> curve_pieces(const nurbs::Curve& c, std::size_t max_nodes) {
+  try {
+    return nurbs::bezier_pieces(c, max_nodes);
+  } catch (const formula::FormulaError& e) {
+    throw GeometryError(formula::to_string(e.kind), "control_points", -1, e.what());
+  }
+}
+
+}  // namespace
+
+// ---- surfaces ------------------------------------------------------------------------------------
+
+BSplineSurface::BSplineSurface(GeometryDefinition def, nurbs::Surface surface,
+                               const formula::CompileLimits& limits)
+    : CompiledGeometry(std::move(def)), surface_(std::move(surface)) {
+  breaks_u_ = breaks_of(surface_.knots_u, surface_.umin(), surface_.umax());
+  breaks_v_ = breaks_of(surface_.knots_v, surface_.vmin(), surface_.vmax());
+  std::vector<nurbs::SurfacePiece> pieces = surface_pieces(surface_, limits.max_nodes);
+  const SurfaceSeedingOptions seeding = piece_seeding();
+  for (nurbs::SurfacePiece& piece : pieces) {
+    pieces_.push_back(std::make_unique<ParametricSurface>(
+        piece_definition(GeometryType::parametric_surface, {{"u", {0.0, 1.0}}, {"v", {0.0, 1.0}}}),
+        std::move(piece.program), ParamBox{0.0, 1.0, 0.0, 1.0}, seeding));
+    spans_.push_back(piece.span);
+    hulls_.push_back(piece.hull);
+    CompileBudget::check();
+  }
+  // Closed directions: the first and last pieces' boundary rows (columns) of Bézier points agree.
+  const std::size_t nu = breaks_u_.size() - 1, nv = breaks_v_.size() - 1;
+  const auto [p, q] = surface_.degree;
+  const double magnitude = magnitude_of(surface_.weighted);
+  auto net = [&](std::size_t a, std::size_t b, int k, int l) -> const std::array<double, 4>& {
+    return pieces[a * nv + b].bezier[static_cast<std::size_t>(k * (q + 1) + l)];
+  };
+  closed_[0] = closed_[1] = true;
+  for (std::size_t b = 0; b < nv; ++b)
+    for (int l = 0; l <= q; ++l)
+      closed_[0] = closed_[0] && same_point(net(0, b, 0, l), net(nu - 1, b, p, l), magnitude);
+  for (std::size_t a = 0; a < nu; ++a)
+    for (int k = 0; k <= p; ++k)
+      closed_[1] = closed_[1] && same_point(net(a, 0, k, 0), net(a, nv - 1, k, q), magnitude);
+}
+
+const std::vector<MethodInfo>& BSplineSurface::methods() const { return surface_table().infos(); }
+const std::vector<MethodInfo>& bspline_surface_methods() { return surface_table().infos(); }
+
+ProjectionResult BSplineSurface::project_with(std::size_t index, const double* p,
+                                              const Options& options) const {
+  return surface_table().project(index, *this, {p[0], p[1], p[2]}, options);
+}
+
+std::size_t BSplineSurface::memory_bytes() const {
+  std::size_t bytes = sizeof(*this) + surface_.weighted.capacity() * sizeof(surface_.weighted[0]) +
+                      hulls_.capacity() * sizeof(Box3);
+  for (const auto& piece : pieces_) bytes += piece->memory_bytes();
+  return bytes;
+}
+
+bool BSplineSurface::evaluate(const double* t, Evaluation& out) const {
+  const double u = t[0], v = t[1];
+  out.inside_domain =
+      u >= surface_.umin() && u <= surface_.umax() && v >= surface_.vmin() && v <= surface_.vmax();
+  // Inside, the NURBS by de Boor; beyond the domain, the end pieces' polynomials continued.
+  SurfaceJet j;
+  if (out.inside_domain) {
+    j = nurbs::evaluate(surface_, u, v);
+  } else {
+    const std::size_t k = span_of(breaks_u_, u) * (breaks_v_.size() - 1) + span_of(breaks_v_, v);
+    const ParamBox& b = spans_[k];
+    const double hu = 1.0 / (b.umax - b.umin), hv = 1.0 / (b.vmax - b.vmin);
+    j = pieces_[k]->formulas().jet((u - b.umin) * hu, (v - b.vmin) * hv);
+    j.su = j.su * hu;
+    j.sv = j.sv * hv;
+    j.suu = j.suu * (hu * hu);
+    j.suv = j.suv * (hu * hv);
+    j.svv = j.svv * (hv * hv);
+  }
+  out.point = j.s;
+  out.first = {j.su, j.sv};
+  out.second = {j.suu, j.suv, j.svv};
+  const Vec3 n = cross(j.su, j.sv);
+  const double length = norm(n);
+  out.normal_defined = length > 0.0 && std::isfinite(length);
+  out.normal = out.normal_defined ? n / length : Vec3{};
+  return true;
+}
+
+bool BSplineSurface::foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const {
+  if (r.summary.location == Location::pole || r.summary.location == Location::kink) return false;
+  Evaluation e;
+  evaluate(r.params.data(), e);
+  if (!e.normal_defined) return false;
+  n = {e.normal.x, e.normal.y, e.normal.z};
+  return true;
+}
+
+Location BSplineSurface::locate(std::size_t k, Location piece_location, double s, double t) const {
+  if (piece_location != Location::edge && piece_location != Location::corner) return piece_location;
+  const std::size_t nu = breaks_u_.size() - 1, nv = breaks_v_.size() - 1, a = k / nv, b = k % nv;
+  // The piece's edges s = 0, 1 (t = 0, 1): the domain's edges where they are the first or last
+  // span's and the direction is not closed; else a knot line inside.
+  const bool s_end = s <= 0.0 || s >= 1.0, t_end = t <= 0.0 || t >= 1.0;
+  const bool on_u = s_end && !closed_[0] && ((s <= 0.0 && a == 0) || (s >= 1.0 && a == nu - 1));
+  const bool on_v = t_end && !closed_[1] && ((t <= 0.0 && b == 0) || (t >= 1.0 && b == nv - 1));
+  if (on_u && on_v) return Location::corner;
+  if (on_u || on_v) return Location::edge;
+  // On a knot line inside: a kink where the normals of the pieces on its two sides differ.
+  auto normal = [&](std::size_t piece, double ps, double pt) {
+    const SurfaceJet j = pieces_[piece]->formulas().jet(ps, pt);
+    return cross(j.su, j.sv);
+  };
+  const Vec3 here = normal(k, s, t);
+  if (s_end && !on_u) {
+    const std::size_t other = s <= 0.0 ? (a == 0 ? nu - 1 : a - 1) : (a == nu - 1 ? 0 : a + 1);
+    if (directions_differ(here, normal(other * nv + b, s <= 0.0 ? 1.0 : 0.0, t))) return Location::kink;
+  }
+  if (t_end && !on_v) {
+    const std::size_t other = t <= 0.0 ? (b == 0 ? nv - 1 : b - 1) : (b == nv - 1 ? 0 : b + 1);
+    if (directions_differ(here, normal(a * nv + other, s, t <= 0.0 ? 1.0 : 0.0))) return Location::kink;
+  }
+  return Location::interior;
+}
+
+ProjectionResult BSplineSurface::project_auto(const Vec3& p, const Options& options) const {
+  const auto to_local = [&](std::size_t k, const std::array<double, 3>& t, std::array<double, 3>& local) {
+    const ParamBox& b = spans_[k];
+    if (!b.contains(t[0], t[1])) return false;
+    local = {(t[0] - b.umin) / (b.umax - b.umin), (t[1] - b.vmin) / (b.vmax - b.vmin), 0.0};
+    return true;
+  };
+  const auto finish = [&](std::size_t k, ProjectionResult& r) {
+    const ParamBox& b = spans_[k];
+    auto map = [&](std::array<double, 2>& t) {
+      t = {global_of(t[0], b.umin, b.umax), global_of(t[1], b.vmin, b.vmax)};
+    };
+    if (std::isfinite(r.distance)) {
+      r.summary.location = locate(k, r.summary.location, r.params[0], r.params[1]);
+      r.summary.on_boundary = r.summary.location == Location::edge || r.summary.location == Location::corner;
+      map(r.params);
+    }
+    for (Minimum& m : r.minima) {
+      m.location = locate(k, m.location, m.params[0], m.params[1]);
+      map(m.params);
+      for (auto& c : m.copies) map(c);
+    }
+    for (auto& step : r.trace) {
+      step[0] *= b.umax - b.umin;
+      step[1] *= b.vmax - b.vmin;
+    }
+  };
+  return nearest_piece(pieces_, hulls_, p, options, to_local, finish);
+}
+
+// ---- curves --------------------------------------------------------------------------------------
+
+BSplineCurve::BSplineCurve(GeometryDefinition def, nurbs::Curve curve, const formula::CompileLimits& limits)
+    : CompiledGeometry(std::move(def)), curve_(std::move(curve)) {
+  breaks_ = breaks_of(curve_.knots, curve_.tmin(), curve_.tmax());
+  std::vector<nurbs::CurvePiece> pieces = curve_pieces(curve_, limits.max_nodes);
+  for (nurbs::CurvePiece& piece : pieces) {
+    pieces_.push_back(std::make_unique<ParametricCurve>(
+        piece_definition(GeometryType::parametric_curve, {{"t", {0.0, 1.0}}}),
+        CurveFormulas(std::move(piece.program)), ParamInterval{0.0, 1.0}));
+    spans_.push_back(piece.span);
+    hulls_.push_back(piece.hull);
+    CompileBudget::check();
+  }
+  closed_ =
+      same_point(pieces.front().bezier.front(), pieces.back().bezier.back(), magnitude_of(curve_.weighted));
+}
+
+const std::vector<MethodInfo>& BSplineCurve::methods() const { return curve_table().infos(); }
+const std::vector<MethodInfo>& bspline_curve_methods() { return curve_table().infos(); }
+
+ProjectionResult BSplineCurve::project_with(std::size_t index, const double* p,
+                                            const Options& options) const {
+  return curve_table().project(index, *this, {p[0], p[1], curve_.dimension == 3 ? p[2] : 0.0}, options);
+}
+
+std::size_t BSplineCurve::memory_bytes() const {
+  std::size_t bytes = sizeof(*this) + curve_.weighted.capacity() * sizeof(curve_.weighted[0]) +
+                      hulls_.capacity() * sizeof(Box3);
+  for (const auto& piece : pieces_) bytes += piece->memory_bytes();
+  return bytes;
+}
+
+bool BSplineCurve::evaluate(const double* t, Evaluation& out) const {
+  out.inside_domain = t[0] >= curve_.tmin() && t[0] <= curve_.tmax();
+  CurveJet j;
+  if (out.inside_domain) {
+    j = nurbs::evaluate(curve_, t[0]);
+  } else {
+    const std::size_t k = span_of(breaks_, t[0]);
+    const double h = 1.0 / (spans_[k].tmax - spans_[k].tmin);
+    j = pieces_[k]->formulas().jet((t[0] - spans_[k].tmin) * h);
+    j.d1 = j.d1 * h;
+    j.d2 = j.d2 * (h * h);
+  }
+  out.point = j.c;
+  out.first = {j.d1, Vec3{}};
+  out.second = {j.d2, Vec3{}, Vec3{}};
+  // The principal normal: the part of c'' orthogonal to c', normalised.
+  const double speed2 = dot(j.d1, j.d1);
+  const Vec3 normal = speed2 > 0.0 ? j.d2 - j.d1 * (dot(j.d2, j.d1) / speed2) : Vec3{};
+  const double length = norm(normal);
+  out.normal_defined = length > 0.0 && std::isfinite(length);
+  out.normal = out.normal_defined ? normal / length : Vec3{};
+  return true;
+}
+
+bool BSplineCurve::foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const {
+  if (curve_.dimension != 2 || r.summary.location == Location::kink) return false;
+  const CurveJet j = nurbs::evaluate(curve_, r.params[0]);
+  const double speed = std::hypot(j.d1.x, j.d1.y);
+  if (!(speed > 0.0) || !std::isfinite(speed)) return false;
+  n = {-j.d1.y / speed, j.d1.x / speed, 0.0};
+  return true;
+}
+
+Location BSplineCurve::locate(std::size_t k, Location piece_location, double s) const {
+  if (piece_location != Location::endpoint) return piece_location;
+  const std::size_t n = pieces_.size();
+  if (!closed_ && ((s <= 0.0 && k == 0) || (s >= 1.0 && k == n - 1))) return Location::endpoint;
+  // A joint inside (or the seam of a closed curve): a kink where the tangents differ.
+  const std::size_t other = s <= 0.0 ? (k == 0 ? n - 1 : k - 1) : (k == n - 1 ? 0 : k + 1);
+  if (directions_differ(pieces_[k]->formulas().jet(s).d1,
+                        pieces_[other]->formulas().jet(s <= 0.0 ? 1.0 : 0.0).d1))
+    return Location::kink;
+  return Location::interior;
+}
+
+ProjectionResult BSplineCurve::project_auto(const Vec3& p, const Options& options) const {
+  const auto to_local = [&](std::size_t k, const std::array<double, 3>& t, std::array<double, 3>& local) {
+    const ParamInterval& b = spans_[k];
+    if (!b.contains(t[0])) return false;
+    local = {(t[0] - b.tmin) / (b.tmax - b.tmin), 0.0, 0.0};
+    return true;
+  };
+  const auto finish = [&](std::size_t k, ProjectionResult& r) {
+    const ParamInterval& b = spans_[k];
+    if (std::isfinite(r.distance)) {
+      r.summary.location = locate(k, r.summary.location, r.params[0]);
+      r.summary.on_boundary = r.summary.location == Location::endpoint;
+      r.params[0] = global_of(r.params[0], b.tmin, b.tmax);
+    }
+    for (Minimum& m : r.minima) {
+      m.location = locate(k, m.location, m.params[0]);
+      m.params[0] = global_of(m.params[0], b.tmin, b.tmax);
+    }
+    for (auto& step : r.trace) step[0] *= b.tmax - b.tmin;
+  };
+  return nearest_piece(pieces_, hulls_, p, options, to_local, finish);
+}
+
+// ---- compiling -----------------------------------------------------------------------------------
+
+std::shared_ptr<const CompiledGeometry> compile_bspline_surface(const GeometryDefinition& def,
+                                                                const formula::CompileLimits& limits) {
+  const BSplineNet& net = def.bspline;
+  if (net.degree.size() != 2) throw GeometryError("bad_bspline", "degree", -1, "degree must be [p, q]");
+  if (net.knots.size() != 2) throw GeometryError("bad_bspline", "knots", -1, "knots must have u and v");
+  std::size_t count = 0;
+  for (const auto& row : net.control_points) count += row.size();
+  if (count > kMaxControlPoints)
+    throw GeometryError("bad_bspline", "control_points", -1,
+                        "control_points has " + std::to_string(count) + " points; the limit is " +
+                            std::to_string(kMaxControlPoints));
+  nurbs::SurfaceOrError s = nurbs::make_surface({net.degree[0], net.degree[1]}, net.knots[0], net.knots[1],
+                                                net.control_points, net.weights, kMaxControlPoints);
+  if (!s.surface) throw bspline_error(s.error);
+  return std::make_shared<BSplineSurface>(def, std::move(*s.surface), limits);
+}
+
+std::shared_ptr<const CompiledGeometry> compile_bspline_curve(const GeometryDefinition& def,
+                                                              const formula::CompileLimits& limits) {
+  const BSplineNet& net = def.bspline;
+  if (net.degree.size() != 1) throw GeometryError("bad_bspline", "degree", -1, "degree must be one number");
+  if (net.knots.size() != 1 || net.control_points.size() != 1 || net.weights.size() > 1)
+    throw GeometryError("bad_bspline", "control_points", -1, "a curve has one list of control points");
+  nurbs::CurveOrError c =
+      nurbs::make_curve(net.degree[0], net.knots[0], net.control_points[0],
+                        net.weights.empty() ? std::vector<double>{} : net.weights[0], kMaxControlPoints);
+  if (!c.curve) throw bspline_error(c.error);
+  return std::make_shared<BSplineCurve>(def, std::move(*c.curve), limits);
+}
+
+}  // namespace footpoint

@@ -1,0 +1,159 @@
+#include "solvers/piecewise_nearest.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace footpoint {
+
+double distance_lower_bound(const Box3& box, const Vec3& p) {
+  double sum = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double gap = std::fmax(std::fmax(box.lo[k] - p[k], p[k] - box.hi[k]), 0.0);
+    sum += gap * gap;
+  }
+  // Each gap, square and sum is rounded to nearest: at most 6 roundings of relative 2^-53 each.
+  return std::sqrt(sum) * (1.0 - 0x1p-49);
+}
+
+namespace {
+
+double tie_gap(const ProjectionResult& r, const Vec3& p) {
+  const Vec3 foot{r.foot[0], r.foot[1], r.foot[2]};
+  return std::fmax(Certificate::kRelativeGap * r.distance, Certificate::absolute_gap_at(p, foot));
+}
+
+double foot_scale(const std::array<double, 3>& f) {
+  return 1.0 + std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+}
+
+}  // namespace
+
+PiecewiseNearest nearest_over_pieces(
+    const std::vector<Box3>& hulls, const Vec3& p, const Options& options,
+    const std::function<ProjectionResult(std::size_t, const Options&)>& solve) {
+  std::vector<double> lower(hulls.size());
+  for (std::size_t k = 0; k < hulls.size(); ++k) lower[k] = distance_lower_bound(hulls[k], p);
+  std::vector<std::size_t> order(hulls.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return lower[a] < lower[b]; });
+
+  struct Solved {
+    std::size_t piece;
+    ProjectionResult r;
+  };
+  std::vector<Solved> solved;
+  const Solved* best = nullptr;
+  double unsolved_bound = std::numeric_limits<double>::infinity();  // the nearest box left out
+  for (const std::size_t k : order) {
+    const bool beyond_best = best && !options.all_minima && lower[k] > best->r.distance + tie_gap(best->r, p);
+    if (beyond_best || lower[k] > options.max_distance) {
+      unsolved_bound = lower[k];
+      break;
+    }
+    solved.push_back({k, solve(k, options)});
+    if (solved.back().r.summary.status == Status::deadline_exceeded) break;
+    best = nullptr;
+    for (const Solved& s : solved)
+      if (std::isfinite(s.r.distance) && (!best || s.r.distance < best->r.distance)) best = &s;
+  }
+
+  PiecewiseNearest out;
+  out.pieces_solved = static_cast<int>(solved.size());
+  if (!best) {
+    // No piece within reach: the first solved piece's answer says why (deadline, beyond
+    // max_distance), or every box is beyond max_distance.
+    if (!solved.empty()) {
+      out.result = solved.front().r;
+      out.piece = solved.front().piece;
+      for (const Solved& s : solved)
+        if (s.r.summary.status == Status::deadline_exceeded) out.result = s.r;
+    } else {
+      out.result.summary.status = Status::beyond_max_distance;
+      out.result.summary.method = "auto";
+      withhold_answer(out.result);
+    }
+    return out;
+  }
+
+  out.result = best->r;
+  out.piece = best->piece;
+  Summary& summary = out.result.summary;
+  const double d = best->r.distance;
+  const Vec3 foot{best->r.foot[0], best->r.foot[1], best->r.foot[2]};
+
+  // The certificate: no point nearer than the least of the pieces' bounds.
+  summary.starts = 0;
+  summary.certificate.boxes = 0;
+  double lower_bound = unsolved_bound;
+  const Solved* weakest = nullptr;  // the solved piece with the smallest lower bound
+  for (const Solved& s : solved) {
+    summary.starts += s.r.summary.starts;
+    summary.certificate.boxes += s.r.summary.certificate.boxes;
+    const Certificate& c = s.r.summary.certificate;
+    const double bound = c.computed ? c.lower_bound : lower[s.piece];
+    if (bound < lower_bound) {
+      lower_bound = bound;
+      weakest = &s;
+    }
+  }
+  Certificate& certificate = summary.certificate;
+  if (certificate.computed) {
+    certificate.lower_bound = std::fmin(lower_bound, d);
+    certificate.absolute_gap = Certificate::absolute_gap_at(p, foot);
+    certificate.certified = Certificate::meets_gap(d, certificate.lower_bound, certificate.absolute_gap);
+    if (certificate.certified)
+      certificate.reason = CertificateReason::gap_met;
+    else if (weakest && weakest->r.summary.certificate.computed)
+      certificate.reason = weakest->r.summary.certificate.reason;
+    else
+      certificate.reason = CertificateReason::budget_exhausted;
+  }
+
+  // Ties: the feet of every solved piece within the gap of d, each once.
+  if (summary.multiplicity.computed) {
+    AnswerMultiplicity m;
+    m.computed = true;
+    m.feet.clear();
+    const double gap = tie_gap(best->r, p);
+    bool continuum = false;
+    m.add_distinct(best->r.foot, kDistinctFoot * foot_scale(best->r.foot));  // the answer's first
+    for (const Solved& s : solved) {
+      if (!std::isfinite(s.r.distance) || s.r.distance > d + gap) continue;
+      if (s.r.summary.multiplicity.kind == Multiplicity::continuum) continuum = true;
+      std::vector<std::array<double, 3>> feet = s.r.summary.multiplicity.feet;
+      if (feet.empty()) feet.push_back(s.r.foot);
+      for (const auto& f : feet) m.add_distinct(f, kDistinctFoot * foot_scale(f));
+    }
+    m.settle();
+    if (continuum) {
+      m.kind = Multiplicity::continuum;
+      m.feet.clear();
+      m.count = 1;
+    }
+    summary.multiplicity = std::move(m);
+  }
+
+  // all_minima: the pieces' minima merged, a foot once.
+  if (options.all_minima) {
+    std::vector<Minimum> merged;
+    for (const Solved& s : solved)
+      for (const Minimum& m : s.r.minima) {
+        const bool seen = std::any_of(merged.begin(), merged.end(), [&](const Minimum& o) {
+          const double dx = o.foot[0] - m.foot[0], dy = o.foot[1] - m.foot[1], dz = o.foot[2] - m.foot[2];
+          return std::sqrt(dx * dx + dy * dy + dz * dz) <= kDistinctFoot * foot_scale(m.foot);
+        });
+        if (!seen) merged.push_back(m);
+      }
+    std::stable_sort(merged.begin(), merged.end(),
+                     [](const Minimum& a, const Minimum& b) { return a.distance < b.distance; });
+    out.result.minima = std::move(merged);
+    out.result.minima_truncated = false;
+    cap_minima(out.result, options);
+  }
+  return out;
+}
+
+}  // namespace footpoint

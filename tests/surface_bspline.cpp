@@ -1,0 +1,240 @@
+// compiled/bspline_geometry: B-spline and NURBS surfaces and curves projected with `auto` (the
+// branch and bound over their Bézier pieces) against closed forms computed here, not by the
+// engine: the rational sphere (the distance | |p| - 1 |, the foot p / |p|), a bicubic B-spline
+// whose control points lie on a plane at the Greville abscissae (linear precision: the surface is
+// the plane z = a u + b v + c over the domain exactly), a roof of two planes meeting in a C0 ridge
+// (the foot on the ridge is a kink), the NURBS circle (closed: its seam is interior); the
+// canonical text's round trip and the refusals of bad nets.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "compiled/bspline_geometry.hpp"
+#include "compiled/compiled_geometry.hpp"
+#include "compiled/geometry_definition.hpp"
+#include "geometry/geometry_error.hpp"
+
+using namespace footpoint;
+
+namespace {
+
+const double kHalfRoot2 = std::sqrt(0.5);
+
+// The full circle of radius r in the plane, degree 2 with nine control points ([PieglTiller]
+// Fig. 7.16 / eq. (7.x): the square's corners weighted √2/2).
+void circle_points(double r, std::vector<std::vector<double>>& points, std::vector<double>& weights) {
+  const double xs[9][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}, {1, 0}};
+  for (int i = 0; i < 9; ++i) {
+    points.push_back({r * xs[i][0], r * xs[i][1]});
+    weights.push_back(i % 2 ? kHalfRoot2 : 1.0);
+  }
+}
+const std::vector<double> kCircleKnots = {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
+
+GeometryDefinition nurbs_circle(double r) {
+  GeometryDefinition def;
+  def.type = GeometryType::bspline_curve;
+  def.bspline.degree = {2};
+  def.bspline.knots = {kCircleKnots};
+  std::vector<std::vector<double>> points;
+  std::vector<double> weights;
+  circle_points(r, points, weights);
+  def.bspline.control_points = {points};
+  def.bspline.weights = {weights};
+  return def;
+}
+
+// The unit sphere: the circle in u (around z) times the half circle from the south pole to the
+// north pole in v, weights the products.
+GeometryDefinition nurbs_sphere() {
+  GeometryDefinition def;
+  def.type = GeometryType::bspline_surface;
+  def.bspline.degree = {2, 2};
+  def.bspline.knots = {kCircleKnots, {0, 0, 0, 0.5, 0.5, 1, 1, 1}};
+  std::vector<std::vector<double>> circle;
+  std::vector<double> cw;
+  circle_points(1.0, circle, cw);
+  // the half circle in the (rho, z) plane: (0,-1) (1,-1) (1,0) (1,1) (0,1)
+  const double half[5][2] = {{0, -1}, {1, -1}, {1, 0}, {1, 1}, {0, 1}};
+  const double hw[5] = {1, kHalfRoot2, 1, kHalfRoot2, 1};
+  for (int i = 0; i < 9; ++i) {
+    std::vector<std::vector<double>> row;
+    std::vector<double> wrow;
+    for (int j = 0; j < 5; ++j) {
+      row.push_back({circle[i][0] * half[j][0], circle[i][1] * half[j][0], half[j][1]});
+      wrow.push_back(cw[i] * hw[j]);
+    }
+    def.bspline.control_points.push_back(row);
+    def.bspline.weights.push_back(wrow);
+  }
+  return def;
+}
+
+// A clamped uniform knot vector for n control points of degree p over [0, length].
+std::vector<double> clamped(int n, int p, double length) {
+  std::vector<double> U;
+  for (int i = 0; i <= p; ++i) U.push_back(0.0);
+  for (int i = 1; i < n - p; ++i) U.push_back(length * i / (n - p));
+  for (int i = 0; i <= p; ++i) U.push_back(length);
+  return U;
+}
+double greville(const std::vector<double>& U, int i, int p) {
+  double s = 0.0;
+  for (int k = 1; k <= p; ++k) s += U[static_cast<std::size_t>(i + k)];
+  return s / p;
+}
+
+// z = a u + b v + c over [0, 4]^2 as a bicubic B-spline of 11 x 11 control points (8 x 8 pieces).
+GeometryDefinition planar_bicubic(double a, double b, double c) {
+  GeometryDefinition def;
+  def.type = GeometryType::bspline_surface;
+  def.bspline.degree = {3, 3};
+  const std::vector<double> U = clamped(11, 3, 4.0);
+  def.bspline.knots = {U, U};
+  for (int i = 0; i < 11; ++i) {
+    std::vector<std::vector<double>> row;
+    for (int j = 0; j < 11; ++j) {
+      const double x = greville(U, i, 3), y = greville(U, j, 3);
+      row.push_back({x, y, a * x + b * y + c});
+    }
+    def.bspline.control_points.push_back(row);
+  }
+  return def;
+}
+
+}  // namespace
+
+TEST_CASE("the rational sphere: every answer is | |p| - 1 | at p / |p|, certified") {
+  const auto g = compile_geometry(nurbs_sphere());
+  const auto& s = dynamic_cast<const BSplineSurface&>(*g);
+  CHECK(s.pieces() == 8);
+  CHECK(s.closed()[0]);
+  CHECK_FALSE(s.closed()[1]);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coord(-2.0, 2.0);
+  int certified = 0, count = 0;
+  for (int k = 0; k < 60; ++k) {
+    const double p[3] = {coord(rng), coord(rng), coord(rng)};
+    const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    if (r < 0.2) continue;
+    ++count;
+    const ProjectionResult a = g->project(p, "auto", {}).value();
+    CAPTURE(p[0]);
+    CAPTURE(p[1]);
+    CAPTURE(p[2]);
+    CHECK(std::abs(a.distance - std::abs(r - 1.0)) <= 1e-12 * (1.0 + r));
+    for (int c = 0; c < 3; ++c) CHECK(std::abs(a.foot[c] - p[c] / r) <= 1e-12);
+    CHECK(a.summary.location != Location::edge);  // the seam is interior, the poles are poles
+    certified += a.summary.certificate.certified;
+    // The signed distance: outward normal.
+    CHECK(std::abs(a.signed_distance - (r - 1.0)) <= 1e-12 * (1.0 + r));
+  }
+  CHECK(certified == count);
+}
+
+TEST_CASE("a bicubic B-spline on a plane is the plane: closed-form feet over 64 pieces") {
+  const double a = 0.3, b = -0.2, c = 0.5;
+  const auto g = compile_geometry(planar_bicubic(a, b, c));
+  CHECK(dynamic_cast<const BSplineSurface&>(*g).pieces() == 64);
+  const double n_len = std::sqrt(a * a + b * b + 1.0);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> inside(0.3, 3.7), height(-0.5, 0.5);
+  for (int k = 0; k < 40; ++k) {
+    // p = q + h n for q on the plane inside the domain: its foot is q, at distance |h|.
+    const double u = inside(rng), v = inside(rng), h = height(rng) * (k % 2 ? 0.02 : 1.0);
+    const double n[3] = {-a / n_len, -b / n_len, 1.0 / n_len};
+    const double p[3] = {u + h * n[0], v + h * n[1], a * u + b * v + c + h * n[2]};
+    const ProjectionResult r = g->project(p, "auto", {}).value();
+    CAPTURE(u);
+    CAPTURE(v);
+    CAPTURE(h);
+    CHECK(std::abs(r.distance - std::abs(h)) <= 1e-12);
+    CHECK(std::abs(r.params[0] - u) <= 1e-9);
+    CHECK(std::abs(r.params[1] - v) <= 1e-9);
+    CHECK(r.summary.location == Location::interior);
+    CHECK(r.summary.certificate.certified);
+  }
+  // Beyond a corner: the corner.
+  const double p[3] = {-1.0, -1.0, 0.0};
+  const ProjectionResult r = g->project(p, "auto", {}).value();
+  CHECK(r.summary.location == Location::corner);
+  CHECK(std::abs(r.foot[2] - c) <= 1e-12);
+  CHECK(r.summary.certificate.certified);
+}
+
+TEST_CASE("a roof's ridge is a kink; the two faces give one foot") {
+  GeometryDefinition def;
+  def.type = GeometryType::bspline_surface;
+  def.bspline.degree = {1, 1};
+  def.bspline.knots = {{0, 0, 1, 2, 2}, {0, 0, 1, 1}};
+  def.bspline.control_points = {{{0, 0, 0}, {0, 1, 0}}, {{1, 0, 1}, {1, 1, 1}}, {{2, 0, 0}, {2, 1, 0}}};
+  const auto g = compile_geometry(def);
+  const double p[3] = {1.0, 0.5, 2.0};
+  const ProjectionResult r = g->project(p, "auto", {}).value();
+  CHECK(std::abs(r.distance - 1.0) <= 1e-12);
+  CHECK(r.summary.location == Location::kink);
+  CHECK(r.summary.multiplicity.kind == Multiplicity::unique);
+  CHECK(r.summary.certificate.certified);
+  CHECK_FALSE(r.has_normal());
+  // Above a face: interior, on that face's plane z = x.
+  const double q[3] = {0.5, 0.5, 1.0};
+  const ProjectionResult f = g->project(q, "auto", {}).value();
+  CHECK(std::abs(f.distance - 0.5 / std::sqrt(2.0)) <= 1e-12);
+  CHECK(f.summary.location == Location::interior);
+}
+
+TEST_CASE("the NURBS circle is closed: its seam is interior, the distance | |p| - 2 |") {
+  const auto g = compile_geometry(nurbs_circle(2.0));
+  const auto& curve = dynamic_cast<const BSplineCurve&>(*g);
+  CHECK(curve.closed());
+  CHECK(curve.pieces() == 4);
+  CHECK(g->point_dim() == 2);
+  for (int k = 0; k < 24; ++k) {
+    const double angle = 0.1 + k * 0.27, radius = 0.5 + 0.2 * k;
+    const double p[2] = {radius * std::cos(angle), radius * std::sin(angle)};
+    const ProjectionResult r = g->project(p, "auto", {}).value();
+    CAPTURE(angle);
+    CAPTURE(radius);
+    CHECK(std::abs(r.distance - std::abs(radius - 2.0)) <= 1e-12 * (1.0 + radius));
+    CHECK(std::abs(r.foot[0] - 2.0 * std::cos(angle)) <= 1e-12);
+    CHECK(std::abs(r.foot[1] - 2.0 * std::sin(angle)) <= 1e-12);
+    CHECK(r.summary.location == Location::interior);
+    CHECK(r.summary.certificate.certified);
+  }
+  // At the seam (t = 0 and t = 1 are the point (2, 0)): one foot, interior.
+  const double p[2] = {3.0, 0.0};
+  const ProjectionResult r = g->project(p, "auto", {}).value();
+  CHECK(std::abs(r.distance - 1.0) <= 1e-12);
+  CHECK(r.summary.location == Location::interior);
+  CHECK(r.summary.multiplicity.kind == Multiplicity::unique);
+  // The normal of a planar curve is c' turned by +90 degrees: inward on a counterclockwise circle.
+  CHECK(std::abs(r.signed_distance + 1.0) <= 1e-12);
+}
+
+TEST_CASE("B-spline definitions: canonical text round trip, ids, refusals naming the field") {
+  for (const GeometryDefinition& def : {nurbs_sphere(), nurbs_circle(2.0), planar_bicubic(0.1, 0.2, 0.3)}) {
+    const std::string text = def.canonical();
+    CHECK(parse_canonical(text).canonical() == text);
+    CHECK(parse_canonical(text).id() == def.id());
+  }
+  CHECK(nurbs_circle(2.0).id() != nurbs_circle(2.5).id());
+  CHECK_THROWS_AS(
+      parse_canonical("footpoint/1;type=bspline_curve;degree=2;knots.u=[0,1];control_points=[[0,0],"),
+      GeometryError);
+
+  GeometryDefinition bad = nurbs_circle(1.0);
+  bad.bspline.weights[0][3] = -1.0;
+  try {
+    compile_geometry(bad);
+    FAIL("a negative weight was accepted");
+  } catch (const GeometryError& e) {
+    CHECK(std::string(e.code) == "bad_bspline");
+    CHECK(e.field == "weights[3]");
+  }
+  bad = nurbs_circle(1.0);
+  bad.bspline.knots[0].pop_back();
+  CHECK_THROWS_AS(compile_geometry(bad), GeometryError);
+}
