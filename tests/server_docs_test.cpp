@@ -70,7 +70,8 @@ TEST_CASE("GET /v1/methods: each method's full citations, the options it reads, 
       CHECK(m["options"].size() >= 5);
       CHECK(m["citations"].empty() == m["paper"].get<std::string>().empty());
       // auto on surfaces also takes a warm start
-      if (m["name"] == "auto" && (type["type"] == "parametric_surface" || type["type"] == "bspline_surface")) {
+      if (m["name"] == "auto" &&
+          (type["type"] == "parametric_surface" || type["type"] == "bspline_surface")) {
         CHECK(m["options"] == json::array({"tolerance", "max_iterations", "initial", "all_minima", "trace",
                                            "max_distance", "certify", "max_minima"}));
       } else if (m["name"] == "auto") {

@@ -204,11 +204,11 @@ std::size_t BSplineSurface::memory_bytes() const {
 
 bool BSplineSurface::evaluate(const double* t, Evaluation& out) const {
   const double u = t[0], v = t[1];
-  out.inside_domain =
+  const bool inside =
       u >= surface_.umin() && u <= surface_.umax() && v >= surface_.vmin() && v <= surface_.vmax();
   // Inside, the NURBS by de Boor; beyond the domain, the end pieces' polynomials continued.
   SurfaceJet j;
-  if (out.inside_domain) {
+  if (inside) {
     j = nurbs::evaluate(surface_, u, v);
   } else {
     const std::size_t k = span_of(breaks_u_, u) * (breaks_v_.size() - 1) + span_of(breaks_v_, v);
@@ -221,13 +221,8 @@ bool BSplineSurface::evaluate(const double* t, Evaluation& out) const {
     j.suv = j.suv * (hu * hv);
     j.svv = j.svv * (hv * hv);
   }
-  out.point = j.s;
-  out.first = {j.su, j.sv};
-  out.second = {j.suu, j.suv, j.svv};
-  const Vec3 n = cross(j.su, j.sv);
-  const double length = norm(n);
-  out.normal_defined = length > 0.0 && std::isfinite(length);
-  out.normal = out.normal_defined ? n / length : Vec3{};
+  out = evaluation_of(j);
+  out.inside_domain = inside;
   return true;
 }
 
@@ -331,9 +326,9 @@ std::size_t BSplineCurve::memory_bytes() const {
 }
 
 bool BSplineCurve::evaluate(const double* t, Evaluation& out) const {
-  out.inside_domain = t[0] >= curve_.tmin() && t[0] <= curve_.tmax();
+  const bool inside = t[0] >= curve_.tmin() && t[0] <= curve_.tmax();
   CurveJet j;
-  if (out.inside_domain) {
+  if (inside) {
     j = nurbs::evaluate(curve_, t[0]);
   } else {
     const std::size_t k = span_of(breaks_, t[0]);
@@ -342,25 +337,14 @@ bool BSplineCurve::evaluate(const double* t, Evaluation& out) const {
     j.d1 = j.d1 * h;
     j.d2 = j.d2 * (h * h);
   }
-  out.point = j.c;
-  out.first = {j.d1, Vec3{}};
-  out.second = {j.d2, Vec3{}, Vec3{}};
-  // The principal normal: the part of c'' orthogonal to c', normalised.
-  const double speed2 = dot(j.d1, j.d1);
-  const Vec3 normal = speed2 > 0.0 ? j.d2 - j.d1 * (dot(j.d2, j.d1) / speed2) : Vec3{};
-  const double length = norm(normal);
-  out.normal_defined = length > 0.0 && std::isfinite(length);
-  out.normal = out.normal_defined ? normal / length : Vec3{};
+  out = evaluation_of(j);
+  out.inside_domain = inside;
   return true;
 }
 
 bool BSplineCurve::foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const {
-  if (curve_.dimension != 2 || r.summary.location == Location::kink) return false;
-  const CurveJet j = nurbs::evaluate(curve_, r.params[0]);
-  const double speed = std::hypot(j.d1.x, j.d1.y);
-  if (!(speed > 0.0) || !std::isfinite(speed)) return false;
-  n = {-j.d1.y / speed, j.d1.x / speed, 0.0};
-  return true;
+  return curve_.dimension == 2 && r.summary.location != Location::kink &&
+         planar_curve_normal(nurbs::evaluate(curve_, r.params[0]).d1, n);
 }
 
 Location BSplineCurve::locate(std::size_t k, Location piece_location, double s) const {

@@ -28,6 +28,39 @@ Expected<ProjectionResult, UnknownMethod> CompiledGeometry::project(const double
   return m->project(p, options);
 }
 
+Evaluation evaluation_of(const SurfaceJet& j) {
+  Evaluation out;
+  out.point = j.s;
+  out.first = {j.su, j.sv};
+  out.second = {j.suu, j.suv, j.svv};
+  const Vec3 n = cross(j.su, j.sv);
+  const double length = norm(n);
+  out.normal_defined = length > 0.0 && std::isfinite(length);
+  out.normal = out.normal_defined ? n / length : Vec3{};
+  return out;
+}
+
+Evaluation evaluation_of(const CurveJet& j) {
+  Evaluation out;
+  out.point = j.c;
+  out.first = {j.d1, Vec3{}};
+  out.second = {j.d2, Vec3{}, Vec3{}};
+  // The principal normal: c'' less its part along the tangent, normalized.
+  const double speed2 = norm2(j.d1);
+  const Vec3 bend = speed2 > 0.0 ? j.d2 - (dot(j.d2, j.d1) / speed2) * j.d1 : Vec3{};
+  const double length = norm(bend);
+  out.normal_defined = length > 0.0 && std::isfinite(length);
+  out.normal = out.normal_defined ? bend / length : Vec3{};
+  return out;
+}
+
+bool planar_curve_normal(const Vec3& d, std::array<double, 3>& n) {
+  const double speed = std::hypot(d.x, d.y);
+  if (!(speed > 0.0 && std::isfinite(speed))) return false;
+  n = {-d.y / speed, d.x / speed, 0.0};
+  return true;
+}
+
 const char* option_name(std::uint32_t bit_index) {
   static const char* const names[kMethodOptionCount] = {"tolerance",  "max_iterations", "initial",
                                                         "all_minima", "trace",          "max_distance",

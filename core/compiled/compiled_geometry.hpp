@@ -16,6 +16,8 @@
 #include "geometry/geometry_error.hpp"
 #include "geometry/projection_result.hpp"
 #include "geometry/vec.hpp"
+#include "parametric/geometry/parametric_curve.hpp"
+#include "parametric/geometry/parametric_surface.hpp"
 
 namespace footpoint {
 
@@ -40,6 +42,14 @@ struct Evaluation {
   bool normal_defined = false;
   bool inside_domain = false;  // the parameters lie in the closed domain (formulas extend beyond it)
 };
+
+// The Evaluation of a surface's jet (the normal s_u x s_v / |s_u x s_v|) and of a curve's (the
+// principal normal); inside_domain is left to the caller.
+Evaluation evaluation_of(const SurfaceJet& j);
+Evaluation evaluation_of(const CurveJet& j);
+// A planar curve's unit normal at a point with tangent d: d turned by +90 degrees in the plane,
+// (-d_y, d_x) / |d|; false where d = 0.
+bool planar_curve_normal(const Vec3& d, std::array<double, 3>& n);
 
 // What an implicit geometry's equations are at a point (CompiledGeometry::evaluate_equations):
 // the value of each equation as written in the definition (one for a surface f(x, y, z) = 0 or a

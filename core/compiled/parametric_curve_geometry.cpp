@@ -85,27 +85,13 @@ ProjectionResult ParametricCurve::project_with(std::size_t index, const double* 
 const std::vector<MethodInfo>& parametric_curve_methods() { return table().infos(); }
 
 bool ParametricCurve::evaluate(const double* t, Evaluation& out) const {
-  const CurveJet j = formulas_.jet(t[0]);
-  out.point = j.c;
-  out.first = {j.d1, Vec3{}};
-  out.second = {j.d2, Vec3{}, Vec3{}};
-  // The principal normal: c'' less its part along the tangent, normalized.
-  const double speed2 = norm2(j.d1);
-  const Vec3 bend = speed2 > 0.0 ? j.d2 - (dot(j.d2, j.d1) / speed2) * j.d1 : Vec3{};
-  const double length = norm(bend);
-  out.normal_defined = length > 0.0 && std::isfinite(length);
-  out.normal = out.normal_defined ? bend / length : Vec3{};
+  out = evaluation_of(formulas_.jet(t[0]));
   out.inside_domain = domain_.contains(t[0]);
   return true;
 }
 
 bool ParametricCurve::foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const {
-  if (formulas_.dim() != 2) return false;
-  const Vec3 d = formulas_.jet(r.params[0]).d1;
-  const double speed = std::hypot(d.x, d.y);
-  if (!(speed > 0.0 && std::isfinite(speed))) return false;
-  n = {-d.y / speed, d.x / speed, 0.0};
-  return true;
+  return formulas_.dim() == 2 && planar_curve_normal(formulas_.jet(r.params[0]).d1, n);
 }
 
 std::size_t ParametricCurve::memory_bytes() const {

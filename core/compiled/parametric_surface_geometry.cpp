@@ -111,14 +111,7 @@ ProjectionResult ParametricSurface::project_with(std::size_t index, const double
 }
 
 bool ParametricSurface::evaluate(const double* t, Evaluation& out) const {
-  const SurfaceJet j = formulas_.jet(t[0], t[1]);
-  out.point = j.s;
-  out.first = {j.su, j.sv};
-  out.second = {j.suu, j.suv, j.svv};
-  const Vec3 n = cross(j.su, j.sv);
-  const double length = norm(n);
-  out.normal_defined = length > 0.0 && std::isfinite(length);
-  out.normal = out.normal_defined ? n / length : Vec3{};
+  out = evaluation_of(formulas_.jet(t[0], t[1]));
   out.inside_domain = box_.contains(t[0], t[1]);
   return true;
 }
