@@ -238,3 +238,44 @@ TEST_CASE("B-spline definitions: canonical text round trip, ids, refusals naming
   bad.bspline.knots[0].pop_back();
   CHECK_THROWS_AS(compile_geometry(bad), GeometryError);
 }
+
+TEST_CASE("the papers' methods run from piece to piece: from a start on one piece to a foot on another") {
+  const auto g = compile_geometry(nurbs_sphere());
+  std::vector<std::string> names;
+  for (const MethodInfo& m : g->methods()) names.emplace_back(m.name);
+  CHECK(names == std::vector<std::string>{"auto", "gsa", "first_order", "hybrid", "newton"});
+  // p near the sphere at longitude 200 degrees, latitude 30; start at longitude 170 (another
+  // quarter's piece), latitude 25 (u in [0, 1] is the longitude / 360, v the latitude's share).
+  const double lon = 200.0 * M_PI / 180.0, lat = 30.0 * M_PI / 180.0, r = 1.3;
+  const double p[3] = {r * std::cos(lat) * std::cos(lon), r * std::cos(lat) * std::sin(lon),
+                       r * std::sin(lat)};
+  for (const std::string method : {"hybrid", "newton", "gsa", "first_order"}) {
+    CAPTURE(method);
+    Options o;
+    o.initial = std::array<double, 3>{170.0 / 360.0, 0.5 + 25.0 / 180.0, 0.0};
+    o.certify = true;
+    const auto answer = g->project(p, method, o);
+    if (!answer) FAIL(answer.error().message);
+    const ProjectionResult a = answer.value();
+    CHECK(a.summary.status == Status::converged);
+    CHECK(std::abs(a.distance - 0.3) <= 1e-12);
+    for (int c = 0; c < 3; ++c) CHECK(std::abs(a.foot[c] - p[c] / r) <= 1e-12);
+    CHECK(a.summary.certificate.certified);
+    CHECK(a.params[0] > 0.5);  // on the third quarter's piece, not the start's
+    CHECK(a.params[0] < 0.75);
+  }
+  // The circle's curve methods: newton from the nearest sample, curvature_circle from a start.
+  const auto circle = compile_geometry(nurbs_circle(2.0));
+  const double q[2] = {-1.0, -3.0};
+  for (const std::string method : {"newton", "curvature_circle"}) {
+    CAPTURE(method);
+    Options o;
+    if (method == "curvature_circle") o.initial = std::array<double, 3>{0.1, 0.0, 0.0};
+    const auto answer = circle->project(q, method, o);
+    if (!answer) FAIL(answer.error().message);
+    const ProjectionResult a = answer.value();
+    CHECK(a.summary.status == Status::converged);
+    CHECK(std::abs(a.distance - (std::sqrt(10.0) - 2.0)) <= 1e-12);
+    CHECK(a.summary.location == Location::interior);
+  }
+}

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "geometry/compile_budget.hpp"
@@ -102,35 +103,125 @@ constexpr std::uint32_t kAutoStatuses =
     statuses({Status::converged, Status::max_iterations, Status::non_finite, Status::degenerate,
               Status::beyond_max_distance, Status::deadline_exceeded});
 
-constexpr Method<BSplineSurface> kSurfaceMethods[] = {
-    {{"auto",
-      "global nearest point over the closed domain: a branch and bound over the Bézier pieces (the boxes of "
-      "their control points), each piece by the parametric surfaces' certified auto; options.initial is a "
-      "warm start",
-      "",
-      {},
-      kGlobalOptions | option_initial | option_max_minima,
-      kAutoStatuses},
-     [](const BSplineSurface& s, Vec3 p, const Options& o) { return s.project_auto(p, o); }},
-};
-constexpr Method<BSplineCurve> kCurveMethods[] = {
-    {{"auto",
-      "global nearest point over the closed domain: a branch and bound over the Bézier pieces (the boxes of "
-      "their control points), each piece by the parametric curves' certified auto",
-      "",
-      {},
-      kGlobalOptions | option_max_minima,
-      kAutoStatuses},
-     [](const BSplineCurve& c, Vec3 p, const Options& o) { return c.project_auto(p, o); }},
-};
+constexpr MethodInfo kSurfaceAuto{
+    "auto",
+    "global nearest point over the closed domain: a branch and bound over the Bézier pieces (the boxes of "
+    "their control points), each piece by the parametric surfaces' certified auto; options.initial is a "
+    "warm start",
+    "",
+    {},
+    kGlobalOptions | option_initial | option_max_minima,
+    kAutoStatuses};
+constexpr MethodInfo kCurveAuto{
+    "auto",
+    "global nearest point over the closed domain: a branch and bound over the Bézier pieces (the boxes of "
+    "their control points), each piece by the parametric curves' certified auto",
+    "",
+    {},
+    kGlobalOptions | option_max_minima,
+    kAutoStatuses};
 
-const MethodTable<BSplineSurface>& surface_table() {
-  static const MethodTable<BSplineSurface> t(kSurfaceMethods, PointDims::spatial);
-  return t;
+// auto, then the pieces' local methods (the papers'), which run from piece to piece.
+std::vector<MethodInfo> with_local_methods(const MethodInfo& auto_info,
+                                           const std::vector<MethodInfo>& pieces) {
+  std::vector<MethodInfo> out{auto_info};
+  for (const MethodInfo& m : pieces)
+    if (m.name != "auto") out.push_back(m);
+  return out;
 }
-const MethodTable<BSplineCurve>& curve_table() {
-  static const MethodTable<BSplineCurve> t(kCurveMethods, PointDims::any);
-  return t;
+
+// x moved by whole periods hi - lo into [lo, hi] (a closed direction's parameter; finite x only).
+double into_period(double x, double lo, double hi) {
+  if (!std::isfinite(x) || (x >= lo && x <= hi)) return x;
+  const double period = hi - lo;
+  return std::clamp(x - period * std::floor((x - lo) / period), lo, hi);
+}
+
+// The global parameters of piece-local ones, continued beyond [0, 1] (the ends exactly).
+template <std::size_t N>
+std::array<double, 2> to_global(const std::array<std::array<double, 2>, N>& span,
+                                const std::array<double, 2>& s) {
+  std::array<double, 2> out{};
+  for (std::size_t d = 0; d < N; ++d)
+    out[d] = s[d] == 0.0   ? span[d][0]
+             : s[d] == 1.0 ? span[d][1]
+                           : span[d][0] + (span[d][1] - span[d][0]) * s[d];
+  return out;
+}
+template <std::size_t N>
+std::array<double, 3> to_local(const std::array<std::array<double, 2>, N>& span,
+                               const std::array<double, 2>& t) {
+  std::array<double, 3> out{};
+  for (std::size_t d = 0; d < N; ++d) out[d] = (t[d] - span[d][0]) / (span[d][1] - span[d][0]);
+  return out;
+}
+
+// A local method run from piece to piece (bspline_geometry.hpp): `spans[k]` is piece k's span per
+// parameter, `piece_of(t)` the piece holding the global parameters t (moved into the domain by a
+// period along a closed direction), or -1 outside the domain.
+// Without a start, the method starts on `first` from its own default start.
+template <std::size_t N, class Pieces, class PieceOf>
+ProjectionResult follow_pieces(std::string_view name, const Pieces& pieces,
+                               const std::vector<std::array<std::array<double, 2>, N>>& spans,
+                               PieceOf piece_of, const Vec3& p, const Options& options,
+                               std::optional<std::array<double, 2>> start, std::size_t first) {
+  const double point[3] = {p.x, p.y, p.z};
+  std::ptrdiff_t k = start ? piece_of(*start) : static_cast<std::ptrdiff_t>(first);
+  if (k < 0) k = static_cast<std::ptrdiff_t>(first);
+  std::optional<std::array<double, 3>> local;
+  if (start) local = to_local<N>(spans[static_cast<std::size_t>(k)], *start);
+  ProjectionResult r;
+  int iterations = 0;
+  std::vector<std::array<double, 3>> trace;
+  for (std::size_t hop = 0; hop <= pieces.size(); ++hop) {
+    const auto& span = spans[static_cast<std::size_t>(k)];
+    Options o = options;
+    o.certify = false;
+    o.initial = local;  // the piece's own default start when there is none
+    r = pieces[static_cast<std::size_t>(k)]->project(point, name, o).value();
+    iterations += r.summary.iterations;
+    for (auto step : r.trace) {
+      for (std::size_t d = 0; d < N; ++d) step[d] *= span[d][1] - span[d][0];
+      trace.push_back(step);
+    }
+    r.params = to_global<N>(span, r.params);
+    if (r.summary.status != Status::outside_domain) break;
+    std::array<double, 2> restart = r.params;
+    const std::ptrdiff_t next = piece_of(restart);
+    if (next < 0 || next == k) break;  // beyond the whole domain
+    k = next;
+    local = to_local<N>(spans[static_cast<std::size_t>(k)], restart);
+  }
+  r.summary.iterations = iterations;
+  r.trace = std::move(trace);
+  if (r.summary.location == Location::edge || r.summary.location == Location::corner ||
+      r.summary.location == Location::endpoint)
+    r.summary.location = Location::interior;  // a piece's edge inside the domain
+  r.summary.on_boundary = false;
+  r.normal.fill(std::numeric_limits<double>::quiet_NaN());
+  r.signed_distance = std::numeric_limits<double>::quiet_NaN();
+  return r;
+}
+
+// With options.certify, a local answer gets `auto`'s certificate of the whole geometry.
+template <class Geometry>
+void certify_local(const Geometry& g, const Vec3& p, const Options& options, ProjectionResult& r) {
+  if (!options.certify.value_or(false) || !std::isfinite(r.distance)) return;
+  Options o;
+  o.certify = true;
+  const ProjectionResult global = g.project_auto(p, o);
+  Certificate c = global.summary.certificate;
+  if (!c.computed) return;
+  const Vec3 foot{r.foot[0], r.foot[1], r.foot[2]};
+  c.absolute_gap = Certificate::absolute_gap_at(p, foot);
+  c.lower_bound = std::fmin(c.lower_bound, r.distance);
+  c.certified = Certificate::meets_gap(r.distance, c.lower_bound, c.absolute_gap);
+  if (c.certified)
+    c.reason = CertificateReason::gap_met;
+  else if (std::isfinite(global.distance) &&
+           global.distance < r.distance - std::fmax(Certificate::kRelativeGap * r.distance, c.absolute_gap))
+    c.reason = CertificateReason::nearer_point;
+  r.summary.certificate = c;
 }
 
 GeometryError bspline_error(const nurbs::DefinitionError& e) {
@@ -171,6 +262,7 @@ BSplineSurface::BSplineSurface(GeometryDefinition def, nurbs::Surface surface,
     hulls_.push_back(piece.hull);
     CompileBudget::check();
   }
+  methods_ = bspline_surface_methods();
   // Closed directions: the first and last pieces' boundary rows (columns) of Bézier points agree.
   const std::size_t nu = breaks_u_.size() - 1, nv = breaks_v_.size() - 1;
   const auto [p, q] = surface_.degree;
@@ -187,12 +279,37 @@ BSplineSurface::BSplineSurface(GeometryDefinition def, nurbs::Surface surface,
       closed_[1] = closed_[1] && same_point(net(a, 0, k, 0), net(a, nv - 1, k, q), magnitude);
 }
 
-const std::vector<MethodInfo>& BSplineSurface::methods() const { return surface_table().infos(); }
-const std::vector<MethodInfo>& bspline_surface_methods() { return surface_table().infos(); }
+const std::vector<MethodInfo>& BSplineSurface::methods() const { return methods_; }
+const std::vector<MethodInfo>& bspline_surface_methods() {
+  static const std::vector<MethodInfo> m = with_local_methods(kSurfaceAuto, parametric_surface_methods());
+  return m;
+}
 
 ProjectionResult BSplineSurface::project_with(std::size_t index, const double* p,
                                               const Options& options) const {
-  return surface_table().project(index, *this, {p[0], p[1], p[2]}, options);
+  const Vec3 x{p[0], p[1], p[2]};
+  return index == 0 ? project_auto(x, options) : project_local(methods_[index].name, x, options);
+}
+
+ProjectionResult BSplineSurface::project_local(std::string_view name, const Vec3& p,
+                                               const Options& options) const {
+  std::vector<std::array<std::array<double, 2>, 2>> spans;
+  for (const ParamBox& b : spans_) spans.push_back({{{b.umin, b.umax}, {b.vmin, b.vmax}}});
+  const std::size_t nv = breaks_v_.size() - 1;
+  const auto piece_of = [&](const std::array<double, 2>& t) -> std::ptrdiff_t {
+    if (!(t[0] >= surface_.umin() && t[0] <= surface_.umax() && t[1] >= surface_.vmin() &&
+          t[1] <= surface_.vmax()))
+      return -1;
+    return static_cast<std::ptrdiff_t>(span_of(breaks_u_, t[0]) * nv + span_of(breaks_v_, t[1]));
+  };
+  // From options.initial, else the domain's centre (as on a formula surface).
+  const std::array<double, 2> start =
+      options.initial ? std::array<double, 2>{(*options.initial)[0], (*options.initial)[1]}
+                      : std::array<double, 2>{0.5 * (surface_.umin() + surface_.umax()),
+                                              0.5 * (surface_.vmin() + surface_.vmax())};
+  ProjectionResult r = follow_pieces<2>(name, pieces_, spans, piece_of, p, options, start, 0);
+  certify_local(*this, p, options, r);
+  return r;
 }
 
 std::size_t BSplineSurface::memory_bytes() const {
@@ -308,14 +425,40 @@ BSplineCurve::BSplineCurve(GeometryDefinition def, nurbs::Curve curve, const for
   }
   closed_ =
       same_point(pieces.front().bezier.front(), pieces.back().bezier.back(), magnitude_of(curve_.weighted));
+  methods_ = with_local_methods(kCurveAuto, pieces_.front()->methods());
 }
 
-const std::vector<MethodInfo>& BSplineCurve::methods() const { return curve_table().infos(); }
-const std::vector<MethodInfo>& bspline_curve_methods() { return curve_table().infos(); }
+const std::vector<MethodInfo>& BSplineCurve::methods() const { return methods_; }
+const std::vector<MethodInfo>& bspline_curve_methods() {
+  static const std::vector<MethodInfo> m = with_local_methods(kCurveAuto, parametric_curve_methods());
+  return m;
+}
 
 ProjectionResult BSplineCurve::project_with(std::size_t index, const double* p,
                                             const Options& options) const {
-  return curve_table().project(index, *this, {p[0], p[1], curve_.dimension == 3 ? p[2] : 0.0}, options);
+  const Vec3 x{p[0], p[1], curve_.dimension == 3 ? p[2] : 0.0};
+  return index == 0 ? project_auto(x, options) : project_local(methods_[index].name, x, options);
+}
+
+ProjectionResult BSplineCurve::project_local(std::string_view name, const Vec3& p,
+                                             const Options& options) const {
+  std::vector<std::array<std::array<double, 2>, 1>> spans;
+  for (const ParamInterval& b : spans_) spans.push_back({{{b.tmin, b.tmax}}});
+  const auto piece_of = [&](std::array<double, 2>& t) -> std::ptrdiff_t {
+    if (closed_) t[0] = into_period(t[0], curve_.tmin(), curve_.tmax());
+    if (!(t[0] >= curve_.tmin() && t[0] <= curve_.tmax())) return -1;
+    return static_cast<std::ptrdiff_t>(span_of(breaks_, t[0]));
+  };
+  // From options.initial, else from the nearest sample of the piece whose box is nearest (a formula
+  // curve's methods start from its nearest sample).
+  std::optional<std::array<double, 2>> start;
+  if (options.initial) start = std::array<double, 2>{(*options.initial)[0], 0.0};
+  std::size_t nearest = 0;
+  for (std::size_t k = 1; k < hulls_.size(); ++k)
+    if (distance_lower_bound(hulls_[k], p) < distance_lower_bound(hulls_[nearest], p)) nearest = k;
+  ProjectionResult r = follow_pieces<1>(name, pieces_, spans, piece_of, p, options, start, nearest);
+  certify_local(*this, p, options, r);
+  return r;
 }
 
 std::size_t BSplineCurve::memory_bytes() const {

@@ -12,12 +12,18 @@
 // degree where the geometry stays smooth, as on the NURBS circle, is interior). Poles are found
 // per piece (a degenerate edge of its Bézier net).
 //
-// Limits: the papers' local methods are not offered (their iterations would run on one piece's
-// polynomial beyond its span); `evaluate` and the normals use the NURBS itself (de Boor).
+// The papers' local methods run on the piece holding their start (options.initial, else the
+// domain's centre); a piece's polynomial continues beyond its span, so where the iteration
+// converges outside the span but inside the domain, it runs again on the piece there from that
+// point, until it converges inside the piece it runs on (or outside the domain: outside_domain).
+// Asked to certify, their answer gets `auto`'s certificate of the whole geometry (refuted with
+// nearer_point when `auto` finds a point nearer by more than the gap). `evaluate` and the normals
+// use the NURBS itself (de Boor).
 #pragma once
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
@@ -48,6 +54,8 @@ class BSplineSurface final : public CompiledGeometry {
 
  private:
   ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
+  // The local method `name` of the pieces, moved from piece to piece (see above).
+  ProjectionResult project_local(std::string_view name, const Vec3& p, const Options& options) const;
   // The location on the whole surface of a foot piece k answered at its local (s, t).
   Location locate(std::size_t k, Location piece_location, double s, double t) const;
 
@@ -56,6 +64,7 @@ class BSplineSurface final : public CompiledGeometry {
   std::vector<std::unique_ptr<ParametricSurface>> pieces_;
   std::vector<ParamBox> spans_;
   std::vector<Box3> hulls_;
+  std::vector<MethodInfo> methods_;          // auto, then the pieces' local methods
   std::vector<double> breaks_u_, breaks_v_;  // the distinct knots of the domain, ends included
   std::array<bool, 2> closed_{};
 };
@@ -78,12 +87,14 @@ class BSplineCurve final : public CompiledGeometry {
 
  private:
   ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
+  ProjectionResult project_local(std::string_view name, const Vec3& p, const Options& options) const;
   Location locate(std::size_t k, Location piece_location, double s) const;
 
   nurbs::Curve curve_;
   std::vector<std::unique_ptr<ParametricCurve>> pieces_;  // in the local s in [0, 1] of spans_[k]
   std::vector<ParamInterval> spans_;
   std::vector<Box3> hulls_;
+  std::vector<MethodInfo> methods_;
   std::vector<double> breaks_;  // the distinct knots of the domain, ends included
   bool closed_ = false;
 };
