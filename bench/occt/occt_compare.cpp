@@ -9,7 +9,10 @@
 //  - Extrema_ExtPS (minima only) with the four boundary curves (GeomAPI_ProjectPointOnCurve on
 //    the iso-curves of the domain's edges) and the four corners: the nearest of all of them, the
 //    global answer over the closed domain when each part finds its own.
-// S1 (trigonometric) has no exact Open CASCADE form: footpoint only.
+// S1 (trigonometric) has no exact Open CASCADE form: footpoint only. The B-spline surfaces (B8, RS:
+// bspline_surface definitions) are Open CASCADE's Geom_BSplineSurface from the same control net,
+// weights and knots (the full knot vector as distinct knots and multiplicities); footpoint's side
+// of a surface is measured where surfaces.json does not say "footpoint": false.
 //
 // Usage: occt_compare [--reps R] [--data DIR] [NAME ...]
 //   R repetitions of every point (default 5; the time of a point is the median), DIR the folder
@@ -19,14 +22,19 @@
 #include <GeomAPI_ProjectPointOnCurve.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomAdaptor_Surface.hxx>
+#include <Geom_BSplineSurface.hxx>
 #include <Geom_BezierSurface.hxx>
 #include <Geom_ToroidalSurface.hxx>
 #include <Precision.hxx>
 #include <Standard_Failure.hxx>
 #include <Standard_Version.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColStd_Array2OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <gp_Ax3.hxx>
 
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -34,6 +42,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -57,7 +66,62 @@ struct OcctSurface {
   double s0 = 0, s1 = 0, t0 = 0, t1 = 0;
 };
 
+// A full knot vector as Open CASCADE takes it: the distinct knots and their multiplicities.
+struct OcctKnots {
+  TColStd_Array1OfReal knots;
+  TColStd_Array1OfInteger mults;
+};
+
+OcctKnots occt_knots(const nlohmann::json& full) {
+  std::vector<double> knots;
+  std::vector<int> mults;
+  for (const nlohmann::json& k : full) {
+    const double x = k.get<double>();
+    if (!knots.empty() && knots.back() == x) {
+      ++mults.back();
+    } else {
+      knots.push_back(x);
+      mults.push_back(1);
+    }
+  }
+  OcctKnots out{TColStd_Array1OfReal(1, static_cast<int>(knots.size())),
+                TColStd_Array1OfInteger(1, static_cast<int>(knots.size()))};
+  for (std::size_t i = 0; i < knots.size(); ++i) {
+    out.knots.SetValue(static_cast<int>(i) + 1, knots[i]);
+    out.mults.SetValue(static_cast<int>(i) + 1, mults[i]);
+  }
+  return out;
+}
+
+// A bspline_surface definition (control_points[i][j] = P_ij, i along u) as Geom_BSplineSurface:
+// poles (i + 1, j + 1), weights where given, non-periodic (a closed net stays a clamped surface).
+Handle(Geom_BSplineSurface) occt_bspline(const nlohmann::json& d) {
+  const nlohmann::json& net = d.at("control_points");
+  const int nu = static_cast<int>(net.size()), nv = static_cast<int>(net.at(0).size());
+  TColgp_Array2OfPnt poles(1, nu, 1, nv);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const auto q =
+          net[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)].get<std::array<double, 3>>();
+      poles.SetValue(i + 1, j + 1, gp_Pnt(q[0], q[1], q[2]));
+    }
+  const OcctKnots u = occt_knots(d.at("knots").at("u")), v = occt_knots(d.at("knots").at("v"));
+  const int p = d.at("degree").at(0), q = d.at("degree").at(1);
+  if (!d.contains("weights") || d["weights"].empty())
+    return new Geom_BSplineSurface(poles, u.knots, v.knots, u.mults, v.mults, p, q);
+  TColStd_Array2OfReal weights(1, nu, 1, nv);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j)
+      weights.SetValue(i + 1, j + 1,
+                       d["weights"][static_cast<std::size_t>(i)][static_cast<std::size_t>(j)].get<double>());
+  return new Geom_BSplineSurface(poles, weights, u.knots, v.knots, u.mults, v.mults, p, q);
+}
+
 bool make_occt(const ComparisonSurface& s, OcctSurface& out) {
+  if (!s.bspline.is_null()) {
+    out = {occt_bspline(s.bspline), s.u[0], s.u[1], s.v[0], s.v[1]};
+    return true;
+  }
   if (!s.bezier_poles.empty()) {
     const int n = static_cast<int>(s.bezier_poles.size()), m = static_cast<int>(s.bezier_poles[0].size());
     TColgp_Array2OfPnt poles(1, n, 1, m);
@@ -180,6 +244,18 @@ std::vector<Timing> time_methods(const std::vector<Method>& methods, const Point
   return out;
 }
 
+// footpoint's `auto` on the surface: its formulas compiled.
+Method footpoint_auto(const ComparisonSurface& s) {
+  if (!s.bspline.is_null())
+    throw std::runtime_error(s.name +
+                             ": footpoint's side of a bspline_surface is not built into occt_compare");
+  const auto g = compile_surface(s.x, s.y, s.z, s.u, s.v);
+  return {"footpoint auto", [g, method = g->method("auto").value()](const std::array<double, 3>& p) {
+            const ProjectionResult r = method.project(p.data(), Options{});
+            return Answer{r.summary.status == Status::converged, r.distance};
+          }};
+}
+
 int run(int argc, char** argv) {
   std::string dir = FOOTPOINT_OCCT_DIR;
   int reps = 5;
@@ -205,13 +281,13 @@ int run(int argc, char** argv) {
   std::printf("%-4s %-5s %6s  %-24s %10s %9s %12s %12s %9s %12s\n", "surf", "set", "points", "method",
               "median µs", "p90 µs", "batch µs/pt", "not global", "no answer", "max rel err");
   for (const std::string& name : names) {
-    const ComparisonSurface s = read_comparison_surface(dir + "/data/" + name + ".json");
-    const auto g = compile_surface(s.x, s.y, s.z, s.u, s.v);
-    std::vector<Method> methods = {
-        {"footpoint auto", [g, method = g->method("auto").value()](const std::array<double, 3>& p) {
-           const ProjectionResult r = method.project(p.data(), Options{});
-           return Answer{r.summary.status == Status::converged, r.distance};
-         }}};
+    const ComparisonSurface s = read_comparison_surface(dir, name);
+    std::vector<Method> methods;
+    if (s.footpoint)
+      methods.push_back(footpoint_auto(s));
+    else
+      std::printf("%-4s footpoint: type not yet measured (%s; surfaces.json \"footpoint\": false)\n",
+                  s.name.c_str(), s.bspline.is_null() ? "formulas" : "bspline_surface");
     OcctSurface occt;
     if (make_occt(s, occt))
       for (Method& m : occt_methods(occt)) methods.push_back(std::move(m));
