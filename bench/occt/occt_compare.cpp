@@ -18,19 +18,10 @@
 //   R repetitions of every point (default 5; the time of a point is the median), DIR the folder
 //   with surfaces.json and data/ (default: this folder in the source tree), NAMEs of
 //   surfaces.json (default all).
-#include <Extrema_ExtPS.hxx>
-#include <GeomAPI_ProjectPointOnCurve.hxx>
-#include <GeomAPI_ProjectPointOnSurf.hxx>
-#include <GeomAdaptor_Surface.hxx>
-#include <Geom_BSplineSurface.hxx>
 #include <Geom_BezierSurface.hxx>
 #include <Geom_ToroidalSurface.hxx>
-#include <Precision.hxx>
 #include <Standard_Failure.hxx>
 #include <Standard_Version.hxx>
-#include <TColStd_Array1OfInteger.hxx>
-#include <TColStd_Array1OfReal.hxx>
-#include <TColStd_Array2OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <gp_Ax3.hxx>
 
@@ -40,82 +31,19 @@
 #include <cstring>
 #include <exception>
 #include <fstream>
-#include <functional>
-#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "compiled_surface.hpp"
 #include "cpu_time.hpp"
+#include "occt_geometry.hpp"
 #include "point_sets.hpp"
 
 using namespace footpoint;
 using namespace footpoint::bench;
 
 namespace {
-
-struct Method {
-  std::string name;
-  std::function<Answer(const std::array<double, 3>&)> project;
-};
-
-// Open CASCADE's form of the surface and the parameter box it is measured over.
-struct OcctSurface {
-  Handle(Geom_Surface) surface;
-  double s0 = 0, s1 = 0, t0 = 0, t1 = 0;
-};
-
-// A full knot vector as Open CASCADE takes it: the distinct knots and their multiplicities.
-struct OcctKnots {
-  TColStd_Array1OfReal knots;
-  TColStd_Array1OfInteger mults;
-};
-
-OcctKnots occt_knots(const nlohmann::json& full) {
-  std::vector<double> knots;
-  std::vector<int> mults;
-  for (const nlohmann::json& k : full) {
-    const double x = k.get<double>();
-    if (!knots.empty() && knots.back() == x) {
-      ++mults.back();
-    } else {
-      knots.push_back(x);
-      mults.push_back(1);
-    }
-  }
-  OcctKnots out{TColStd_Array1OfReal(1, static_cast<int>(knots.size())),
-                TColStd_Array1OfInteger(1, static_cast<int>(knots.size()))};
-  for (std::size_t i = 0; i < knots.size(); ++i) {
-    out.knots.SetValue(static_cast<int>(i) + 1, knots[i]);
-    out.mults.SetValue(static_cast<int>(i) + 1, mults[i]);
-  }
-  return out;
-}
-
-// A bspline_surface definition (control_points[i][j] = P_ij, i along u) as Geom_BSplineSurface:
-// poles (i + 1, j + 1), weights where given, non-periodic (a closed net stays a clamped surface).
-Handle(Geom_BSplineSurface) occt_bspline(const nlohmann::json& d) {
-  const nlohmann::json& net = d.at("control_points");
-  const int nu = static_cast<int>(net.size()), nv = static_cast<int>(net.at(0).size());
-  TColgp_Array2OfPnt poles(1, nu, 1, nv);
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const auto q =
-          net[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)].get<std::array<double, 3>>();
-      poles.SetValue(i + 1, j + 1, gp_Pnt(q[0], q[1], q[2]));
-    }
-  const OcctKnots u = occt_knots(d.at("knots").at("u")), v = occt_knots(d.at("knots").at("v"));
-  const int p = d.at("degree").at(0), q = d.at("degree").at(1);
-  if (!d.contains("weights") || d["weights"].empty())
-    return new Geom_BSplineSurface(poles, u.knots, v.knots, u.mults, v.mults, p, q);
-  TColStd_Array2OfReal weights(1, nu, 1, nv);
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j)
-      weights.SetValue(i + 1, j + 1,
-                       d["weights"][static_cast<std::size_t>(i)][static_cast<std::size_t>(j)].get<double>());
-  return new Geom_BSplineSurface(poles, weights, u.knots, v.knots, u.mults, v.mults, p, q);
-}
 
 bool make_occt(const ComparisonSurface& s, OcctSurface& out) {
   if (!s.bspline.is_null()) {
@@ -142,61 +70,6 @@ bool make_occt(const ComparisonSurface& s, OcctSurface& out) {
   return false;
 }
 
-std::vector<Method> occt_methods(const OcctSurface& o) {
-  std::vector<Method> methods;
-  auto api = std::make_shared<GeomAPI_ProjectPointOnSurf>();
-  api->Init(o.surface, o.s0, o.s1, o.t0, o.t1, Extrema_ExtAlgo_Grad);
-  methods.push_back({"OCCT ProjectPointOnSurf", [api](const std::array<double, 3>& p) {
-                       api->Perform(gp_Pnt(p[0], p[1], p[2]));
-                       if (!api->IsDone() || api->NbPoints() < 1) return Answer{};
-                       return Answer{true, api->LowerDistance()};
-                     }});
-
-  struct Complete {
-    GeomAdaptor_Surface adaptor;
-    Extrema_ExtPS interior;
-    // Open CASCADE's projectors point into themselves: held where they never move
-    std::vector<std::unique_ptr<GeomAPI_ProjectPointOnCurve>> edges;
-    std::vector<gp_Pnt> corners;
-  };
-  auto c = std::make_shared<Complete>();
-  c->adaptor.Load(o.surface, o.s0, o.s1, o.t0, o.t1);
-  c->interior.Initialize(c->adaptor, o.s0, o.s1, o.t0, o.t1, Precision::PConfusion(),
-                         Precision::PConfusion());
-  c->interior.SetFlag(Extrema_ExtFlag_MIN);
-  for (int k = 0; k < 4; ++k) {
-    c->edges.push_back(std::make_unique<GeomAPI_ProjectPointOnCurve>());
-    if (k < 2)
-      c->edges.back()->Init(o.surface->UIso(k == 0 ? o.s0 : o.s1), o.t0, o.t1);
-    else
-      c->edges.back()->Init(o.surface->VIso(k == 2 ? o.t0 : o.t1), o.s0, o.s1);
-  }
-  for (double s : {o.s0, o.s1})
-    for (double t : {o.t0, o.t1}) c->corners.push_back(o.surface->Value(s, t));
-  methods.push_back({"OCCT ExtPS+boundary", [c](const std::array<double, 3>& p) {
-                       const gp_Pnt q(p[0], p[1], p[2]);
-                       Answer a;
-                       double best2 = 1e300;
-                       c->interior.Perform(q);
-                       if (c->interior.IsDone())
-                         for (int i = 1; i <= c->interior.NbExt(); ++i)
-                           if (c->interior.SquareDistance(i) < best2)
-                             best2 = c->interior.SquareDistance(i), a.ok = true;
-                       for (const auto& e : c->edges) {
-                         e->Perform(q);
-                         if (e->NbPoints() > 0) {
-                           const double d = e->LowerDistance();
-                           if (d * d < best2) best2 = d * d, a.ok = true;
-                         }
-                       }
-                       for (const gp_Pnt& k : c->corners)
-                         if (q.SquareDistance(k) < best2) best2 = q.SquareDistance(k), a.ok = true;
-                       a.distance = std::sqrt(best2);
-                       return a;
-                     }});
-  return methods;
-}
-
 struct Timing {
   std::vector<double> ns;  // per point: median over the repetitions
   double batch_ns = 0.0;   // one timer around all points: the mean per point, median over repetitions
@@ -205,7 +78,7 @@ struct Timing {
 
 // Every repetition runs each method over all points, the methods in turn, so that a change of the
 // machine's load falls on all of them alike.
-std::vector<Timing> time_methods(const std::vector<Method>& methods, const PointSet& set, int reps,
+std::vector<Timing> time_methods(const std::vector<PeerMethod>& methods, const PointSet& set, int reps,
                                  double overhead) {
   const std::size_t n = set.points.size();
   std::vector<std::vector<std::vector<double>>> cpu(methods.size(), std::vector<std::vector<double>>(n));
@@ -245,7 +118,7 @@ std::vector<Timing> time_methods(const std::vector<Method>& methods, const Point
 }
 
 // footpoint's `auto` on the surface: its formulas compiled.
-Method footpoint_auto(const ComparisonSurface& s) {
+PeerMethod footpoint_auto(const ComparisonSurface& s) {
   if (!s.bspline.is_null())
     throw std::runtime_error(s.name +
                              ": footpoint's side of a bspline_surface is not built into occt_compare");
@@ -282,7 +155,7 @@ int run(int argc, char** argv) {
               "median µs", "p90 µs", "batch µs/pt", "not global", "no answer", "max rel err");
   for (const std::string& name : names) {
     const ComparisonSurface s = read_comparison_surface(dir, name);
-    std::vector<Method> methods;
+    std::vector<PeerMethod> methods;
     if (s.footpoint)
       methods.push_back(footpoint_auto(s));
     else
@@ -290,7 +163,7 @@ int run(int argc, char** argv) {
                   s.name.c_str(), s.bspline.is_null() ? "formulas" : "bspline_surface");
     OcctSurface occt;
     if (make_occt(s, occt))
-      for (Method& m : occt_methods(occt)) methods.push_back(std::move(m));
+      for (PeerMethod& m : occt_methods(occt)) methods.push_back(std::move(m));
     for (const PointSet& set : s.sets) {
       const std::vector<Timing> t = time_methods(methods, set, reps, overhead);
       for (std::size_t m = 0; m < methods.size(); ++m) {
