@@ -373,7 +373,7 @@ int comparison_mode(const std::string& dir, int reps, std::vector<std::string> n
     const bench::ComparisonSurface s = bench::read_comparison_surface(dir, name);
     if (!s.footpoint) {
       std::printf("   %-3s footpoint: type not yet measured (%s)\n", s.name.c_str(),
-                  s.bspline.is_null() ? "surfaces.json: \"footpoint\": false" : "bspline_surface");
+                  s.bspline ? "bspline_surface" : "surfaces.json: \"footpoint\": false");
       continue;
     }
     const auto t0 = Clock::now();

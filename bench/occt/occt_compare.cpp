@@ -46,8 +46,8 @@ using namespace footpoint::bench;
 namespace {
 
 bool make_occt(const ComparisonSurface& s, OcctSurface& out) {
-  if (!s.bspline.is_null()) {
-    out = {occt_bspline(s.bspline), s.u[0], s.u[1], s.v[0], s.v[1]};
+  if (s.bspline) {
+    out = {occt_bspline(*s.bspline), s.u[0], s.u[1], s.v[0], s.v[1]};
     return true;
   }
   if (!s.bezier_poles.empty()) {
@@ -119,7 +119,7 @@ std::vector<Timing> time_methods(const std::vector<PeerMethod>& methods, const P
 
 // footpoint's `auto` on the surface: its formulas compiled.
 PeerMethod footpoint_auto(const ComparisonSurface& s) {
-  if (!s.bspline.is_null())
+  if (s.bspline)
     throw std::runtime_error(s.name +
                              ": footpoint's side of a bspline_surface is not built into occt_compare");
   const auto g = compile_surface(s.x, s.y, s.z, s.u, s.v);
@@ -160,7 +160,7 @@ int run(int argc, char** argv) {
       methods.push_back(footpoint_auto(s));
     else
       std::printf("%-4s footpoint: type not yet measured (%s; surfaces.json \"footpoint\": false)\n",
-                  s.name.c_str(), s.bspline.is_null() ? "formulas" : "bspline_surface");
+                  s.name.c_str(), s.bspline ? "bspline_surface" : "formulas");
     OcctSurface occt;
     if (make_occt(s, occt))
       for (PeerMethod& m : occt_methods(occt)) methods.push_back(std::move(m));

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -31,7 +32,7 @@ struct ComparisonSurface {
   std::string x, y, z;  // muparser formulas in u, v; empty for a B-spline surface
   // the bspline_surface definition (issue 35's JSON: degree, knots, control_points[i][j] with i
   // along u, optional weights), null for a formula surface
-  nlohmann::json bspline;
+  std::shared_ptr<const nlohmann::json> bspline;
   // surfaces.json's "footpoint" (default true): false where footpoint's side is not measured yet
   bool footpoint = true;
   std::array<double, 2> u{}, v{};
@@ -50,7 +51,7 @@ inline ComparisonSurface read_comparison_surface(const std::string& dir, const s
   ComparisonSurface s;
   s.name = j.at("name");
   if (j.contains("bspline")) {
-    s.bspline = j["bspline"];
+    s.bspline = std::make_shared<const nlohmann::json>(j["bspline"]);
   } else {
     s.x = j.at("formulas").at("x");
     s.y = j.at("formulas").at("y");
