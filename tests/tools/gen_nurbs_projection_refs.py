@@ -23,7 +23,9 @@ Method (Debian's python3 and python3-mpmath only; every input is a binary double
      coordinates of the point it reached, to |step| < 1e-40: interior points solve grad f = 0, edge
      points the 1-D problem along the edge, corners are taken as they are.
   5. The smallest distance over all refined candidates is the reference; another candidate with a
-     distinct foot within 1e-30 relative of it is reported as a tie.
+     distinct foot within 1e-30 relative of it is reported as a tie. A start whose refinement ends
+     at no KKT point (a degenerate minimum: the circle's centre) is dropped, and the generator
+     stops if such a start is nearer than the reference.
   6. Closed forms (circle, sphere, torus written as NURBS): the distance and foot of the ideal shape
      are computed in closed form and the numeric answer must agree with them to 1e-14 (the weights
      sqrt(2)/2 are doubles, so the NURBS of the file differs from the ideal shape by ~1e-16). The
@@ -84,9 +86,10 @@ def breakpoints(U, p, n):
 
 
 def local_basis(U, p, n, span):
-    """The p + 1 basis functions nonzero on the span, in the local parameter t = u - U_span."""
+    """The p + 1 basis functions nonzero on the span, in the local parameter t = u - U_span, each
+    as p + 1 coefficients."""
     N = basis_polynomials(U, p, n, span)
-    return [pshift(N[i], U[span]) + [F(0)] * (p + 1) for i in range(span - p, span + 1)]
+    return [(pshift(N[i], U[span]) + [F(0)] * (p + 1))[:p + 1] for i in range(span - p, span + 1)]
 
 
 class Direction:
@@ -418,7 +421,10 @@ class Searcher:
             self.nodes = [geom.jet((u, v), (ku, kv), float)[0] for u, ku in self.axes[0] for v, kv in self.axes[1]]
 
     def candidates(self, p):
+        """Every refined local minimum of |S - p| (KKT over its cell at 50 digits), nearest first;
+        self.unrefined: the least distance of the starts whose refinement did not reach a KKT point."""
         geom = self.geom
+        self.unrefined = mpf("inf")
         values = [sum((a - b) ** 2 for a, b in zip(s, p)) for s in self.nodes]
         shape = [len(a) for a in self.axes]
         work = []
@@ -443,6 +449,8 @@ class Searcher:
             x, dist, S, kkt = refine_mp(geom, xf, cell, p)
             if kkt:
                 out.append({"x": x, "cell": cell, "distance": dist, "foot": S})
+            else:
+                self.unrefined = min(self.unrefined, dist)
         out.sort(key=lambda c: c["distance"])
         return out
 
@@ -503,6 +511,9 @@ def project(geom, searcher, p, closed_form=None):
     pm = [mpf(x.numerator) / x.denominator for x in pf]
     cands = searcher.candidates(pm)
     best = cands[0]
+    if searcher.unrefined < best["distance"] * (1 - mpf(10) ** -12):
+        raise AssertionError("a start that did not refine is nearer (%s) than the best minimum (%s) at %s"
+                             % (searcher.unrefined, best["distance"], p))
     rec = {"p": list(p)}
     tie_feet = [c for c in cands[1:] if abs(c["distance"] - best["distance"]) <= mpf(10) ** -30 * max(best["distance"], 1)
                 and max(abs(a - b) for a, b in zip(c["foot"], best["foot"])) > mpf(10) ** -12]
