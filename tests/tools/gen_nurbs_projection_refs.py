@@ -739,6 +739,47 @@ def definitions():
         pts += uniform_points(rng, [(-2, 4), (-2, 4), (-1, 2)], 4)
         return pts
     out.append(("biquadratic ridge, C0 fold at u = 1", fold, None, fold_points))
+
+    # random rational, unclamped non-uniform knots (verb / ANurbs-style test data); a stream of
+    # their own, so that the geometries above keep their points
+    rr = random.Random(SEED + 1)
+
+    def unclamped(count, degree):
+        knots = [0.0]
+        for _ in range(count + degree):
+            knots.append(knots[-1] + rr.choice((0.25, 0.5, 0.75, 1.0)))
+        return knots
+
+    rcurve = {"type": "bspline_curve", "degree": 4, "knots": unclamped(9, 4),
+              "control_points": [[r12(0.7 * i + rr.uniform(-0.4, 0.4)), r12(rr.uniform(-1.5, 1.5)), r12(rr.uniform(-1.5, 1.5))]
+                                 for i in range(9)],
+              "weights": [r12(rr.uniform(0.5, 2.0)) for _ in range(9)]}
+
+    def rcurve_points(g):
+        pts = normal_points(g, rr, 10, 0.05)
+        ends = [g.point_float(float(g.dirs[0].lo)), g.point_float(float(g.dirs[0].hi))]
+        pts += [[r12(c + d) for c, d in zip(e, off)] for e in ends for off in ((-0.6, 0.2, 0.1), (0.5, -0.3, 0.4))]
+        pts += uniform_points(rr, [(-1, 7), (-2.5, 2.5), (-2.5, 2.5)], 8)
+        return pts
+    out.append(("random rational quartic, unclamped", rcurve, None, rcurve_points))
+
+    rsurf = {"type": "bspline_surface", "degree": [3, 2], "knots": {"u": unclamped(7, 3), "v": unclamped(6, 2)},
+             "control_points": [[[r12(0.6 * i + rr.uniform(-0.15, 0.15)), r12(0.6 * j + rr.uniform(-0.15, 0.15)),
+                                  r12(rr.uniform(-0.6, 0.6))] for j in range(6)] for i in range(7)],
+             "weights": [[r12(rr.uniform(0.5, 2.0)) for _ in range(6)] for _ in range(7)]}
+
+    def rsurf_points(g):
+        pts = normal_points(g, rr, 10, 0.04)
+        (u0, u1), (v0, v1) = [(float(d.lo), float(d.hi)) for d in g.dirs]
+        for a, b in ((u0, (v0 + v1) / 2), (u1, (v0 + v1) / 3), ((u0 + u1) / 2, v0), (u0, v1), (u1, v0)):
+            S, (su, sv), _ = g.jet_float(a, b)
+            out_u = -1 if a == u0 else 1 if a == u1 else 0
+            out_v = -1 if b == v0 else 1 if b == v1 else 0
+            pts.append([r12(c + 0.3 * (out_u * x / math.sqrt(dot(su, su)) + out_v * y / math.sqrt(dot(sv, sv))) + (0.2 if k == 2 else 0))
+                        for k, (c, x, y) in enumerate(zip(S, su, sv))])
+        pts += uniform_points(rr, [(-1, 4.5), (-1, 4), (-1.5, 1.5)], 8)
+        return pts
+    out.append(("random rational (3, 2), unclamped", rsurf, None, rsurf_points))
     return out
 
 
