@@ -370,7 +370,12 @@ int comparison_mode(const std::string& dir, int reps, std::vector<std::string> n
       "%.0f ns (subtracted); %s\n",
       dir.c_str(), reps, overhead, load_average().c_str());
   for (const std::string& name : names) {
-    const bench::ComparisonSurface s = bench::read_comparison_surface(dir + "/data/" + name + ".json");
+    const bench::ComparisonSurface s = bench::read_comparison_surface(dir, name);
+    if (!s.footpoint) {
+      std::printf("   %-3s footpoint: type not yet measured (%s)\n", s.name.c_str(),
+                  s.bspline ? "bspline_surface" : "surfaces.json: \"footpoint\": false");
+      continue;
+    }
     const auto t0 = Clock::now();
     const auto g = compile({s.name, s.x, s.y, s.z, s.u, s.v});
     const double compile_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();

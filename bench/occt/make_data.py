@@ -17,6 +17,11 @@ Per surface:
          References: b_kl = sum over i <= k, j <= l of C(k,i)/C(n,i) C(l,j)/C(m,j) a_ij, a_ij
          the power coefficients in the affine parameters s, t in [0,1]), every pole an exact
          rational rounded once to a double.
+A B-spline surface (surfaces.json: "bspline" names a geometry of
+tests/tools/gen_nurbs_projection_refs.py) is written as its definition (`bspline`, the
+bspline_surface JSON), its point sets drawn the same way (the bounding box from a 201 x 201 grid
+of surface points, the normal from the generator's derivatives) and its references from that
+generator (50-digit global search; the sphere's cross-checked against |p| - 1).
 """
 import argparse
 import json
@@ -28,6 +33,7 @@ import sympy as sp
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, '..', '..', 'tests', 'tools'))
+import gen_nurbs_projection_refs as nurbs  # noqa: E402
 import gen_reference  # noqa: E402
 
 SEED = 20261201
@@ -85,6 +91,34 @@ def point_sets(surface, spec, box_count, near_count, rng):
     return box.tolist(), [list(map(float, p)) for p in near]
 
 
+class BSplineSurface:
+    """A bspline_surface of the NURBS generator with the interface point_sets and reference use."""
+
+    def __init__(self, name):
+        found = [(d, cf) for n, d, cf, _ in nurbs.definitions() if n == name]
+        if not found:
+            raise SystemExit('make_data: no geometry %r in tests/tools/gen_nurbs_projection_refs.py' % name)
+        self.definition, self.closed_form = found[0]
+        self.geom = nurbs.build(self.definition)
+        self.searcher = nurbs.Searcher(self.geom, nurbs.SAMPLES['bspline_surface'])
+        (u0, u1), (v0, v1) = [(float(d.lo), float(d.hi)) for d in self.geom.dirs]
+        self.domain = {'u': [u0, u1], 'v': [v0, v1]}
+        us, vs = np.linspace(u0, u1, 201), np.linspace(v0, v1, 201)
+        self.nodes = np.array([[self.geom.point_float(a, b) for b in vs] for a in us]).transpose(2, 0, 1)
+
+    def points(self, a, b):
+        return np.array(self.geom.point_float(a, b))
+
+    def tangents(self, a, b):
+        _, (su, sv), _ = self.geom.jet_float(a, b)
+        return np.array(su + sv)
+
+    def project(self, p):
+        r = nurbs.project(self.geom, self.searcher, [float(c) for c in p], self.closed_form)
+        return {'distance': r['distance'], 'distance_str': r['distance_str'], 'params': r['params'],
+                'type': r['location']}
+
+
 def reference(surface, p):
     r = surface.project(p)
     where = 'interior' if r['type'] == 'interior' else r['type'].split('(')[0]
@@ -102,13 +136,22 @@ def main():
     rng = np.random.default_rng(SEED)
     for spec in specs:
         # every surface draws from the one stream in file order, so that a subset reproduces too
-        surface = gen_reference.ParametricSurface([spec['formulas'][k] for k in ('x', 'y', 'z')],
-                                                  [spec['domain']['u'], spec['domain']['v']], 201)
+        if 'bspline' in spec:
+            surface = BSplineSurface(spec['bspline'])
+            spec = dict(spec, domain=surface.domain)
+        else:
+            surface = gen_reference.ParametricSurface([spec['formulas'][k] for k in ('x', 'y', 'z')],
+                                                      [spec['domain']['u'], spec['domain']['v']], 201)
         box, near = point_sets(surface, spec, args.box, args.near, rng)
         if args.names and spec['name'] not in args.names:
             continue
-        out = {'name': spec['name'], 'formulas': spec['formulas'], 'domain': spec['domain'],
-               'generated_by': 'bench/occt/make_data.py --box %d --near %d (seed %d)' % (args.box, args.near, SEED)}
+        out = {'name': spec['name']}
+        if 'bspline' in spec:
+            out['bspline'] = surface.definition
+        else:
+            out['formulas'] = spec['formulas']
+        out['domain'] = spec['domain']
+        out['generated_by'] = 'bench/occt/make_data.py --box %d --near %d (seed %d)' % (args.box, args.near, SEED)
         if spec.get('occt') == 'bezier':
             out['bezier'] = bezier(spec['formulas'], spec['domain'])
         if spec.get('occt') == 'torus':

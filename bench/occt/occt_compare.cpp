@@ -9,36 +9,35 @@
 //  - Extrema_ExtPS (minima only) with the four boundary curves (GeomAPI_ProjectPointOnCurve on
 //    the iso-curves of the domain's edges) and the four corners: the nearest of all of them, the
 //    global answer over the closed domain when each part finds its own.
-// S1 (trigonometric) has no exact Open CASCADE form: footpoint only.
+// S1 (trigonometric) has no exact Open CASCADE form: footpoint only. The B-spline surfaces (B8, RS:
+// bspline_surface definitions) are Open CASCADE's Geom_BSplineSurface from the same control net,
+// weights and knots (the full knot vector as distinct knots and multiplicities); footpoint's side
+// of a surface is measured where surfaces.json does not say "footpoint": false.
 //
 // Usage: occt_compare [--reps R] [--data DIR] [NAME ...]
 //   R repetitions of every point (default 5; the time of a point is the median), DIR the folder
 //   with surfaces.json and data/ (default: this folder in the source tree), NAMEs of
 //   surfaces.json (default all).
-#include <Extrema_ExtPS.hxx>
-#include <GeomAPI_ProjectPointOnCurve.hxx>
-#include <GeomAPI_ProjectPointOnSurf.hxx>
-#include <GeomAdaptor_Surface.hxx>
 #include <Geom_BezierSurface.hxx>
 #include <Geom_ToroidalSurface.hxx>
-#include <Precision.hxx>
 #include <Standard_Failure.hxx>
 #include <Standard_Version.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <gp_Ax3.hxx>
 
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <fstream>
-#include <functional>
-#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "compiled_surface.hpp"
 #include "cpu_time.hpp"
+#include "occt_geometry.hpp"
 #include "point_sets.hpp"
 
 using namespace footpoint;
@@ -46,18 +45,11 @@ using namespace footpoint::bench;
 
 namespace {
 
-struct Method {
-  std::string name;
-  std::function<Answer(const std::array<double, 3>&)> project;
-};
-
-// Open CASCADE's form of the surface and the parameter box it is measured over.
-struct OcctSurface {
-  Handle(Geom_Surface) surface;
-  double s0 = 0, s1 = 0, t0 = 0, t1 = 0;
-};
-
 bool make_occt(const ComparisonSurface& s, OcctSurface& out) {
+  if (s.bspline) {
+    out = {occt_bspline(*s.bspline), s.u[0], s.u[1], s.v[0], s.v[1]};
+    return true;
+  }
   if (!s.bezier_poles.empty()) {
     const int n = static_cast<int>(s.bezier_poles.size()), m = static_cast<int>(s.bezier_poles[0].size());
     TColgp_Array2OfPnt poles(1, n, 1, m);
@@ -78,61 +70,6 @@ bool make_occt(const ComparisonSurface& s, OcctSurface& out) {
   return false;
 }
 
-std::vector<Method> occt_methods(const OcctSurface& o) {
-  std::vector<Method> methods;
-  auto api = std::make_shared<GeomAPI_ProjectPointOnSurf>();
-  api->Init(o.surface, o.s0, o.s1, o.t0, o.t1, Extrema_ExtAlgo_Grad);
-  methods.push_back({"OCCT ProjectPointOnSurf", [api](const std::array<double, 3>& p) {
-                       api->Perform(gp_Pnt(p[0], p[1], p[2]));
-                       if (!api->IsDone() || api->NbPoints() < 1) return Answer{};
-                       return Answer{true, api->LowerDistance()};
-                     }});
-
-  struct Complete {
-    GeomAdaptor_Surface adaptor;
-    Extrema_ExtPS interior;
-    // Open CASCADE's projectors point into themselves: held where they never move
-    std::vector<std::unique_ptr<GeomAPI_ProjectPointOnCurve>> edges;
-    std::vector<gp_Pnt> corners;
-  };
-  auto c = std::make_shared<Complete>();
-  c->adaptor.Load(o.surface, o.s0, o.s1, o.t0, o.t1);
-  c->interior.Initialize(c->adaptor, o.s0, o.s1, o.t0, o.t1, Precision::PConfusion(),
-                         Precision::PConfusion());
-  c->interior.SetFlag(Extrema_ExtFlag_MIN);
-  for (int k = 0; k < 4; ++k) {
-    c->edges.push_back(std::make_unique<GeomAPI_ProjectPointOnCurve>());
-    if (k < 2)
-      c->edges.back()->Init(o.surface->UIso(k == 0 ? o.s0 : o.s1), o.t0, o.t1);
-    else
-      c->edges.back()->Init(o.surface->VIso(k == 2 ? o.t0 : o.t1), o.s0, o.s1);
-  }
-  for (double s : {o.s0, o.s1})
-    for (double t : {o.t0, o.t1}) c->corners.push_back(o.surface->Value(s, t));
-  methods.push_back({"OCCT ExtPS+boundary", [c](const std::array<double, 3>& p) {
-                       const gp_Pnt q(p[0], p[1], p[2]);
-                       Answer a;
-                       double best2 = 1e300;
-                       c->interior.Perform(q);
-                       if (c->interior.IsDone())
-                         for (int i = 1; i <= c->interior.NbExt(); ++i)
-                           if (c->interior.SquareDistance(i) < best2)
-                             best2 = c->interior.SquareDistance(i), a.ok = true;
-                       for (const auto& e : c->edges) {
-                         e->Perform(q);
-                         if (e->NbPoints() > 0) {
-                           const double d = e->LowerDistance();
-                           if (d * d < best2) best2 = d * d, a.ok = true;
-                         }
-                       }
-                       for (const gp_Pnt& k : c->corners)
-                         if (q.SquareDistance(k) < best2) best2 = q.SquareDistance(k), a.ok = true;
-                       a.distance = std::sqrt(best2);
-                       return a;
-                     }});
-  return methods;
-}
-
 struct Timing {
   std::vector<double> ns;  // per point: median over the repetitions
   double batch_ns = 0.0;   // one timer around all points: the mean per point, median over repetitions
@@ -141,7 +78,7 @@ struct Timing {
 
 // Every repetition runs each method over all points, the methods in turn, so that a change of the
 // machine's load falls on all of them alike.
-std::vector<Timing> time_methods(const std::vector<Method>& methods, const PointSet& set, int reps,
+std::vector<Timing> time_methods(const std::vector<PeerMethod>& methods, const PointSet& set, int reps,
                                  double overhead) {
   const std::size_t n = set.points.size();
   std::vector<std::vector<std::vector<double>>> cpu(methods.size(), std::vector<std::vector<double>>(n));
@@ -180,6 +117,18 @@ std::vector<Timing> time_methods(const std::vector<Method>& methods, const Point
   return out;
 }
 
+// footpoint's `auto` on the surface: its formulas compiled.
+PeerMethod footpoint_auto(const ComparisonSurface& s) {
+  if (s.bspline)
+    throw std::runtime_error(s.name +
+                             ": footpoint's side of a bspline_surface is not built into occt_compare");
+  const auto g = compile_surface(s.x, s.y, s.z, s.u, s.v);
+  return {"footpoint auto", [g, method = g->method("auto").value()](const std::array<double, 3>& p) {
+            const ProjectionResult r = method.project(p.data(), Options{});
+            return Answer{r.summary.status == Status::converged, r.distance};
+          }};
+}
+
 int run(int argc, char** argv) {
   std::string dir = FOOTPOINT_OCCT_DIR;
   int reps = 5;
@@ -205,16 +154,16 @@ int run(int argc, char** argv) {
   std::printf("%-4s %-5s %6s  %-24s %10s %9s %12s %12s %9s %12s\n", "surf", "set", "points", "method",
               "median µs", "p90 µs", "batch µs/pt", "not global", "no answer", "max rel err");
   for (const std::string& name : names) {
-    const ComparisonSurface s = read_comparison_surface(dir + "/data/" + name + ".json");
-    const auto g = compile_surface(s.x, s.y, s.z, s.u, s.v);
-    std::vector<Method> methods = {
-        {"footpoint auto", [g, method = g->method("auto").value()](const std::array<double, 3>& p) {
-           const ProjectionResult r = method.project(p.data(), Options{});
-           return Answer{r.summary.status == Status::converged, r.distance};
-         }}};
+    const ComparisonSurface s = read_comparison_surface(dir, name);
+    std::vector<PeerMethod> methods;
+    if (s.footpoint)
+      methods.push_back(footpoint_auto(s));
+    else
+      std::printf("%-4s footpoint: type not yet measured (%s; surfaces.json \"footpoint\": false)\n",
+                  s.name.c_str(), s.bspline ? "bspline_surface" : "formulas");
     OcctSurface occt;
     if (make_occt(s, occt))
-      for (Method& m : occt_methods(occt)) methods.push_back(std::move(m));
+      for (PeerMethod& m : occt_methods(occt)) methods.push_back(std::move(m));
     for (const PointSet& set : s.sets) {
       const std::vector<Timing> t = time_methods(methods, set, reps, overhead);
       for (std::size_t m = 0; m < methods.size(); ++m) {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -28,7 +29,12 @@ struct PointSet {
 
 struct ComparisonSurface {
   std::string name;
-  std::string x, y, z;  // muparser formulas in u, v
+  std::string x, y, z;  // muparser formulas in u, v; empty for a B-spline surface
+  // the bspline_surface definition (issue 35's JSON: degree, knots, control_points[i][j] with i
+  // along u, optional weights), null for a formula surface
+  std::shared_ptr<const nlohmann::json> bspline;
+  // surfaces.json's "footpoint" (default true): false where footpoint's side is not measured yet
+  bool footpoint = true;
   std::array<double, 2> u{}, v{};
   // Open CASCADE's form: Bezier poles [k][l] on (s, t) in [0,1]^2, u = u0 + (u1 - u0) s, or a torus
   std::vector<std::vector<std::array<double, 3>>> bezier_poles;
@@ -36,15 +42,26 @@ struct ComparisonSurface {
   std::vector<PointSet> sets;
 };
 
-inline ComparisonSurface read_comparison_surface(const std::string& path) {
+// The surface NAME of the comparison in DIR: DIR/data/NAME.json with DIR/surfaces.json's flags.
+inline ComparisonSurface read_comparison_surface(const std::string& dir, const std::string& name) {
+  const std::string path = dir + "/data/" + name + ".json";
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot read " + path + " (bench/occt/make_data.py writes it)");
   const nlohmann::json j = nlohmann::json::parse(in);
   ComparisonSurface s;
   s.name = j.at("name");
-  s.x = j.at("formulas").at("x");
-  s.y = j.at("formulas").at("y");
-  s.z = j.at("formulas").at("z");
+  if (j.contains("bspline")) {
+    s.bspline = std::make_shared<const nlohmann::json>(j["bspline"]);
+  } else {
+    s.x = j.at("formulas").at("x");
+    s.y = j.at("formulas").at("y");
+    s.z = j.at("formulas").at("z");
+  }
+  std::ifstream list(dir + "/surfaces.json");
+  if (!list) throw std::runtime_error("cannot read " + dir + "/surfaces.json");
+  const nlohmann::json surfaces = nlohmann::json::parse(list);
+  for (const nlohmann::json& e : surfaces.at("surfaces"))
+    if (e.at("name") == name) s.footpoint = e.value("footpoint", true);
   s.u = j.at("domain").at("u").get<std::array<double, 2>>();
   s.v = j.at("domain").at("v").get<std::array<double, 2>>();
   if (j.contains("bezier")) s.bezier_poles = j["bezier"]["poles"].get<decltype(s.bezier_poles)>();
