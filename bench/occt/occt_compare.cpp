@@ -36,6 +36,8 @@
 #include <vector>
 
 #include "compiled_surface.hpp"
+#include "geometry_json.hpp"
+#include "json_reader.hpp"
 #include "cpu_time.hpp"
 #include "occt_geometry.hpp"
 #include "point_sets.hpp"
@@ -117,12 +119,17 @@ std::vector<Timing> time_methods(const std::vector<PeerMethod>& methods, const P
   return out;
 }
 
-// footpoint's `auto` on the surface: its formulas compiled.
+// footpoint's `auto` on the surface: its formulas compiled, or its B-spline definition read as the
+// server reads a posted one.
 PeerMethod footpoint_auto(const ComparisonSurface& s) {
-  if (s.bspline)
-    throw std::runtime_error(s.name +
-                             ": footpoint's side of a bspline_surface is not built into occt_compare");
-  const auto g = compile_surface(s.x, s.y, s.z, s.u, s.v);
+  std::shared_ptr<const CompiledGeometry> g;
+  if (s.bspline) {
+    const std::string text = s.bspline->dump();
+    server::JsonReader reader(text);
+    g = compile_geometry(server::read_geometry(reader, ""));
+  } else {
+    g = compile_surface(s.x, s.y, s.z, s.u, s.v);
+  }
   return {"footpoint auto", [g, method = g->method("auto").value()](const std::array<double, 3>& p) {
             const ProjectionResult r = method.project(p.data(), Options{});
             return Answer{r.summary.status == Status::converged, r.distance};

@@ -15,12 +15,15 @@ namespace footpoint {
 namespace {
 
 // The cells of one Bézier piece: a piece is a polynomial of low degree over one knot span, far
-// smoother than the formulas the defaults are set for (parametric/seeding/surface_cells.hpp).
-SurfaceSeedingOptions piece_seeding() {
+// smoother than the formulas the defaults are set for (parametric/seeding/surface_cells.hpp). The
+// certificates' kept sub-boxes are shared out: a formula surface's 4096 pairs over all the pieces.
+SurfaceSeedingOptions piece_seeding(std::size_t pieces) {
   SurfaceSeedingOptions o;
   o.min_cells = 16;
   o.target_cells = 256;
   o.max_bytes = std::size_t{256} << 10;
+  o.refinement_pairs_per_cell = 0;
+  o.min_refinement_pairs = std::max<std::size_t>(SurfaceSeedingOptions{}.min_refinement_pairs / pieces, 16);
   return o;
 }
 
@@ -253,7 +256,7 @@ BSplineSurface::BSplineSurface(GeometryDefinition def, nurbs::Surface surface,
   breaks_u_ = breaks_of(surface_.knots_u, surface_.umin(), surface_.umax());
   breaks_v_ = breaks_of(surface_.knots_v, surface_.vmin(), surface_.vmax());
   std::vector<nurbs::SurfacePiece> pieces = surface_pieces(surface_, limits.max_nodes);
-  const SurfaceSeedingOptions seeding = piece_seeding();
+  const SurfaceSeedingOptions seeding = piece_seeding(pieces.size());
   for (nurbs::SurfacePiece& piece : pieces) {
     pieces_.push_back(std::make_unique<ParametricSurface>(
         piece_definition(GeometryType::parametric_surface, {{"u", {0.0, 1.0}}, {"v", {0.0, 1.0}}}),
@@ -379,6 +382,35 @@ Location BSplineSurface::locate(std::size_t k, Location piece_location, double s
   return Location::interior;
 }
 
+void BSplineSurface::at_pole(std::size_t k, const Vec3& p, ProjectionResult& r) const {
+  const ParametricSurface& piece = *pieces_[k];
+  const Vec3 foot{r.foot[0], r.foot[1], r.foot[2]};
+  for (const BoxEdge edge : {BoxEdge::umin, BoxEdge::umax, BoxEdge::vmin, BoxEdge::vmax}) {
+    const SurfacePole& pole = piece.closure().poles[static_cast<std::size_t>(edge)];
+    if (!pole.collapsed ||
+        !(norm(foot - pole.point) <= std::fmax(piece.closure().tolerance, 1e-12 * (1.0 + norm(foot)))))
+      continue;
+    // The foot is the pole: every parameter along the edge gives it. One foot, unless the distance
+    // is also flat across the edge (f = ½|s - p|² with f_nn = |s_n|² + <s - p, s_nn> = 0 along the
+    // parameter n leaving the edge: p at a centre of curvature, a true continuum).
+    const bool along_u = edge == BoxEdge::vmin || edge == BoxEdge::vmax;
+    const double s_edge = edge == BoxEdge::umin || edge == BoxEdge::vmin ? 0.0 : 1.0;
+    const SurfaceJet j =
+        along_u ? piece.formulas().jet(r.params[0], s_edge) : piece.formulas().jet(s_edge, r.params[1]);
+    const Vec3 sn = along_u ? j.sv : j.su, snn = along_u ? j.svv : j.suu;
+    const double fnn = dot(sn, sn) + dot(j.s - p, snn);
+    r.summary.location = Location::pole;
+    r.summary.on_boundary = false;
+    (along_u ? r.params[1] : r.params[0]) = s_edge;
+    if (r.summary.multiplicity.kind == Multiplicity::continuum && fnn > 1e-9 * dot(sn, sn)) {
+      r.summary.multiplicity.kind = Multiplicity::unique;
+      r.summary.multiplicity.count = 1;
+      r.summary.multiplicity.feet.clear();
+    }
+    return;
+  }
+}
+
 ProjectionResult BSplineSurface::project_auto(const Vec3& p, const Options& options) const {
   const auto to_local = [&](std::size_t k, const std::array<double, 3>& t, std::array<double, 3>& local) {
     const ParamBox& b = spans_[k];
@@ -388,6 +420,7 @@ ProjectionResult BSplineSurface::project_auto(const Vec3& p, const Options& opti
   };
   const auto finish = [&](std::size_t k, ProjectionResult& r) {
     const ParamBox& b = spans_[k];
+    if (std::isfinite(r.distance)) at_pole(k, p, r);
     auto map = [&](std::array<double, 2>& t) {
       t = {global_of(t[0], b.umin, b.umax), global_of(t[1], b.vmin, b.vmax)};
     };

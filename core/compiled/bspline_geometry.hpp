@@ -56,6 +56,9 @@ class BSplineSurface final : public CompiledGeometry {
   ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
   // The local method `name` of the pieces, moved from piece to piece (see above).
   ProjectionResult project_local(std::string_view name, const Vec3& p, const Options& options) const;
+  // A foot piece k answered at one of its poles (its closure): located there, its parameters on
+  // the edge, and one foot rather than the edge's continuum of parameters.
+  void at_pole(std::size_t k, const Vec3& p, ProjectionResult& r) const;
   // The location on the whole surface of a foot piece k answered at its local (s, t).
   Location locate(std::size_t k, Location piece_location, double s, double t) const;
 

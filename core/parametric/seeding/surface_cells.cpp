@@ -260,11 +260,12 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     CompileBudget::check();
     bounds_.push_back(cell_bounds(formulas, r, e.jet));
   }
-  // sub-boxes on demand: up to four pairs per cell, at least 4096 pairs (~4 MB; about 1 KB a pair,
-  // allocated as they are made): the certificates' boxes near folds, kept, are read at the next
-  // point instead of enclosed by an interval jet again (bench/surface_bench's batch column)
-  refinement_ = std::make_unique<SurfaceRefinement>(formulas.program(), cells_.size(),
-                                                    std::max<std::size_t>(4 * cells_.size(), 4096));
+  // sub-boxes on demand (by default up to four pairs per cell, at least 4096 pairs, ~4 MB; about
+  // 1 KB a pair, allocated as they are made): the certificates' boxes near folds, kept, are read at
+  // the next point instead of enclosed by an interval jet again (bench/surface_bench's batch column)
+  refinement_ = std::make_unique<SurfaceRefinement>(
+      formulas.program(), cells_.size(),
+      std::max(options.refinement_pairs_per_cell * cells_.size(), options.min_refinement_pairs));
   // The search hierarchy is built over the cells' boxes in space, not over the parameter
   // subdivision: a surface folded or turned in space puts cells far apart in parameters side by
   // side, and boxes grouped by where they are overlap less. The whole surface's box is the union.

@@ -61,6 +61,11 @@ struct SurfaceSeedingOptions {
   // Memory cap of the cells and the tree (memory_bytes()): about 8,400 cells. Refinement stops
   // there whatever the flatness.
   std::size_t max_bytes = std::size_t{4} << 20;
+  // The certificates' sub-boxes kept for later points (surface_refinement.hpp): at most this many
+  // pairs a cell, and at least min_refinement_pairs in all (about 1 KB a pair, allocated as they are
+  // made but counted in memory_bytes() up front).
+  std::size_t refinement_pairs_per_cell = 4;
+  std::size_t min_refinement_pairs = 4096;
 };
 
 // Laid out for the search: what the first test of a visit reads (the frame, ρ, the flags and s_c)
