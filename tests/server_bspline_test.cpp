@@ -41,7 +41,7 @@ TEST_CASE("a NURBS circle over HTTP: posted, read back, projected, evaluated, me
   REQUIRE(got);
   const json g = json::parse(got->body);
   CHECK(g["definition"] == json::parse(kNurbsCircle));
-  CHECK(g["methods"] == json::array({"auto"}));
+  CHECK(g["methods"] == json::array({"auto", "newton", "curvature_circle"}));
 
   const json r =
       post_json(*c, "/v1/geometries/" + id + "/project", R"({"points":[[3,4],[0.3,-0.4],[2,0.001]]})", 200);

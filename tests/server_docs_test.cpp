@@ -79,7 +79,7 @@ TEST_CASE("GET /v1/methods: each method's full citations, the options it reads, 
                                            "max_distance", "certify", "max_minima"}));
       }
     }
-  CHECK(methods == 20);
+  CHECK(methods == 26);
   const json& gsa = list["geometry_types"][0]["methods"][1];
   CHECK(gsa["name"] == "gsa");
   CHECK(gsa["citations"] ==

@@ -107,7 +107,8 @@ TEST_CASE("B-spline and NURBS references: auto is global, certified, located, to
       }
       CHECK(r.summary.multiplicity.kind == Multiplicity::unique);
       const std::vector<double> foot = ref["foot"].get<std::vector<double>>();
-      for (std::size_t k = 0; k < foot.size(); ++k) CHECK(std::abs(r.foot[k] - foot[k]) <= 1e-9 * (1.0 + want));
+      for (std::size_t k = 0; k < foot.size(); ++k)
+        CHECK(std::abs(r.foot[k] - foot[k]) <= 1e-9 * (1.0 + want));
     }
   }
   CHECK(points == 222);

@@ -36,9 +36,9 @@
 #include <vector>
 
 #include "compiled_surface.hpp"
+#include "cpu_time.hpp"
 #include "geometry_json.hpp"
 #include "json_reader.hpp"
-#include "cpu_time.hpp"
 #include "occt_geometry.hpp"
 #include "point_sets.hpp"
 

@@ -35,10 +35,14 @@ PiecewiseNearest nearest_over_pieces(
     const std::function<ProjectionResult(std::size_t, const Options&)>& solve) {
   std::vector<double> lower(hulls.size());
   for (std::size_t k = 0; k < hulls.size(); ++k) lower[k] = distance_lower_bound(hulls[k], p);
-  std::vector<std::size_t> order(hulls.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return lower[a] < lower[b]; });
+  // The pieces nearest box first, taken from a heap as the search goes: most points solve one or
+  // two pieces and never order the rest.
+  std::vector<std::size_t> heap(hulls.size());
+  std::iota(heap.begin(), heap.end(), std::size_t{0});
+  const auto farther = [&](std::size_t a, std::size_t b) {
+    return lower[a] > lower[b] || (lower[a] == lower[b] && a > b);
+  };
+  std::make_heap(heap.begin(), heap.end(), farther);
 
   struct Solved {
     std::size_t piece;
@@ -47,7 +51,10 @@ PiecewiseNearest nearest_over_pieces(
   std::vector<Solved> solved;
   const Solved* best = nullptr;
   double unsolved_bound = std::numeric_limits<double>::infinity();  // the nearest box left out
-  for (const std::size_t k : order) {
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), farther);
+    const std::size_t k = heap.back();
+    heap.pop_back();
     const bool beyond_best = best && !options.all_minima && lower[k] > best->r.distance + tie_gap(best->r, p);
     if (beyond_best || lower[k] > options.max_distance) {
       unsolved_bound = lower[k];
