@@ -80,9 +80,9 @@ double global_of(double s, double a, double b) { return s <= 0.0 ? a : s >= 1.0 
 // s)` maps options.initial's global parameters to piece k's local ones (false: not on piece k);
 // `finish(k, r)` locates piece k's answer on the whole geometry and maps its parameters back.
 template <class Pieces, class ToLocal, class Finish>
-ProjectionResult nearest_piece(const Pieces& pieces, const std::vector<Box3>& hulls, const Vec3& p,
+ProjectionResult nearest_piece(const Pieces& pieces, const PieceTree& tree, const Vec3& p,
                                const Options& options, ToLocal to_local, Finish finish) {
-  return nearest_over_pieces(hulls, p, options,
+  return nearest_over_pieces(tree, p, options,
                              [&](std::size_t k, const Options& o) {
                                Options piece_options = o;
                                std::array<double, 3> local{};
@@ -257,14 +257,16 @@ BSplineSurface::BSplineSurface(GeometryDefinition def, nurbs::Surface surface,
   breaks_v_ = breaks_of(surface_.knots_v, surface_.vmin(), surface_.vmax());
   std::vector<nurbs::SurfacePiece> pieces = surface_pieces(surface_, limits.max_nodes);
   const SurfaceSeedingOptions seeding = piece_seeding(pieces.size());
+  std::vector<Box3> hulls;
   for (nurbs::SurfacePiece& piece : pieces) {
     pieces_.push_back(std::make_unique<ParametricSurface>(
         piece_definition(GeometryType::parametric_surface, {{"u", {0.0, 1.0}}, {"v", {0.0, 1.0}}}),
         std::move(piece.program), ParamBox{0.0, 1.0, 0.0, 1.0}, seeding));
     spans_.push_back(piece.span);
-    hulls_.push_back(piece.hull);
+    hulls.push_back(piece.hull);
     CompileBudget::check();
   }
+  tree_ = PieceTree(std::move(hulls));
   methods_ = bspline_surface_methods();
   // Closed directions: the first and last pieces' boundary rows (columns) of Bézier points agree.
   const std::size_t nu = breaks_u_.size() - 1, nv = breaks_v_.size() - 1;
@@ -316,8 +318,8 @@ ProjectionResult BSplineSurface::project_local(std::string_view name, const Vec3
 }
 
 std::size_t BSplineSurface::memory_bytes() const {
-  std::size_t bytes = sizeof(*this) + surface_.weighted.capacity() * sizeof(surface_.weighted[0]) +
-                      hulls_.capacity() * sizeof(Box3);
+  std::size_t bytes =
+      sizeof(*this) + surface_.weighted.capacity() * sizeof(surface_.weighted[0]) + tree_.memory_bytes();
   for (const auto& piece : pieces_) bytes += piece->memory_bytes();
   return bytes;
 }
@@ -348,8 +350,14 @@ bool BSplineSurface::evaluate(const double* t, Evaluation& out) const {
 
 bool BSplineSurface::foot_normal(const ProjectionResult& r, std::array<double, 3>& n) const {
   if (r.summary.location == Location::pole || r.summary.location == Location::kink) return false;
-  Evaluation e;
-  evaluate(r.params.data(), e);
+  // The piece's tangents: its local parameters are the global ones scaled by positive factors, so
+  // s_s x s_t has the direction of s_u x s_v.
+  const std::size_t k =
+      span_of(breaks_u_, r.params[0]) * (breaks_v_.size() - 1) + span_of(breaks_v_, r.params[1]);
+  const ParamBox& b = spans_[k];
+  const SurfaceJet j = pieces_[k]->formulas().jet((r.params[0] - b.umin) / (b.umax - b.umin),
+                                                  (r.params[1] - b.vmin) / (b.vmax - b.vmin));
+  const Evaluation e = evaluation_of(j);
   if (!e.normal_defined) return false;
   n = {e.normal.x, e.normal.y, e.normal.z};
   return true;
@@ -439,7 +447,7 @@ ProjectionResult BSplineSurface::project_auto(const Vec3& p, const Options& opti
       step[1] *= b.vmax - b.vmin;
     }
   };
-  return nearest_piece(pieces_, hulls_, p, options, to_local, finish);
+  return nearest_piece(pieces_, tree_, p, options, to_local, finish);
 }
 
 // ---- curves --------------------------------------------------------------------------------------
@@ -448,14 +456,16 @@ BSplineCurve::BSplineCurve(GeometryDefinition def, nurbs::Curve curve, const for
     : CompiledGeometry(std::move(def)), curve_(std::move(curve)) {
   breaks_ = breaks_of(curve_.knots, curve_.tmin(), curve_.tmax());
   std::vector<nurbs::CurvePiece> pieces = curve_pieces(curve_, limits.max_nodes);
+  std::vector<Box3> hulls;
   for (nurbs::CurvePiece& piece : pieces) {
     pieces_.push_back(std::make_unique<ParametricCurve>(
         piece_definition(GeometryType::parametric_curve, {{"t", {0.0, 1.0}}}),
         CurveFormulas(std::move(piece.program)), ParamInterval{0.0, 1.0}));
     spans_.push_back(piece.span);
-    hulls_.push_back(piece.hull);
+    hulls.push_back(piece.hull);
     CompileBudget::check();
   }
+  tree_ = PieceTree(std::move(hulls));
   closed_ =
       same_point(pieces.front().bezier.front(), pieces.back().bezier.back(), magnitude_of(curve_.weighted));
   methods_ = with_local_methods(kCurveAuto, pieces_.front()->methods());
@@ -487,16 +497,16 @@ ProjectionResult BSplineCurve::project_local(std::string_view name, const Vec3& 
   std::optional<std::array<double, 2>> start;
   if (options.initial) start = std::array<double, 2>{(*options.initial)[0], 0.0};
   std::size_t nearest = 0;
-  for (std::size_t k = 1; k < hulls_.size(); ++k)
-    if (distance_lower_bound(hulls_[k], p) < distance_lower_bound(hulls_[nearest], p)) nearest = k;
+  for (std::size_t k = 1; k < tree_.size(); ++k)
+    if (distance_lower_bound(tree_.hull(k), p) < distance_lower_bound(tree_.hull(nearest), p)) nearest = k;
   ProjectionResult r = follow_pieces<1>(name, pieces_, spans, piece_of, p, options, start, nearest);
   certify_local(*this, p, options, r);
   return r;
 }
 
 std::size_t BSplineCurve::memory_bytes() const {
-  std::size_t bytes = sizeof(*this) + curve_.weighted.capacity() * sizeof(curve_.weighted[0]) +
-                      hulls_.capacity() * sizeof(Box3);
+  std::size_t bytes =
+      sizeof(*this) + curve_.weighted.capacity() * sizeof(curve_.weighted[0]) + tree_.memory_bytes();
   for (const auto& piece : pieces_) bytes += piece->memory_bytes();
   return bytes;
 }
@@ -555,7 +565,7 @@ ProjectionResult BSplineCurve::project_auto(const Vec3& p, const Options& option
     }
     for (auto& step : r.trace) step[0] *= b.tmax - b.tmin;
   };
-  return nearest_piece(pieces_, hulls_, p, options, to_local, finish);
+  return nearest_piece(pieces_, tree_, p, options, to_local, finish);
 }
 
 // ---- compiling -----------------------------------------------------------------------------------

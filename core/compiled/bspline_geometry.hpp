@@ -31,6 +31,7 @@
 #include "compiled/parametric_surface_geometry.hpp"
 #include "geometry/box3.hpp"
 #include "parametric/geometry/nurbs.hpp"
+#include "solvers/piecewise_nearest.hpp"
 
 namespace footpoint {
 
@@ -47,7 +48,7 @@ class BSplineSurface final : public CompiledGeometry {
 
   const nurbs::Surface& surface() const { return surface_; }
   std::size_t pieces() const { return pieces_.size(); }
-  const Box3& hull(std::size_t k) const { return hulls_[k]; }  // holds piece k
+  const Box3& hull(std::size_t k) const { return tree_.hull(k); }  // holds piece k
   // Whether u (0) and v (1) close: the first and last pieces meet along the domain's edges.
   const std::array<bool, 2>& closed() const { return closed_; }
   ProjectionResult project_auto(const Vec3& p, const Options& options) const;
@@ -66,7 +67,7 @@ class BSplineSurface final : public CompiledGeometry {
   // Piece k: a parametric surface in its local (s, t) in [0, 1]^2 over the knot spans spans_[k].
   std::vector<std::unique_ptr<ParametricSurface>> pieces_;
   std::vector<ParamBox> spans_;
-  std::vector<Box3> hulls_;
+  PieceTree tree_;                           // the pieces' boxes
   std::vector<MethodInfo> methods_;          // auto, then the pieces' local methods
   std::vector<double> breaks_u_, breaks_v_;  // the distinct knots of the domain, ends included
   std::array<bool, 2> closed_{};
@@ -96,7 +97,7 @@ class BSplineCurve final : public CompiledGeometry {
   nurbs::Curve curve_;
   std::vector<std::unique_ptr<ParametricCurve>> pieces_;  // in the local s in [0, 1] of spans_[k]
   std::vector<ParamInterval> spans_;
-  std::vector<Box3> hulls_;
+  PieceTree tree_;  // the pieces' boxes
   std::vector<MethodInfo> methods_;
   std::vector<double> breaks_;  // the distinct knots of the domain, ends included
   bool closed_ = false;

@@ -17,6 +17,41 @@ double distance_lower_bound(const Box3& box, const Vec3& p) {
   return std::sqrt(sum) * (1.0 - 0x1p-49);
 }
 
+PieceTree::PieceTree(std::vector<Box3> hulls) : hulls_(std::move(hulls)) {
+  order_.resize(hulls_.size());
+  std::iota(order_.begin(), order_.end(), 0);
+  if (!hulls_.empty()) build(0, static_cast<std::int32_t>(hulls_.size()));
+}
+
+std::int32_t PieceTree::build(std::int32_t first, std::int32_t count) {
+  constexpr std::int32_t kLeaf = 4;  // pieces a leaf holds
+  Node node{
+      hulls_[static_cast<std::size_t>(order_[static_cast<std::size_t>(first)])], first, count, {-1, -1}};
+  for (std::int32_t i = first + 1; i < first + count; ++i)
+    node.box =
+        footpoint::hull(node.box, hulls_[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])]);
+  const auto index = static_cast<std::int32_t>(nodes_.size());
+  nodes_.push_back(node);
+  if (count <= kLeaf) return index;
+  const Vec3 extent = node.box.hi - node.box.lo;
+  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+  const auto begin = order_.begin() + first, middle = begin + count / 2, end = begin + count;
+  std::nth_element(begin, middle, end, [&](std::int32_t a, std::int32_t b) {
+    return hulls_[static_cast<std::size_t>(a)].center()[axis] <
+           hulls_[static_cast<std::size_t>(b)].center()[axis];
+  });
+  const std::int32_t left = build(first, count / 2);
+  const std::int32_t right = build(first + count / 2, count - count / 2);
+  nodes_[static_cast<std::size_t>(index)].child[0] = left;
+  nodes_[static_cast<std::size_t>(index)].child[1] = right;
+  return index;
+}
+
+std::size_t PieceTree::memory_bytes() const {
+  return sizeof(*this) + hulls_.capacity() * sizeof(Box3) + order_.capacity() * sizeof(std::int32_t) +
+         nodes_.capacity() * sizeof(Node);
+}
+
 namespace {
 
 double tie_gap(const ProjectionResult& r, const Vec3& p) {
@@ -31,21 +66,23 @@ double foot_scale(const std::array<double, 3>& f) {
 }  // namespace
 
 PiecewiseNearest nearest_over_pieces(
-    const std::vector<Box3>& hulls, const Vec3& p, const Options& options,
+    const PieceTree& pieces, const Vec3& p, const Options& options,
     const std::function<ProjectionResult(std::size_t, const Options&)>& solve) {
-  std::vector<double> lower(hulls.size());
-  for (std::size_t k = 0; k < hulls.size(); ++k) lower[k] = distance_lower_bound(hulls[k], p);
-  // The pieces nearest box first, taken from a heap as the search goes: most points solve one or
-  // two pieces and never order the rest.
-  std::vector<std::size_t> heap(hulls.size());
-  std::iota(heap.begin(), heap.end(), std::size_t{0});
-  const auto farther = [&](std::size_t a, std::size_t b) {
-    return lower[a] > lower[b] || (lower[a] == lower[b] && a > b);
+  // Best first over the tree: entries are nodes (id >= 0) and pieces (id = -1 - piece), keyed by
+  // the lower bound of their box; a node popped pushes its children (a leaf its pieces).
+  struct Entry {
+    double lower;
+    std::int32_t id;
   };
-  std::make_heap(heap.begin(), heap.end(), farther);
+  const auto farther = [](const Entry& a, const Entry& b) {
+    return a.lower > b.lower || (a.lower == b.lower && a.id < b.id);
+  };
+  std::vector<Entry> heap;
+  if (pieces.size() > 0) heap.push_back({distance_lower_bound(pieces.nodes()[0].box, p), 0});
 
   struct Solved {
     std::size_t piece;
+    double lower;
     ProjectionResult r;
   };
   std::vector<Solved> solved;
@@ -53,14 +90,31 @@ PiecewiseNearest nearest_over_pieces(
   double unsolved_bound = std::numeric_limits<double>::infinity();  // the nearest box left out
   while (!heap.empty()) {
     std::pop_heap(heap.begin(), heap.end(), farther);
-    const std::size_t k = heap.back();
+    const Entry e = heap.back();
     heap.pop_back();
-    const bool beyond_best = best && !options.all_minima && lower[k] > best->r.distance + tie_gap(best->r, p);
-    if (beyond_best || lower[k] > options.max_distance) {
-      unsolved_bound = lower[k];
+    const bool beyond_best = best && !options.all_minima && e.lower > best->r.distance + tie_gap(best->r, p);
+    if (beyond_best || e.lower > options.max_distance) {
+      unsolved_bound = e.lower;
       break;
     }
-    solved.push_back({k, solve(k, options)});
+    if (e.id >= 0) {
+      const PieceTree::Node& node = pieces.nodes()[static_cast<std::size_t>(e.id)];
+      if (node.child[0] >= 0) {
+        for (const std::int32_t c : node.child) {
+          heap.push_back({distance_lower_bound(pieces.nodes()[static_cast<std::size_t>(c)].box, p), c});
+          std::push_heap(heap.begin(), heap.end(), farther);
+        }
+      } else {
+        for (std::int32_t i = node.first; i < node.first + node.count; ++i) {
+          const std::int32_t piece = pieces.order()[static_cast<std::size_t>(i)];
+          heap.push_back({distance_lower_bound(pieces.hull(static_cast<std::size_t>(piece)), p), -1 - piece});
+          std::push_heap(heap.begin(), heap.end(), farther);
+        }
+      }
+      continue;
+    }
+    const auto k = static_cast<std::size_t>(-1 - e.id);
+    solved.push_back({k, e.lower, solve(k, options)});
     if (solved.back().r.summary.status == Status::deadline_exceeded) break;
     best = nullptr;
     for (const Solved& s : solved)
@@ -100,7 +154,7 @@ PiecewiseNearest nearest_over_pieces(
     summary.starts += s.r.summary.starts;
     summary.certificate.boxes += s.r.summary.certificate.boxes;
     const Certificate& c = s.r.summary.certificate;
-    const double bound = c.computed ? c.lower_bound : lower[s.piece];
+    const double bound = c.computed ? c.lower_bound : s.lower;
     if (bound < lower_bound) {
       lower_bound = bound;
       weakest = &s;

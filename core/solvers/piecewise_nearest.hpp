@@ -12,6 +12,7 @@
 // the pieces' merged (a minimum on a shared edge once), best first.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -23,6 +24,33 @@ namespace footpoint {
 // A lower bound of the distance from p to any point of the box (0 inside), rounded down.
 double distance_lower_bound(const Box3& box, const Vec3& p);
 
+// The pieces' boxes in a binary tree (each node's box holds its children's; split at the median of
+// the boxes' centres along the longest side), walked best first: a point visits the nodes nearer
+// than its best distance, not every piece ([CGAL] the AABB tree's traversal traits: one tree, many
+// queries).
+class PieceTree {
+ public:
+  PieceTree() = default;
+  explicit PieceTree(std::vector<Box3> hulls);
+  std::size_t size() const { return hulls_.size(); }
+  const Box3& hull(std::size_t piece) const { return hulls_[piece]; }
+  std::size_t memory_bytes() const;
+
+  struct Node {
+    Box3 box;
+    std::int32_t first, count;  // the pieces order_[first, first + count) under it
+    std::int32_t child[2];      // -1: a leaf
+  };
+  const std::vector<Node>& nodes() const { return nodes_; }
+  const std::vector<std::int32_t>& order() const { return order_; }
+
+ private:
+  std::int32_t build(std::int32_t first, std::int32_t count);
+  std::vector<Box3> hulls_;
+  std::vector<std::int32_t> order_;
+  std::vector<Node> nodes_;
+};
+
 struct PiecewiseNearest {
   ProjectionResult result;  // the answer, from the nearest piece's answer
   std::size_t piece = 0;    // that piece (meaningless without a finite answer)
@@ -32,7 +60,7 @@ struct PiecewiseNearest {
 // `solve(k, options)` projects p onto piece k with its global method (the options passed on; the
 // caller decides what options.initial means for piece k).
 PiecewiseNearest nearest_over_pieces(
-    const std::vector<Box3>& hulls, const Vec3& p, const Options& options,
+    const PieceTree& pieces, const Vec3& p, const Options& options,
     const std::function<ProjectionResult(std::size_t, const Options&)>& solve);
 
 }  // namespace footpoint
