@@ -21,6 +21,7 @@ python3-websocket is missing.
 import argparse
 import base64
 import json
+import math
 import os
 import queue
 import re
@@ -384,6 +385,22 @@ def run(args):
         pixels_implicit = show_preset("o.textContent.startsWith('Torus as f')", "the implicit torus' results",
                                       "playground_implicit_surface.png")
         check(difference_fraction(pixels_curve, pixels_implicit) > 0.05, "the implicit torus' picture differs from the lemniscate's")
+
+        # ---- a NURBS surface, from its preset: the net in the form, distances in closed form -------
+        pixels_nurbs = show_preset("o.textContent.startsWith('Rational sphere')", "the rational sphere's results",
+                                   "playground_nurbs_sphere.png")
+        check(difference_fraction(pixels_implicit, pixels_nurbs) > 0.05, "the NURBS sphere's picture differs from the implicit torus'")
+        shown = page.evaluate("[...document.querySelectorAll('#results tbody td.distance')].map(td => Number(td.textContent))")
+        want = [abs(math.sqrt(1.2**2 + 0.9**2 + 0.7**2) - 1), abs(math.sqrt(0.01 + 0.04 + 0.09) - 1), 0.5]
+        check(len(shown) == 3 and all(abs(a - b) <= 1e-6 * (1 + b) for a, b in zip(shown, want)),
+              f"the NURBS sphere's distances are | |p| - 1 | ({shown} against {want})")
+        page.set_value("#net", '{"degree": [1, 1], "knots": {"u": [0, 0, 1], "v": [0, 0, 1, 1]}, '
+                               '"control_points": [[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 0]]]}')
+        page.press("#show")
+        page.wait_for("!document.querySelector('[data-error-for=\"net\"]').hidden", "the net's error")
+        page.idle()
+        message = page.evaluate("document.querySelector('[data-error-for=\"net\"] .message').textContent")
+        check(message.startswith("knots.u "), f"a bad net's error is shown under the net: {message}")
 
         # ---- the README's picture (docs/playground.png): the torus preset, its minima ----------
         show_preset("o.textContent === 'Torus'", "the torus preset", "playground_torus_preset.png")

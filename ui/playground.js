@@ -11,6 +11,11 @@
   const PI = 3.141592653589793;
 
   // ---- presets: the papers' examples and a few classic shapes ------------------------------------
+  // The NURBS circle's control polygon (a square's corners and midpoints) and the half circle of a
+  // sphere's meridian (rho, z), with the corners' weight √2/2 ([PieglTiller] sec. 7.5).
+  const HALF_ROOT2 = Math.SQRT1_2;
+  const CIRCLE = [[1, 0], [1, 1], [0, 1], [-1, 1], [-1, 0], [-1, -1], [0, -1], [1, -1], [1, 0]];
+  const HALF = [[0, -1], [1, -1], [1, 0], [1, 1], [0, 1]];
   const PRESETS = [
     {
       name: 'GSA paper, Example 1: Table 5 (GSA from (1, 2))',
@@ -82,6 +87,30 @@
       points: [[0, 0, -1], [0.5, 0.2, 0.8], [1.5, 0.5, 0.3]], method: 'auto', options: {},
     },
     {
+      name: 'NURBS circle (degree 2, nine control points)',
+      geometry: {type: 'bspline_curve', degree: 2, knots: [0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1],
+                 control_points: [[2, 0], [2, 2], [0, 2], [-2, 2], [-2, 0], [-2, -2], [0, -2], [2, -2], [2, 0]],
+                 weights: [1, HALF_ROOT2, 1, HALF_ROOT2, 1, HALF_ROOT2, 1, HALF_ROOT2, 1]},
+      points: [[3, 1], [0.5, 0.2], [-1, -3]], method: 'auto', options: {},
+    },
+    {
+      name: 'Bicubic B-spline patch (NURBS surface)',
+      geometry: {type: 'bspline_surface', degree: [3, 3],
+                 knots: {u: [0, 0, 0, 0, 1, 2, 2, 2, 2], v: [0, 0, 0, 0, 1, 2, 2, 2, 2]},
+                 control_points: [0, 1, 2, 3, 4].map((i) => [0, 1, 2, 3, 4].map((j) =>
+                   [i, j, [[0, 0.5, 0, 0.5, 0], [0.5, 1.5, 1, 1.5, 0.5], [0, 1, 2, 1, 0], [0.5, 1.5, 1, 1.5, 0.5],
+                           [0, 0.5, 0, 0.5, 0]][i][j]]))},
+      points: [[2, 2, 3], [0.5, 3.5, 1.5], [5, -1, 0]], method: 'auto', options: {all_minima: true},
+    },
+    {
+      name: 'Rational sphere (NURBS surface, 9 x 5 control points)',
+      geometry: {type: 'bspline_surface', degree: [2, 2],
+                 knots: {u: [0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1], v: [0, 0, 0, 0.5, 0.5, 1, 1, 1]},
+                 control_points: CIRCLE.map(([cx, cy]) => HALF.map(([r, z]) => [cx * r, cy * r, z])),
+                 weights: CIRCLE.map((c, i) => HALF.map((h, j) => (i % 2 ? HALF_ROOT2 : 1) * (j % 2 ? HALF_ROOT2 : 1)))},
+      points: [[1.2, 0.9, 0.7], [0.1, 0.2, 0.3], [0, 0, 1.5]], method: 'auto', options: {},
+    },
+    {
       name: 'Ellipse (planar parametric curve)',
       geometry: {type: 'parametric_curve', x: 'a*cos(t)', y: 'b*sin(t)', domain: {t: [0, TWO_PI]},
                  constants: {a: 3, b: 2}},
@@ -108,7 +137,13 @@
       formulas: [{field: 'equation', label: 'f(x, y, z) = 0'}],
       domain: ['x', 'y', 'z'], resolution: 48,
     },
+    // B-splines: the net as JSON (degree, knots, control_points, weights), no formulas or domain.
+    bspline_surface: {formulas: [], domain: [], net: true, resolution: 64},
+    bspline_curve: {formulas: [], domain: [], net: true, resolution: 256},
   };
+  const NET_MEMBERS = ['degree', 'knots', 'control_points', 'weights'];
+  // A net member's field in an API error ("control_points[1][2]", "knots.u").
+  const isNetField = (field) => NET_MEMBERS.some((m) => field === m || field.startsWith(m + '[') || field.startsWith(m + '.'));
 
   const state = {
     methods: {},        // type -> [{name, description, paper}] from GET /v1/methods
@@ -174,6 +209,27 @@
     const spec = TYPES[type];
     const formulas = $('formulas');
     formulas.textContent = '';
+    $('constants').closest('label').hidden = !!spec.net;
+    if (spec.net) {
+      const box = document.createElement('div');
+      box.className = 'formula';
+      const label = document.createElement('label');
+      const name = document.createElement('span');
+      name.className = 'name';
+      name.textContent = 'net (JSON)';
+      const text = document.createElement('textarea');
+      text.id = 'net';
+      text.rows = 6;
+      text.spellcheck = false;
+      text.placeholder = '{"degree": ..., "knots": ..., "control_points": ..., "weights": ...}';
+      label.append(name, text);
+      const error = document.createElement('div');
+      error.className = 'field-error';
+      error.hidden = true;
+      error.dataset.errorFor = 'net';
+      box.append(label, error);
+      formulas.append(box);
+    }
     for (const f of spec.formulas) {
       const box = document.createElement('div');
       box.className = 'formula';
@@ -223,6 +279,12 @@
     $('type').value = geometry.type;
     buildForm(geometry.type);
     const spec = TYPES[geometry.type];
+    if (spec.net) {
+      const net = {};
+      for (const m of NET_MEMBERS) if (geometry[m] !== undefined) net[m] = geometry[m];
+      $('net').value = JSON.stringify(net);
+      return;
+    }
     for (const f of spec.formulas) {
       const m = /^equations\[(\d)\]$/.exec(f.field);
       formulaInput(f.field).value = (m ? (geometry.equations || [])[Number(m[1])] : geometry[f.field]) || '';
@@ -242,6 +304,16 @@
     const spec = TYPES[type];
     const def = {type};
     const fail = (field, message) => { const e = new Error(message); e.api = {code: 'invalid_input', message, field}; throw e; };
+    if (spec.net) {
+      let net;
+      try {
+        net = JSON.parse($('net').value);
+      } catch (e) {
+        fail('degree', 'net: not JSON (' + e.message + ')');
+      }
+      if (net === null || typeof net !== 'object' || Array.isArray(net)) fail('degree', 'net: a JSON object {"degree": ..., "knots": ..., ...}');
+      return Object.assign(def, net);
+    }
     let planar = false;
     for (const f of spec.formulas) {
       const text = formulaInput(f.field).value.trim();
@@ -284,7 +356,10 @@
     const field = (e.field || '').replace(/^geometry\./, '');
     let box = null, input = null;
     const formula = field && formulaInput(field);
-    if (formula) {
+    if (field && isNetField(field) && $('net')) {
+      input = $('net');
+      box = $('formulas').querySelector('[data-error-for="net"]');
+    } else if (formula) {
       input = formula;
       box = $('formulas').querySelector(`[data-error-for="${field}"]`);
     } else if (field.startsWith('domain')) {
