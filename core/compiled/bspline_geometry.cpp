@@ -270,7 +270,7 @@ BSplineSurface::BSplineSurface(GeometryDefinition def, nurbs::Surface surface,
   methods_ = bspline_surface_methods();
   // Closed directions: the first and last pieces' boundary rows (columns) of Bézier points agree.
   const std::size_t nu = breaks_u_.size() - 1, nv = breaks_v_.size() - 1;
-  const auto [p, q] = surface_.degree;
+  const int p = surface_.degree[0], q = surface_.degree[1];
   const double magnitude = magnitude_of(surface_.weighted);
   auto net = [&](std::size_t a, std::size_t b, int k, int l) -> const std::array<double, 4>& {
     return pieces[a * nv + b].bezier[static_cast<std::size_t>(k * (q + 1) + l)];
