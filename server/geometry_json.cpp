@@ -191,7 +191,13 @@ RawDefinition read_members(JsonReader& r, const std::string& prefix) {
     } else if (key == "degree") {
       raw.degree = read_number_tree(r, field);
     } else if (key == "knots") {
-      if (r.peek() == JsonReader::Type::object) {
+      JsonReader::Type type{};
+      try {
+        type = r.peek();
+      } catch (const JsonReadError& e) {
+        throw request_error(e, field);
+      }
+      if (type == JsonReader::Type::object) {
         std::optional<NumberTree> u, v;
         read_object(r, field, field, field + ".", [&](const std::string& name, const std::string& item) {
           if (name == "u")

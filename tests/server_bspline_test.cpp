@@ -110,4 +110,7 @@ TEST_CASE("B-spline refusals: shapes 400 naming the element, nets 422 bad_bsplin
     CHECK(e["error"]["code"] == k.code);
     CHECK(e["error"]["field"] == k.field);
   }
+  // Malformed JSON where the knots' kind (a list or an object of u and v) is read (request_fuzz).
+  const json e = post_json(*c, "/v1/geometries", R"({"type":"bspline_curve","knots":knots":[0]})", 400);
+  CHECK(e["error"]["code"] == "malformed_json");
 }
