@@ -152,9 +152,9 @@ export async function* project(geometryOrId, points, options = {}) {
   for (const name of Object.keys(options))
     if (!QUERY_OPTIONS.has(name) && !CLIENT_OPTIONS.has(name))
       throw new TypeError(`unknown option ${name} (known: ${[...QUERY_OPTIONS, ...CLIENT_OPTIONS].join(', ')})`);
+  const {body, count} = pointsBody(points, options.dimension);
   const definition = typeof geometryOrId === 'string' ? null : geometryOrId;
   let id = definition ? knownIds.get(JSON.stringify(definition)) || await createGeometry(definition, options) : geometryOrId;
-  const {body, count} = pointsBody(points, options.dimension);
   const init = {method: 'POST', body,
                 headers: {'Content-Type': 'application/octet-stream', 'Accept': 'application/x-ndjson'}};
   const query = queryString(options);
