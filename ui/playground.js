@@ -1128,8 +1128,8 @@
     fitCamera([...state.mesh.vertices, ...positions], planar);
   }
 
-  // The results as CSV (point, foot point, distance, signed distance; empty where null), ready in
-  // the export link as a Blob.
+  // The results as CSV (point, foot point, distance, signed distance; empty where null) in the
+  // export link as a Blob, made when the link is first clicked (100,000 rows take most of a second).
   function exportCloud() {
     const n = cloud.count, dim = cloud.dimension;
     const axes = ['x', 'y', 'z'].slice(0, dim);
@@ -1198,7 +1198,6 @@
       const scale = Math.max(Math.abs(stats.min), Math.abs(stats.max)) || 1;
       drawCloud(scale);
       showCloudReport(stats);
-      exportCloud();
       const totalMs = performance.now() - started;
       $('cloud-meta').textContent = `${file.name}: ${read.format}, ${n.toLocaleString('en')} points, read in ` +
                                     `${Math.round(readMs)} ms, projected in ${Math.round(projectMs)} ms`;
@@ -1271,6 +1270,8 @@
       });
     }
     $('cloud-clear').addEventListener('click', removeCloud);
+    // Before the link's default action, which then downloads the Blob just made.
+    $('cloud-export').addEventListener('click', () => { if (!cloud.csvUrl && cloud.count) exportCloud(); });
     const methods = await api('GET', '/v1/methods');
     if (methods.ok) for (const t of methods.json.geometry_types) state.methods[t.type] = t.methods;
     await applyPreset(PRESETS[0]);
