@@ -100,7 +100,8 @@ async function send(url, init, options) {
     if (response.ok) return response;
     const error = await answerError(response);
     if (response.status !== 503 || attempt >= retries) throw error;
-    const wait = Number(response.headers.get('Retry-After'));
+    const header = response.headers.get('Retry-After');
+    const wait = header === null || header.trim() === '' ? NaN : Number(header);
     await sleep(1000 * (Number.isFinite(wait) && wait >= 0 ? wait : 1), options.signal);
   }
 }

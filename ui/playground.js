@@ -1160,7 +1160,11 @@
   }
 
   async function loadCloud(file) {
-    if (!file || !state.geometry || state.busy) return;
+    if (!file || !state.geometry) return;
+    if (state.busy) {
+      cloudError(`${file.name}: the page is busy with a request; load the file again when it is done`);
+      return;
+    }
     $('error-cloud').hidden = true;
     removeCloud();
     busy(+1);
