@@ -10,7 +10,8 @@ protocol (python3-websocket), against the built footpoint-server on a loopback p
   - canvas screenshots are not blank, and differ between two geometries;
   - a bad formula: the error is shown under its field with the API's position marked;
   - a point cloud of 100,000 points off a torus, generated here as PLY binary and XYZ files (and
-    smaller CSV and PLY ascii ones) and loaded through the file input: the count, mean, RMS, min
+    smaller CSV and PLY ascii ones) and loaded through the file input (the PLY ascii one dropped
+    on the view): the count, mean, RMS, min
     and max shown and the legend's range equal the closed-form signed distances', the histogram's
     bins add up, the canvas shows the cloud, the exported CSV (downloaded by the browser) holds
     every point with its closed-form signed distance; bad files show their line;
@@ -234,14 +235,22 @@ def write_text(path, points, kind):
             f.write("3 0 1 2\n")
 
 
-def load_cloud(page, path, timeout=180.0):
-    """Sets the file input to `path` (DOM.setFileInputFiles fires its change event) and waits until
-    the page has read and projected it, or shown an error; returns the seconds it took."""
-    document = page.call("DOM.getDocument", depth=1)
-    node = page.call("DOM.querySelector", nodeId=document["root"]["nodeId"], selector="#cloud-file")["nodeId"]
+def load_cloud(page, path, timeout=180.0, drop=False):
+    """Sets the file input to `path` (DOM.setFileInputFiles fires its change event), or with drop
+    drags the file onto the view and drops it there (Input.dispatchDragEvent), and waits until the
+    page has read and projected it, or shown an error; returns the seconds it took."""
     page.evaluate("delete document.body.dataset.cloudCount; document.getElementById('error-cloud').hidden = true")
     started = time.time()
-    page.call("DOM.setFileInputFiles", files=[os.path.abspath(path)], nodeId=node)
+    if drop:
+        box = page.evaluate("(() => { const r = document.getElementById('canvas').getBoundingClientRect();"
+                            " return [r.x + r.width / 2, r.y + r.height / 2]; })()")
+        data = {"items": [], "files": [os.path.abspath(path)], "dragOperationsMask": 1}
+        for kind in ("dragEnter", "dragOver", "drop"):
+            page.call("Input.dispatchDragEvent", type=kind, x=box[0], y=box[1], data=data)
+    else:
+        document = page.call("DOM.getDocument", depth=1)
+        node = page.call("DOM.querySelector", nodeId=document["root"]["nodeId"], selector="#cloud-file")["nodeId"]
+        page.call("DOM.setFileInputFiles", files=[os.path.abspath(path)], nodeId=node)
     page.wait_for("(document.body.dataset.cloudCount || !document.getElementById('error-cloud').hidden) && "
                   "document.body.dataset.state === 'ready'", "the point cloud " + os.path.basename(path), timeout)
     return time.time() - started
@@ -339,11 +348,12 @@ def check_point_cloud(page, out, pixels_before):
     for kind in ("csv", "ply"):
         path = os.path.join(out, "scan_torus_small." + kind)
         write_text(path, few, kind if kind == "csv" else "ply_ascii")
-        load_cloud(page, path)
+        load_cloud(page, path, drop=kind == "ply")
         page.idle()
         small = shown_stats(page)
         check(small.get("count") == 2000 and relative(small["mean"], math.fsum(signed[:2000]) / 2000) <= 1e-9,
-              f"{kind.upper()}{' ascii' if kind == 'ply' else ' with a header'}: 2000 points, the closed form's mean")
+              f"{kind.upper()}{' ascii, dropped on the view' if kind == 'ply' else ' with a header'}: "
+              "2000 points, the closed form's mean")
 
     # bad files: the message names the line (or the byte) in the page
     bad = os.path.join(out, "scan_bad.xyz")
