@@ -6,7 +6,9 @@ started here (2 worker threads, loopback): a JSON batch (JSON in, one JSON answe
 in, one result a line, streamed), binary (float64 points in, fixed-size records streamed out;
 the client sends the whole body, then reads), duplex (binary, the client sending its body from
 one thread while it reads the answer in another, as a client of a 10^7-point stream should: the
-server then reads the body as it answers, holding a few windows of it).
+server then reads the body as it answers, holding a few windows of it), client and client_whole
+(clients/python/footpoint.py's binary path in one batch, with its duplex sending and without it:
+the whole body sent first; NumPy needed, their first result is not measured).
 Every request asks for the same fields (foot_point, parameters, distance, normal,
 signed_distance, diagnostics.status). Printed per format and count, medians of the runs:
 points/s (wall time of the whole request, from the first byte sent to the last received), answer
@@ -18,7 +20,7 @@ the next, so that a run after a larger one may need no more: run one format and 
 as below, for a stream's whole footprint).
 
     bench/inspection_bench.py --server build/footpoint-server [--counts 100000 1000000] [--runs 3]
-        [--formats json ndjson binary duplex]
+        [--formats json ndjson binary duplex client client_whole]
     for n in 1000000 3000000 10000000; do
         bench/inspection_bench.py --server build/footpoint-server --counts $n --runs 3 --formats duplex; done
 """
@@ -27,11 +29,15 @@ import argparse
 import http.client
 import json
 import math
+import os
 import socket
 import subprocess
 import sys
 import threading
 import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "clients", "python"))
+import footpoint  # noqa: E402  (the client: --formats client client_whole)
 
 TORUS = {"type": "parametric_surface", "x": "(3+cos(v))*cos(u)", "y": "(3+cos(v))*sin(u)", "z": "sin(v)",
          "domain": {"u": [0, "2*_pi"], "v": [0, "2*_pi"]}}
@@ -135,6 +141,21 @@ def run_duplex(port, pid, geometry_id, body):
     return result
 
 
+def run_client(port, pid, geometry_id, body, duplex):
+    points = footpoint.numpy.frombuffer(body, dtype="<f8").reshape(-1, 3)
+    with open("/proc/%d/clear_refs" % pid, "w") as f:
+        f.write("5")
+    idle = status_kib(pid, "VmRSS")
+    start = time.perf_counter()
+    with footpoint.Client("http://127.0.0.1:%d" % port, timeout=3600, duplex=duplex) as client:
+        result = client.project(geometry_id, points, fields=FIELDS, batch_size=len(points))
+    elapsed = time.perf_counter() - start
+    peak = status_kib(pid, "VmHWM")
+    numbers = sum(column.size for column in result.columns.values())
+    return {"seconds": elapsed, "first": float("nan"), "bytes": 8 * numbers, "peak_mib": (peak - idle) / 1024.0,
+            "peak_kib": peak}
+
+
 def run(port, pid, geometry_id, fmt, body):
     path = "/v1/geometries/%s/project" % geometry_id
     headers = {"Content-Type": "application/json"}
@@ -165,8 +186,10 @@ def main():
     parser.add_argument("--counts", type=int, nargs="+", default=[100000, 1000000])
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--formats", nargs="+", default=["json", "ndjson", "binary", "duplex"],
-                        choices=["json", "ndjson", "binary", "duplex"])
+                        choices=["json", "ndjson", "binary", "duplex", "client", "client_whole"])
     args = parser.parse_args()
+    if {"client", "client_whole"} & set(args.formats) and footpoint.numpy is None:
+        raise SystemExit("--formats client, client_whole: the client's binary path needs NumPy (python3-numpy)")
     server, port = start_server(args.server)
     try:
         c = http.client.HTTPConnection("127.0.0.1", port)
@@ -174,22 +197,26 @@ def main():
         geometry_id = json.loads(c.getresponse().read())["geometry_id"]
         c.close()
         start_kib = status_kib(server.pid, "VmRSS")
-        print("format  points   points/s  answer B/pt  request B/pt  first result ms  peak RSS above idle MiB"
+        print("format       points   points/s  answer B/pt  request B/pt  first result ms  peak RSS above idle MiB"
               "  most above start MiB")
         for n in args.counts:
             bodies = {}
             if "json" in args.formats or "ndjson" in args.formats:
                 bodies["json"] = bodies["ndjson"] = json.dumps({"points": near_points(n), "fields": FIELDS}).encode()
-            if "binary" in args.formats or "duplex" in args.formats:
-                bodies["binary"] = bodies["duplex"] = near_points_float64(n)
+            if {"binary", "duplex", "client", "client_whole"} & set(args.formats):
+                bodies["binary"] = bodies["duplex"] = bodies["client"] = bodies["client_whole"] = near_points_float64(n)
             runs = {fmt: [] for fmt in args.formats}
             for _ in range(args.runs):
                 for fmt in args.formats:  # interleaved
-                    runs[fmt].append(run_duplex(port, server.pid, geometry_id, bodies[fmt]) if fmt == "duplex"
-                                     else run(port, server.pid, geometry_id, fmt, bodies[fmt]))
+                    if fmt == "duplex":
+                        runs[fmt].append(run_duplex(port, server.pid, geometry_id, bodies[fmt]))
+                    elif fmt.startswith("client"):
+                        runs[fmt].append(run_client(port, server.pid, geometry_id, bodies[fmt], fmt == "client"))
+                    else:
+                        runs[fmt].append(run(port, server.pid, geometry_id, fmt, bodies[fmt]))
             for fmt in args.formats:
                 r = runs[fmt]
-                print("%-7s %-8d %9.0f  %11.1f  %12.1f  %15.1f  %8.1f  %19.1f   (runs: %s s; %s MiB)" % (
+                print("%-12s %-8d %9.0f  %11.1f  %12.1f  %15.1f  %8.1f  %19.1f   (runs: %s s; %s MiB)" % (
                     fmt, n, n / median([x["seconds"] for x in r]), median([x["bytes"] for x in r]) / n,
                     len(bodies[fmt]) / n, 1e3 * median([x["first"] for x in r]),
                     median([x["peak_mib"] for x in r]), (max(x["peak_kib"] for x in r) - start_kib) / 1024.0,

@@ -29,6 +29,7 @@ test_packages=(
   clang-format clang-tidy shellcheck         # scripts/check_format.sh, scripts/check_tidy.sh, deploy_shellcheck
   chromium python3-websocket                 # the browser pages in headless chromium (tests/ui_playground_browser.py)
   python3-matplotlib                         # examples/inspection/: the deviation colour map and histogram
+  nodejs                                     # tests/client_js_test.mjs: the JavaScript client (ui/footpoint-client.js)
 )
 # tests/openapi_lint.sh: Redocly's linter (pinned by tests/tools/redocly/package-lock.json) needs
 # npm; Debian's, unless an npm is already there (e.g. with another Node.js distribution).

@@ -19,6 +19,7 @@
 #include <string>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include <httplib.h>
 
@@ -160,6 +161,56 @@ httplib::Server::HandlerResponse reject(httplib::Response& res, const ApiError& 
   set_response(res, Api::error_response(error));
   if (close) res.set_header("Connection", "close");
   return httplib::Server::HandlerResponse::Handled;
+}
+
+// How long, and how many bytes, a connection refused before its body was read goes on reading
+// and dropping what its client still sends, after the answer (end_after_answer).
+constexpr auto kLingerTime = std::chrono::seconds(2);
+constexpr std::size_t kLingerBytes = std::size_t{256} << 20;
+
+// A lingering close's reading half (RFC 9112 section 9.6): after the answer, the socket is
+// half-closed (FIN: the client reads the answer to its end), then what the client still sends is
+// read and dropped until it closes its side, for at most kLingerTime and kLingerBytes. Closing at
+// once with the client's bytes unread would make the kernel reset the connection, and a client
+// still sending may then lose the answer before it reads it.
+void linger(int fd) {
+  ::shutdown(fd, SHUT_WR);
+  std::vector<char> scratch(64 << 10);
+  std::size_t dropped = 0;
+  const auto until = Clock::now() + kLingerTime;
+  while (dropped < kLingerBytes) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now()).count();
+    if (left <= 0) return;
+    pollfd p{fd, POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(left));
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) return;
+    const ssize_t got = ::recv(fd, scratch.data(), scratch.size(), MSG_DONTWAIT);
+    if (got < 0 && (errno == EINTR || errno == EAGAIN || errno == EWOULDBLOCK)) continue;
+    if (got <= 0) return;  // the client closed its side, or the connection failed
+    dropped += static_cast<std::size_t>(got);
+  }
+}
+
+// Ends the connection of a request refused before its body was read, once its answer is sent.
+// httplib (0.11) keeps a connection open whatever the answer's Connection header says, and would
+// read the unread body as the next requests (thousands of 400s for a binary body, or a request
+// smuggled in it). The answer's body is therefore sent by a content provider that lingers
+// (linger) and then returns false, on which httplib closes the connection.
+void end_after_answer(const httplib::Request& req, httplib::Response& res) {
+  const int fd = req.method == "HEAD" ? -1 : connection_socket(req);
+  if (fd < 0) return;
+  const std::string type = res.get_header_value("Content-Type");
+  res.headers.erase("Content-Type");  // the provider sets it
+  std::string body = std::move(res.body);
+  res.body.clear();
+  const std::size_t size = body.size();
+  res.set_content_provider(
+      size, type,
+      [body = std::move(body), fd](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+        if (sink.write(body.data() + offset, length)) linger(fd);
+        return false;
+      });
 }
 
 // The JSON error for a status httplib set itself.
@@ -483,12 +534,18 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     t_request.admitted = true;
     return 100;
   });
-  http.set_pre_routing_handler([admit](const httplib::Request& req, httplib::Response& res) {
+  http.set_pre_routing_handler([this, admit](const httplib::Request& req, httplib::Response& res) {
     if (t_request.admitted) {
       t_request.admitted = false;
       return httplib::Server::HandlerResponse::Unhandled;
     }
-    return admit(req, res);
+    const auto handled = admit(req, res);
+    // Refused with its body unread (reject's close): the connection ends after the answer. Over
+    // TLS the raw socket is not ours to half-close; the connection stays as httplib keeps it.
+    if (handled == httplib::Server::HandlerResponse::Handled && !tls_ &&
+        res.get_header_value("Connection") == "close")
+      end_after_answer(req, res);
+    return handled;
   });
 
   // `source`: the body, when it is read as it is answered (req.body is empty then), and `socket`
@@ -530,14 +587,17 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     t_request.release = std::move(r.release);
     // an answer that left part of the body unread is the connection's last: the rest cannot be
     // taken for the next request
-    if (source && !r.stream && t_request.body_read->load() < source->length)
-      res.set_header("Connection", "close");
+    const bool unread = source && !r.stream && t_request.body_read->load() < source->length;
     if (r.stream)
       r.stream = [this, stream = std::move(r.stream)](const ApiResponse::Write& write) {
         stream_started();
         return stream(write);
       };
     set_response(res, std::move(r), socket, config_.io_timeout_s);
+    if (unread) {
+      res.set_header("Connection", "close");
+      end_after_answer(req, res);
+    }
     // A request answered while the server shuts down is the connection's last.
     if (api_.shutting_down()) res.set_header("Connection", "close");
   };
@@ -600,7 +660,7 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
         const_cast<httplib::Request&>(req).headers.erase("Accept-Encoding");
         if (!res.has_header("X-Request-Id"))
           res.set_header("X-Request-Id", t_request.active ? t_request.request_id : make_request_id());
-        if (res.body.empty()) {
+        if (res.body.empty() && !res.content_provider_) {  // (a provider: end_after_answer's)
           const ApiError error = http_error(res.status);
           res.body = error_body(error);
           res.set_header("Content-Type", "application/json");

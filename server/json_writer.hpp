@@ -93,7 +93,8 @@ class JsonAppender {
   char* p_ = buf_;
 };
 
-// Appends the JSON string literal for s (quotes and escapes included).
+// Appends the JSON string literal for s (quotes and escapes included). Bytes of s that are no
+// well-formed UTF-8 are written as U+FFFD, so that the text is valid JSON whatever s holds.
 void append_json_string(std::string& out, std::string_view s);
 // Appends the shortest round-trip form of a finite x (caller checks finiteness).
 void append_shortest(std::string& out, double x);

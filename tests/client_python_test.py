@@ -3,9 +3,13 @@
 
 Checks, against the closed form of a sphere of radius 2 (the signed distance of p is 2 - |p| for
 its parametrisation, whose s_u x s_v points inwards): the JSON/NDJSON path (NumPy hidden) and the
-binary path, in batches, in order; re-posting a definition the server no longer holds; errors
-raised with the server's status, code and message; and a 503 (a second server answering one
-request at a time, busy with a long stream) retried after Retry-After until it succeeds.
+binary path, in batches, in order; the binary path's duplex sending (the body written from a
+thread while the answer is read) against sending the whole body first, on 10^6 points in one
+request, with the server's peak resident memory above idle printed for each; an error answered
+while a large duplex body is still being sent; re-posting a definition the server no longer
+holds; errors raised with the server's status, code and message; and a 503 (a second server
+answering one request at a time, busy with a long stream) retried after Retry-After until it
+succeeds.
 
     client_python_test.py --server build/footpoint-server --client clients/python
 """
@@ -42,6 +46,22 @@ def metric(base, name):
     return total
 
 
+def sphere_points_numpy(numpy, n):
+    """points_and_expected(n) in NumPy: the points and 2 - |p| from their coordinates."""
+    i = numpy.arange(n)
+    u, v, r = 0.1 + 6.0 * i / n, 0.4 + 2.3 * ((i * 7) % n) / n, 1.5 + (i % 11) / 10.0
+    points = numpy.stack([r * numpy.sin(v) * numpy.cos(u), r * numpy.sin(v) * numpy.sin(u), r * numpy.cos(v)], axis=1)
+    return points, 2.0 - numpy.sqrt((points * points).sum(axis=1))
+
+
+def status_kib(pid, field):
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith(field + ":"):
+                return int(line.split()[1])
+    raise KeyError(field)
+
+
 def check(condition, what):
     if not condition:
         raise AssertionError(what)
@@ -60,7 +80,7 @@ def main():
     sys.path.insert(0, args.client)
     import footpoint
 
-    with LiveServer(args.server, "--threads", "2") as server:
+    with LiveServer(args.server, "--threads", "2", "--max-body-bytes", "64000000") as server:
         base = server.url
         points, expected = points_and_expected(250)
         client = footpoint.Client(base)
@@ -91,6 +111,38 @@ def main():
             result = client.project(SPHERE, points, fields=["distance"], binary=True)
             check(list(result.columns) == ["distance"] and close(result.columns["distance"][3], abs(expected[3])),
                   "binary path: fields")
+
+            # 10^6 points in one request, the body sent from a writer thread while the answer is
+            # read (duplex), and sent whole before (http.client's way): the same answers
+            many, many_expected = sphere_points_numpy(numpy, 10 ** 6)
+            for duplex in (True, False):
+                with open("/proc/%d/clear_refs" % server.process.pid, "w") as f:
+                    f.write("5")  # VmHWM starts again from the current resident size
+                idle = status_kib(server.process.pid, "VmRSS")
+                started = time.time()
+                with footpoint.Client(base, duplex=duplex) as c:
+                    sd = c.project(SPHERE, many, batch_size=10 ** 6, fields=["signed_distance"]).columns["signed_distance"]
+                    seconds = time.time() - started
+                    again = c.project(SPHERE, numpy.array(points[:3]), fields=["signed_distance"])
+                peak = (status_kib(server.process.pid, "VmHWM") - idle) / 1024.0
+                worst = float(numpy.max(numpy.abs(sd - many_expected)))
+                check(sd.shape == (10 ** 6,) and worst <= 1e-12 and close(again.columns["signed_distance"][2], expected[2]),
+                      "%s: 10^6 signed distances are 2 - |p| in order (largest difference %.1e), the connection "
+                      "serves the next request" % ("duplex" if duplex else "whole body first", worst))
+                print("figure: %s, 10^6 points in one request: %.1f s, server peak RSS %.1f MiB above idle"
+                      % ("duplex" if duplex else "whole body first", seconds, peak))
+
+            # an error answered while a large duplex body is being sent: raised, not a hang
+            bad = many.copy()
+            bad[5, 1] = float("nan")
+            try:
+                client.project(SPHERE, bad, batch_size=10 ** 6, fields=["signed_distance"])
+                check(False, "a NaN coordinate raises")
+            except footpoint.FootpointError as e:
+                check(e.status == 400 and e.code == "number_out_of_range" and e.field == "points[5][1]",
+                      "duplex: a NaN at point 5 of 10^6 raises 400 number_out_of_range while the body is sent")
+            result = client.project(SPHERE, numpy.array(points[:4]), fields=["signed_distance"])
+            check(close(result.columns["signed_distance"][3], expected[3]), "and the client goes on with a new connection")
         else:
             print("skip: NumPy is not installed (binary path)")
 

@@ -8,7 +8,8 @@ import threading
 class LiveServer:
     def __init__(self, binary, *flags):
         self.process = subprocess.Popen([binary, "--host", "127.0.0.1", "--port", "0", *flags],
-                                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+                                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                                        errors="backslashreplace")  # a log line is never fatal
         for line in self.process.stdout:
             record = json.loads(line)
             if record.get("msg") == "listening":

@@ -105,6 +105,33 @@ TEST_CASE("strings: escapes and UTF-8 survive a round trip") {
   CHECK(u.string() == "\xC3\xA9\xF0\x9F\x98\x80/");
 }
 
+TEST_CASE("strings: bytes that are no UTF-8 are written as U+FFFD, valid text as it is") {
+  // well-formed: 2-, 3- and 4-byte sequences at the edges of their ranges (U+0080, U+07FF, U+0800,
+  // U+D7FF, U+E000, U+FFFF, U+10000, U+10FFFF)
+  const std::string valid =
+      "\xC2\x80\xDF\xBF\xE0\xA0\x80\xED\x9F\xBF\xEE\x80\x80\xEF\xBF\xBF\xF0\x90\x80\x80\xF4\x8F\xBF\xBF";
+  std::string out;
+  append_json_string(out, valid);
+  CHECK(out == '"' + valid + '"');
+  const struct {
+    std::string in, expected;  // expected: the string the JSON text holds, \uFFFD as UTF-8
+  } cases[] = {
+      {"a\x80z", "a\xEF\xBF\xBDz"},                                              // a lone continuation byte
+      {"\xC0\xAF", "\xEF\xBF\xBD\xEF\xBF\xBD"},                                  // an overlong '/'
+      {"\xE0\x80\xAF", "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD"},                  // an overlong 3-byte form
+      {"\xED\xA0\x80", "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD"},                  // a surrogate, U+D800
+      {"\xF4\x90\x80\x80", "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD"},  // past U+10FFFF
+      {"x\xE2\x82", "x\xEF\xBF\xBD\xEF\xBF\xBD"},                                // cut short at the end
+      {"\xF5\xFF\\", "\xEF\xBF\xBD\xEF\xBF\xBD\\"},  // never in UTF-8; an escape after
+  };
+  for (const auto& c : cases) {
+    out.clear();
+    append_json_string(out, c.in);
+    INFO(out);
+    CHECK(nlohmann::json::parse(out).get<std::string>() == c.expected);
+  }
+}
+
 TEST_CASE("the reader rejects what is not JSON, with the byte position") {
   struct Bad {
     const char* text;

@@ -218,6 +218,88 @@ TEST_CASE("streamed body: what is wrong before the answer starts is answered wit
   CHECK(s.server().api().in_flight() == 0);
 }
 
+namespace {
+
+// Sends `request` from a thread while it reads the answer to the server's end of stream; returns
+// the answer, and in `ended` whether the server closed (not the 5 s receive timeout).
+std::string exchange_to_end(int port, const std::string& request, bool& ended) {
+  const int fd = raw_connect(port);
+  timeval tv{5, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+  std::thread sender([&] { send_all(fd, request); });
+  std::string response;
+  char buf[4096];
+  for (;;) {
+    const auto n = ::recv(fd, buf, sizeof buf, 0);
+    if (n <= 0) {
+      ended = n == 0;
+      break;
+    }
+    response.append(buf, static_cast<std::size_t>(n));
+  }
+  ::shutdown(fd, SHUT_RDWR);  // lets the sender's write fail if it still waits
+  sender.join();
+  ::close(fd);
+  return response;
+}
+
+std::size_t answers_in(const std::string& response) {
+  std::size_t n = 0;
+  for (auto at = response.find("HTTP/1.1 "); at != std::string::npos; at = response.find("HTTP/1.1 ", at + 1))
+    ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("a request refused before its body is read ends its connection: the body is no next request") {
+  ServerConfig config;
+  config.max_body_bytes = 1 << 20;
+  TestServer s(config);
+  auto c = s.client();
+  // The bodies hold a request of their own; were the connection kept, the server would read it as
+  // the next request and answer it (a smuggled request; thousands of 400s for binary points).
+  const std::string smuggled = "GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n";
+  std::string body;
+  while (body.size() < (std::size_t{2} << 20)) body += smuggled;
+  // over --max-body-bytes: 413 from Content-Length, in pre-routing
+  bool ended = false;
+  std::string r =
+      exchange_to_end(s.port(),
+                      "POST /v1/geometries HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\n"
+                      "Content-Length: " +
+                          std::to_string(body.size()) + "\r\n\r\n" + body,
+                      ended);
+  CHECK(raw_status(r) == 413);
+  CHECK(raw_json(r)["error"]["code"] == "body_too_large");
+  CHECK(ended);
+  CHECK(answers_in(r) == 1);
+  // a NaN in the first window of a streamed body: 400 from the handler, the rest unread
+  const std::string id = create(*c, kSphere);
+  std::vector<double> p = sphere_points(20000);
+  p[3 * 3 + 1] = std::nan("");
+  std::string points = float64_bytes(p);
+  points.replace(points.size() - 100 * smuggled.size(), 100 * smuggled.size(), [&] {
+    std::string many;
+    for (int i = 0; i < 100; ++i) many += smuggled;
+    return many;
+  }());
+  for (const std::string accept : {"application/octet-stream", "application/x-ndjson"}) {
+    INFO(accept);
+    ended = false;
+    r = exchange_to_end(
+        s.port(), request_head("/v1/geometries/" + id + "/project", accept, points.size()) + points, ended);
+    CHECK(raw_status(r) == 400);
+    CHECK(raw_json(r)["error"]["field"] == "points[3][1]");
+    CHECK(ended);
+    CHECK(answers_in(r) == 1);
+  }
+  // the server goes on with the next connection
+  auto ok = c->Get("/healthz");
+  REQUIRE(ok);
+  CHECK(ok->status == 200);
+}
+
 TEST_CASE("streamed body: the rate limit takes a stream's points from its Content-Length, before the body") {
   ServerConfig config;
   config.rate_limit = 1;  // a point a second: nothing refills during the test

@@ -9,6 +9,12 @@ protocol (python3-websocket), against the built footpoint-server on a loopback p
   - a click on the canvas adds a point and projects it;
   - canvas screenshots are not blank, and differ between two geometries;
   - a bad formula: the error is shown under its field with the API's position marked;
+  - a point cloud of 100,000 points off a torus, generated here as PLY binary and XYZ files (and
+    smaller CSV and PLY ascii ones) and loaded through the file input (the PLY ascii one dropped
+    on the view): the count, mean, RMS, min
+    and max shown and the legend's range equal the closed-form signed distances', the histogram's
+    bins add up, the canvas shows the cloud, the exported CSV (downloaded by the browser) holds
+    every point with its closed-form signed distance; bad files show their line;
   - the mesh endpoint from the page (JSON, OBJ) and /docs, whose reading of openapi.yaml equals
     PyYAML's and which lists every operation;
   - page weight and time to first render are printed.
@@ -178,6 +184,193 @@ class Page:
 
     def press(self, selector):
         self.evaluate(f"document.querySelector({json.dumps(selector)}).click()")
+
+
+# ---- the point cloud ------------------------------------------------------------------------------
+
+TORUS_R, TORUS_r = 2.0, 0.6  # the torus the test sets in the form
+
+
+def torus_scan(n, seed=37):
+    """n points off the torus (R, r) along its outward normal s_u x s_v = (cos u cos v, sin u cos v,
+    sin v), offsets Gaussian (mean 0.01, sigma 0.02, within +-0.25 so that the foot is the nearest
+    point of the tube's circle), and their signed distances in closed form from the coordinates:
+    sqrt((sqrt(x^2 + y^2) - R)^2 + z^2) - r."""
+    import math
+    import random
+    rng = random.Random(seed)
+    points, signed = [], []
+    for _ in range(n):
+        u, v = rng.uniform(0, 2 * math.pi), rng.uniform(0, 2 * math.pi)
+        d = max(-0.25, min(0.25, rng.gauss(0.01, 0.02)))
+        normal = (math.cos(u) * math.cos(v), math.sin(u) * math.cos(v), math.sin(v))
+        rho = TORUS_R + TORUS_r * math.cos(v)
+        p = (rho * math.cos(u) + d * normal[0], rho * math.sin(u) + d * normal[1], TORUS_r * math.sin(v) + d * normal[2])
+        points.append(p)
+        signed.append(math.hypot(math.hypot(p[0], p[1]) - TORUS_R, p[2]) - TORUS_r)
+    return points, signed
+
+
+def write_ply_binary(path, points):
+    """binary_little_endian: x, y, z as double and an intensity float between them and after."""
+    header = ("ply\nformat binary_little_endian 1.0\ncomment footpoint test scan\nelement vertex %d\n"
+              "property double x\nproperty float intensity\nproperty double y\nproperty double z\n"
+              "property uchar quality\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n" % len(points))
+    with open(path, "wb") as f:
+        f.write(header.encode())
+        f.write(b"".join(struct.pack("<dfddB", x, 0.5, y, z, 7) for x, y, z in points))
+
+
+def write_text(path, points, kind):
+    with open(path, "w") as f:
+        if kind == "xyz":
+            f.write("# footpoint test scan: x y z intensity\n")
+            f.writelines("%r %r %r 0.5\n" % p for p in points)
+        elif kind == "csv":  # a header naming the columns in another order
+            f.write("id,z,x,y\n")
+            f.writelines("%d,%r,%r,%r\n" % (i, z, x, y) for i, (x, y, z) in enumerate(points))
+        else:  # PLY ascii with a face after the vertices
+            f.write("ply\nformat ascii 1.0\nelement vertex %d\nproperty float nx\nproperty double x\nproperty double y\n"
+                    "property double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n" % len(points))
+            f.writelines("0 %r %r %r\n" % p for p in points)
+            f.write("3 0 1 2\n")
+
+
+def load_cloud(page, path, timeout=180.0, drop=False):
+    """Sets the file input to `path` (DOM.setFileInputFiles fires its change event), or with drop
+    drags the file onto the view and drops it there (Input.dispatchDragEvent), and waits until the
+    page has read and projected it, or shown an error; returns the seconds it took."""
+    page.evaluate("delete document.body.dataset.cloudCount; document.getElementById('error-cloud').hidden = true")
+    started = time.time()
+    if drop:
+        box = page.evaluate("(() => { const r = document.getElementById('canvas').getBoundingClientRect();"
+                            " return [r.x + r.width / 2, r.y + r.height / 2]; })()")
+        data = {"items": [], "files": [os.path.abspath(path)], "dragOperationsMask": 1}
+        for kind in ("dragEnter", "dragOver", "drop"):
+            page.call("Input.dispatchDragEvent", type=kind, x=box[0], y=box[1], data=data)
+    else:
+        document = page.call("DOM.getDocument", depth=1)
+        node = page.call("DOM.querySelector", nodeId=document["root"]["nodeId"], selector="#cloud-file")["nodeId"]
+        page.call("DOM.setFileInputFiles", files=[os.path.abspath(path)], nodeId=node)
+    page.wait_for("(document.body.dataset.cloudCount || !document.getElementById('error-cloud').hidden) && "
+                  "document.body.dataset.state === 'ready'", "the point cloud " + os.path.basename(path), timeout)
+    return time.time() - started
+
+
+def shown_stats(page):
+    return page.evaluate("Object.fromEntries([...document.querySelectorAll('#cloud-stats dd')]"
+                         ".map(d => [d.dataset.field, Number(d.dataset.value)]))")
+
+
+def relative(a, b):
+    return abs(a - b) / max(abs(b), 1e-300)
+
+
+def check_point_cloud(page, out, pixels_before):
+    import math
+    n = 100000
+    points, signed = torus_scan(n)
+    ply = os.path.join(out, "scan_torus_binary.ply")
+    xyz = os.path.join(out, "scan_torus.xyz")
+    write_ply_binary(ply, points)
+    write_text(xyz, points, "xyz")
+    expected = {"count": n, "mean": math.fsum(signed) / n, "rms": math.sqrt(math.fsum(s * s for s in signed) / n),
+                "min": min(signed), "max": max(signed)}
+
+    seconds = load_cloud(page, ply)
+    error = page.evaluate("document.getElementById('error-cloud').hidden ? '' : document.getElementById('error-cloud').textContent")
+    check(not error, "the PLY binary scan loaded" + (": " + error if error else ""))
+    page.idle()
+    timings = page.evaluate("({...document.body.dataset})")
+    print(f"figure: 100,000 points (PLY binary) loaded and projected in {seconds:.2f} s in headless chromium "
+          f"(read {timings['cloudReadMs']} ms, projected over the stream {timings['cloudProjectMs']} ms, "
+          f"in all {timings['cloudTotalMs']} ms by the page's clock)")
+    stats = shown_stats(page)
+    check(stats["count"] == n and stats["no_answer"] == 0, f"the count shown is {stats['count']:.0f}, every point answered")
+    for name in ("mean", "rms", "min", "max"):
+        check(relative(stats[name], expected[name]) <= 1e-9,
+              f"the {name} shown ({stats[name]!r}) is the closed form's ({expected[name]!r}) to 1e-9")
+    counts = json.loads(page.evaluate("document.getElementById('cloud-histogram').dataset.counts"))
+    edges = json.loads(page.evaluate("document.getElementById('cloud-histogram').dataset.edges"))
+    width = (edges[-1] - edges[0]) / len(counts)
+    reference = [0] * len(counts)
+    for s in signed:
+        reference[min(len(counts) - 1, int((s - edges[0]) / width))] += 1
+    near_edge = sum(1 for s in signed for e in edges[1:-1] if abs(s - e) <= 1e-9 * width)
+    moved = sum(abs(a - b) for a, b in zip(counts, reference))
+    check(sum(counts) == n and moved <= 2 * near_edge,
+          f"the histogram's {len(counts)} bins add up to {sum(counts)} and equal the closed form's binning "
+          f"({moved} counts differ, {near_edge} values within 1e-9 of a bin's width of an edge)")
+    scale = max(abs(expected["min"]), abs(expected["max"]))
+    legend = page.evaluate("[Number(document.getElementById('cloud-legend-min').dataset.value),"
+                           " Number(document.getElementById('cloud-legend-max').dataset.value),"
+                           " document.getElementById('cloud-legend').hidden]")
+    check(not legend[2] and relative(legend[0], -scale) <= 1e-9 and relative(legend[1], scale) <= 1e-9,
+          f"the legend spans +-max|deviation| = +-{scale:.6g} (symmetric about 0)")
+    _, _, pixels_cloud = page.screenshot("#canvas", os.path.join(out, "playground_cloud.png"))
+    check(difference_fraction(pixels_before, pixels_cloud) > 0.05,
+          f"the canvas shows the coloured cloud ({difference_fraction(pixels_before, pixels_cloud):.0%} of the pixels changed)")
+    page.evaluate("document.getElementById('cloud-histogram').scrollIntoView()")
+    _, _, pixels_histogram = page.screenshot("#cloud-histogram", os.path.join(out, "playground_cloud_histogram.png"))
+    check(colourful_fraction(pixels_histogram) > 0.05,
+          f"the histogram is drawn ({colourful_fraction(pixels_histogram):.0%} coloured pixels)")
+    page.screenshot("body", os.path.join(out, "playground_cloud_page.png"))
+
+    # the export: the page's download, saved by the browser into the build folder
+    downloads = os.path.join(out, "downloads")
+    shutil.rmtree(downloads, ignore_errors=True)
+    os.makedirs(downloads)
+    page.call("Browser.setDownloadBehavior", behavior="allow", downloadPath=os.path.abspath(downloads))
+    page.evaluate("document.getElementById('cloud-export').click()")
+    target = os.path.join(downloads, "deviations.csv")
+    deadline = time.time() + TIMEOUT
+    while not os.path.exists(target) and time.time() < deadline:
+        time.sleep(0.1)
+    check(os.path.exists(target), "the export downloads deviations.csv")
+    with open(target) as f:
+        rows = f.read().splitlines()
+    header, rows = rows[0].split(","), [r.split(",") for r in rows[1:]]
+    column = {name: k for k, name in enumerate(header)}
+    check(header == ["x", "y", "z", "foot_x", "foot_y", "foot_z", "distance", "signed_distance"] and len(rows) == n,
+          f"the CSV has the columns x, y, z, foot x, y, z, distance, signed_distance and {len(rows)} rows")
+    worst = max(abs(float(r[column["signed_distance"]]) - s) for r, s in zip(rows, signed))
+    same_points = all(tuple(float(r[k]) for k in range(3)) == p for r, p in zip(rows, points))
+    consistent = all(abs(float(r[column["distance"]]) - abs(float(r[column["signed_distance"]]))) <= 1e-15 for r in rows)
+    check(worst <= 1e-12 and same_points and consistent,
+          f"its rows are the file's points in order, their signed distances the closed form's (largest difference {worst:.1e})")
+
+    # the same scan as XYZ, and smaller ones as CSV (a header, other columns) and PLY ascii
+    seconds = load_cloud(page, xyz)
+    page.idle()
+    again = shown_stats(page)
+    check(all(again[k] == stats[k] for k in ("count", "mean", "rms", "min", "max")),
+          f"the XYZ file gives the same statistics ({seconds:.2f} s)")
+    few = points[:2000]
+    for kind in ("csv", "ply"):
+        path = os.path.join(out, "scan_torus_small." + kind)
+        write_text(path, few, kind if kind == "csv" else "ply_ascii")
+        load_cloud(page, path, drop=kind == "ply")
+        page.idle()
+        small = shown_stats(page)
+        check(small.get("count") == 2000 and relative(small["mean"], math.fsum(signed[:2000]) / 2000) <= 1e-9,
+              f"{kind.upper()}{' ascii, dropped on the view' if kind == 'ply' else ' with a header'}: "
+              "2000 points, the closed form's mean")
+
+    # bad files: the message names the line (or the byte) in the page
+    bad = os.path.join(out, "scan_bad.xyz")
+    with open(bad, "w") as f:
+        f.write("0.1 0.2 0.3\n0.4 0.5 0.6\n0.7 abc 0.9\n")
+    load_cloud(page, bad)
+    message = page.evaluate("document.getElementById('error-cloud').hidden ? '' : document.getElementById('error-cloud').textContent")
+    check("line 3" in message and "abc" in message, f"a bad XYZ file shows its line: {message}")
+    page.screenshot("#cloud", os.path.join(out, "playground_cloud_error.png"))
+    cut = os.path.join(out, "scan_cut.ply")
+    with open(ply, "rb") as f, open(cut, "wb") as g:
+        g.write(f.read()[:-1000])
+    load_cloud(page, cut)
+    message = page.evaluate("document.getElementById('error-cloud').textContent")
+    check(f"ends after vertex {n - math.ceil(1000 / 29)} of {n}" in message, f"a cut PLY file shows where it ends: {message}")
+    check(page.evaluate("document.getElementById('cloud-report').hidden"), "and no report of a cloud is left")
 
 
 def start_server(binary):
@@ -351,6 +544,9 @@ def run(args):
         vertices = page.evaluate("fetch(document.getElementById('download-json').href).then(r => r.json()).then(m => m.vertices.length / 3)",
                                  await_promise=True)
         check(vertices > 1000, f"the page's JSON link answers the mesh ({vertices} vertices)")
+
+        # ---- a point cloud: a noisy torus scan from PLY binary, XYZ, CSV and PLY ascii files ------
+        check_point_cloud(page, args.out, pixels_torus)
 
         # ---- a bad formula: the error at its position ---------------------------------------
         bad = "sin(u)+2*cos(w)"

@@ -1,8 +1,10 @@
 // footpoint's geometry playground (GET /): edit a geometry, see its mesh
 // (GET /v1/geometries/{id}/mesh), project points onto it (POST /v1/geometries/{id}/project) and
 // look at the foot points, the segments to them, the other local minima and the iterates of the
-// papers' methods. It uses the public API of its own origin only; three.js and its orbit controls
-// come from Debian's libjs-three, served by footpoint under /ui/.
+// papers' methods; or load a point cloud (XYZ, CSV, PLY), project it through ui/footpoint-client.js
+// and see its signed deviations as colours, statistics and a histogram, and export them as CSV.
+// It uses the public API of its own origin only; three.js and its orbit controls come from
+// Debian's libjs-three, served by footpoint under /ui/.
 (function () {
   'use strict';
 
@@ -433,7 +435,8 @@
     view.controls.addEventListener('change', render);
     view.geometryGroup = new THREE.Group();
     view.pointsGroup = new THREE.Group();
-    view.scene.add(view.geometryGroup, view.pointsGroup);
+    view.cloudGroup = new THREE.Group();
+    view.scene.add(view.geometryGroup, view.pointsGroup, view.cloudGroup);
     new ResizeObserver(resize).observe($('canvas-box'));
     resize();
     let down = null;
@@ -914,6 +917,7 @@
       const resolution = Math.max(2, Math.round(parseNumber($('resolution').value) || TYPES[def.type].resolution));
       const meshAnswer = await api('GET', `/v1/geometries/${g.geometry_id}/mesh?resolution=${resolution}`);
       if (!meshAnswer.ok) throw apiError(meshAnswer);
+      removeCloud();  // its deviations were from the geometry shown before
       state.definition = def;
       state.geometry = g;
       state.mesh = meshAnswer.json;
@@ -1051,6 +1055,241 @@
     }
   }
 
+  // ---- the point cloud: a scan read from a file, projected, coloured by signed deviation ----------
+  const cloud = {count: 0, dimension: 3, points: null, foot: null, distance: null, signed: null, csvUrl: null};
+  let clientModule = null;  // ui/footpoint-client.js, imported when a cloud is first projected
+
+  function cloudError(message) {
+    const box = $('error-cloud');
+    box.textContent = '';
+    const text = document.createElement('span');
+    text.className = 'message';
+    text.textContent = message;
+    box.append(text);
+    box.hidden = false;
+  }
+
+  // The file's points (XYZ, CSV, PLY) read by ui/point-cloud-worker.js off the page's thread.
+  function readCloudFile(file, dimension) {
+    return file.arrayBuffer().then((buffer) => new Promise((resolve, reject) => {
+      const worker = new Worker('/ui/point-cloud-worker.js');
+      worker.onmessage = (e) => {
+        worker.terminate();
+        if (e.data.error) reject(new Error(e.data.error)); else resolve(e.data);
+      };
+      worker.onerror = (e) => { worker.terminate(); reject(new Error(`${file.name}: ${e.message}`)); };
+      worker.postMessage({name: file.name, buffer, dimension}, [buffer]);
+    }));
+  }
+
+  // The diverging colour map "cool to warm" (K. Moreland, Diverging Color Maps for Scientific
+  // Visualization, ISVC 2009), linear between its stops, of t in [-1, 1]: blue below 0, grey at
+  // 0, red above; the CSS ramp of the legend has the same stops.
+  const RAMP = [[0x3b, 0x4c, 0xc0], [0x73, 0x96, 0xf5], [0xdd, 0xdd, 0xdd], [0xf4, 0x9a, 0x7b], [0xb4, 0x04, 0x26]];
+  function rampColour(t, out, at) {
+    const x = (Math.max(-1, Math.min(1, t)) + 1) * 0.5 * (RAMP.length - 1);
+    const k = Math.min(RAMP.length - 2, Math.floor(x)), a = x - k;
+    for (let c = 0; c < 3; ++c) out[at + c] = ((1 - a) * RAMP[k][c] + a * RAMP[k + 1][c]) / 255;
+  }
+
+  // Count, min, max, mean and RMS of the finite signed deviations (Neumaier's compensated sums),
+  // and their histogram in `bins` equal bins from min to max (the last bin holds max).
+  function deviationStats(values, bins) {
+    let count = 0, min = Infinity, max = -Infinity;
+    let sum = 0, sumC = 0, squares = 0, squaresC = 0;
+    const add = (s, c, x) => {
+      const t = s + x;
+      return [t, c + (Math.abs(s) >= Math.abs(x) ? (s - t) + x : (x - t) + s)];
+    };
+    for (const d of values) {
+      if (!Number.isFinite(d)) continue;
+      ++count;
+      if (d < min) min = d;
+      if (d > max) max = d;
+      [sum, sumC] = add(sum, sumC, d);
+      [squares, squaresC] = add(squares, squaresC, d * d);
+    }
+    if (count === 0) return {count: 0};
+    const counts = new Array(bins).fill(0);
+    const width = (max - min) / bins;
+    for (const d of values)
+      if (Number.isFinite(d)) counts[width > 0 ? Math.min(bins - 1, Math.floor((d - min) / width)) : 0] += 1;
+    return {count, min, max, mean: (sum + sumC) / count, rms: Math.sqrt((squares + squaresC) / count), counts,
+            edges: Array.from({length: bins + 1}, (_, k) => (k === bins ? max : min + k * width))};
+  }
+
+  function drawHistogram(stats, scale) {
+    const canvas = $('cloud-histogram');
+    const ratio = window.devicePixelRatio || 1;
+    const w = canvas.clientWidth || 340, h = canvas.clientHeight || 130;
+    canvas.width = Math.round(w * ratio);
+    canvas.height = Math.round(h * ratio);
+    const g = canvas.getContext('2d');
+    g.setTransform(ratio, 0, 0, ratio, 0, 0);
+    g.clearRect(0, 0, w, h);
+    const left = 8, right = w - 8, top = 8, bottom = h - 22;
+    const peak = Math.max(...stats.counts);
+    const bar = (right - left) / stats.counts.length;
+    const colour = [0, 0, 0];
+    stats.counts.forEach((n, k) => {
+      rampColour((stats.edges[k] + stats.edges[k + 1]) / 2 / scale, colour, 0);
+      g.fillStyle = `rgb(${colour.map((c) => Math.round(255 * c)).join(',')})`;
+      const height = peak > 0 ? (bottom - top) * n / peak : 0;
+      g.fillRect(left + k * bar + 0.5, bottom - height, Math.max(1, bar - 1), height);
+    });
+    g.strokeStyle = '#667085';
+    g.beginPath();
+    g.moveTo(left, bottom + 0.5);
+    g.lineTo(right, bottom + 0.5);
+    if (stats.min < 0 && stats.max > 0) {  // the zero line
+      const x = left + (right - left) * (0 - stats.min) / (stats.max - stats.min);
+      g.moveTo(x, top);
+      g.lineTo(x, bottom);
+    }
+    g.stroke();
+    g.fillStyle = '#667085';
+    g.font = '11px ui-monospace, "DejaVu Sans Mono", monospace';
+    g.textBaseline = 'top';
+    g.textAlign = 'left';
+    g.fillText(short(stats.min, 4), left, bottom + 5);
+    g.textAlign = 'right';
+    g.fillText(short(stats.max, 4), right, bottom + 5);
+    g.textAlign = 'center';
+    g.fillText(`${stats.counts.length} bins, peak ${peak.toLocaleString('en')}`, (left + right) / 2, bottom + 5);
+    canvas.dataset.counts = JSON.stringify(stats.counts);
+    canvas.dataset.edges = JSON.stringify(stats.edges);
+  }
+
+  function showCloudReport(stats) {
+    const dl = $('cloud-stats');
+    dl.textContent = '';
+    const scale = Math.max(Math.abs(stats.min), Math.abs(stats.max)) || 1;
+    const entries = [['count', stats.count], ['mean', stats.mean], ['min', stats.min], ['RMS', stats.rms],
+                     ['max', stats.max], ['no answer', cloud.count - stats.count]];
+    for (const [name, value] of entries) {
+      const dt = document.createElement('dt');
+      dt.textContent = name;
+      const dd = document.createElement('dd');
+      dd.dataset.field = name.toLowerCase().replace(' ', '_');
+      dd.dataset.value = String(value);
+      dd.textContent = Number.isInteger(value) ? value.toLocaleString('en') : short(value, 6);
+      dd.title = String(value);
+      dl.append(dt, dd);
+    }
+    drawHistogram(stats, scale);
+    $('cloud-legend-min').textContent = short(-scale, 4);
+    $('cloud-legend-min').dataset.value = String(-scale);
+    $('cloud-legend-max').textContent = short(scale, 4);
+    $('cloud-legend-max').dataset.value = String(scale);
+    $('cloud-legend').hidden = false;
+    $('cloud-report').hidden = false;
+  }
+
+  // The points drawn as dots coloured by signed deviation (grey where there is none).
+  function drawCloud(scale) {
+    clearGroup(view.cloudGroup);
+    const n = cloud.count, dim = cloud.dimension;
+    const positions = new Float32Array(3 * n), colours = new Float32Array(3 * n);
+    for (let i = 0; i < n; ++i) {
+      for (let c = 0; c < dim; ++c) positions[3 * i + c] = cloud.points[dim * i + c];
+      if (Number.isFinite(cloud.signed[i])) rampColour(cloud.signed[i] / scale, colours, 3 * i);
+      else colours.fill(0.6, 3 * i, 3 * i + 3);
+    }
+    const g = bufferGeometry(positions);
+    g.setAttribute('color', new THREE.BufferAttribute(colours, 3));
+    view.cloudGroup.add(new THREE.Points(g, new THREE.PointsMaterial({size: 3, sizeAttenuation: false,
+                                                                      vertexColors: THREE.VertexColors})));
+    const planar = state.geometry.point_dim === 2;
+    fitCamera([...state.mesh.vertices, ...positions], planar);
+  }
+
+  // The results as CSV (point, foot point, distance, signed distance; empty where null) in the
+  // export link as a Blob, made when the link is first clicked (100,000 rows take most of a second).
+  function exportCloud() {
+    const n = cloud.count, dim = cloud.dimension;
+    const axes = ['x', 'y', 'z'].slice(0, dim);
+    const value = (x) => (Number.isFinite(x) ? String(x) : '');
+    const rows = [[...axes, ...axes.map((a) => 'foot_' + a), 'distance', 'signed_distance'].join(',')];
+    for (let i = 0; i < n; ++i) {
+      const row = [];
+      for (let c = 0; c < dim; ++c) row.push(value(cloud.points[dim * i + c]));
+      for (let c = 0; c < dim; ++c) row.push(value(cloud.foot[dim * i + c]));
+      row.push(value(cloud.distance[i]), value(cloud.signed[i]));
+      rows.push(row.join(','));
+    }
+    if (cloud.csvUrl) URL.revokeObjectURL(cloud.csvUrl);
+    cloud.csvUrl = URL.createObjectURL(new Blob([rows.join('\n') + '\n'], {type: 'text/csv'}));
+    $('cloud-export').href = cloud.csvUrl;
+  }
+
+  function removeCloud() {
+    if (view.cloudGroup) clearGroup(view.cloudGroup);
+    Object.assign(cloud, {count: 0, points: null, foot: null, distance: null, signed: null});
+    if (cloud.csvUrl) URL.revokeObjectURL(cloud.csvUrl);
+    cloud.csvUrl = null;
+    $('cloud-export').href = '#';
+    $('cloud-report').hidden = $('cloud-legend').hidden = $('cloud-progress').hidden = true;
+    $('cloud-meta').textContent = '';
+    delete document.body.dataset.cloudCount;
+    render();
+  }
+
+  async function loadCloud(file) {
+    if (!file || !state.geometry) return;
+    if (state.busy) {
+      cloudError(`${file.name}: the page is busy with a request; load the file again when it is done`);
+      return;
+    }
+    $('error-cloud').hidden = true;
+    removeCloud();
+    busy(+1);
+    const started = performance.now();
+    try {
+      const dimension = state.geometry.point_dim;
+      const read = await readCloudFile(file, dimension);
+      const readMs = performance.now() - started;
+      const n = read.count;
+      Object.assign(cloud, {count: n, dimension, points: read.points, foot: new Float64Array(n * dimension).fill(NaN),
+                            distance: new Float64Array(n).fill(NaN), signed: new Float64Array(n).fill(NaN)});
+      const progress = $('cloud-progress');
+      progress.hidden = false;
+      progress.value = 0;
+      $('cloud-meta').textContent = `${file.name}: ${read.format}, ${n.toLocaleString('en')} points read in ${Math.round(readMs)} ms, projecting…`;
+      clientModule = clientModule || import('/ui/footpoint-client.js');
+      const client = await clientModule;
+      const given = readOptions();
+      const options = {dimension, fields: ['foot_point', 'distance', 'signed_distance'],
+                       onProgress: (done, total) => { progress.value = total ? done / total : 1; }};
+      for (const name of ['initial', 'tolerance', 'max_iterations', 'max_distance'])
+        if (given[name] !== undefined) options[name] = given[name];
+      if ($('method').value && $('method').value !== 'auto') options.method = $('method').value;
+      const projected = performance.now();
+      let i = 0;
+      for await (const r of client.project(state.definition, read.points, options)) {
+        if (r.foot_point) for (let c = 0; c < dimension; ++c) cloud.foot[dimension * i + c] = r.foot_point[c];
+        if (r.distance !== null) cloud.distance[i] = r.distance;
+        if (r.signed_distance !== null) cloud.signed[i] = r.signed_distance;
+        ++i;
+      }
+      const projectMs = performance.now() - projected;
+      const stats = deviationStats(cloud.signed, 32);
+      if (stats.count === 0) throw new Error(`${file.name}: no point has a signed deviation (no foot point, or a space curve's)`);
+      const scale = Math.max(Math.abs(stats.min), Math.abs(stats.max)) || 1;
+      drawCloud(scale);
+      showCloudReport(stats);
+      const totalMs = performance.now() - started;
+      $('cloud-meta').textContent = `${file.name}: ${read.format}, ${n.toLocaleString('en')} points, read in ` +
+                                    `${Math.round(readMs)} ms, projected in ${Math.round(projectMs)} ms`;
+      Object.assign(document.body.dataset, {cloudCount: String(n), cloudReadMs: String(Math.round(readMs)),
+                                            cloudProjectMs: String(Math.round(projectMs)), cloudTotalMs: String(Math.round(totalMs))});
+    } catch (e) {
+      removeCloud();
+      cloudError(e.code ? `${e.code}: ${e.detail}` : String(e.message || e));
+    } finally {
+      busy(-1);
+    }
+  }
+
   function applyPreset(preset) {
     fillForm(preset.geometry);
     $('points').value = preset.points.map((p) => p.join(', ')).join('\n');
@@ -1096,6 +1335,22 @@
         try { await navigator.clipboard.writeText(text); setStatus('curl command copied'); } catch (e) { /* shown below */ }
       }
     });
+    $('cloud-file').addEventListener('change', (e) => {
+      const file = e.target.files[0];
+      loadCloud(file).finally(() => { e.target.value = ''; });  // the same file can be chosen again
+    });
+    for (const target of [$('cloud-drop'), $('canvas-box')]) {
+      target.addEventListener('dragover', (e) => { e.preventDefault(); $('cloud-drop').classList.add('over'); });
+      target.addEventListener('dragleave', () => $('cloud-drop').classList.remove('over'));
+      target.addEventListener('drop', (e) => {
+        e.preventDefault();
+        $('cloud-drop').classList.remove('over');
+        if (e.dataTransfer.files.length) loadCloud(e.dataTransfer.files[0]);
+      });
+    }
+    $('cloud-clear').addEventListener('click', removeCloud);
+    // Before the link's default action, which then downloads the Blob just made.
+    $('cloud-export').addEventListener('click', () => { if (!cloud.csvUrl && cloud.count) exportCloud(); });
     const methods = await api('GET', '/v1/methods');
     if (methods.ok) for (const t of methods.json.geometry_types) state.methods[t.type] = t.methods;
     await applyPreset(PRESETS[0]);

@@ -10,7 +10,10 @@
 project() sends the points in batches (batch_size each) and has every batch's answer streamed:
 with NumPy the points travel as little-endian float64 and the answers as fixed-size binary records
 (Accept: application/octet-stream, columns as the X-Footpoint-Record header names them); without
-it, as JSON with the answers as NDJSON (one result per line, then the batch's stats). A 503 is
+it, as JSON with the answers as NDJSON (one result per line, then the batch's stats). A binary
+body is sent from a writer thread while the answer is read (duplex=True, the default over plain
+HTTP): the server then reads the body a window at a time as it answers and holds a few windows of
+it, where a client that sends the whole body first costs it the unread part of the body. A 503 is
 retried after its Retry-After; a 404 geometry_not_found re-posts the definition (when project()
 was given one) and tries again; any other error raises FootpointError with the server's status,
 code and message. docs/inspection.md describes the formats.
@@ -19,6 +22,8 @@ code and message. docs/inspection.md describes the formats.
 import http.client
 import json
 import math
+import socket
+import threading
 import time
 import urllib.parse
 
@@ -95,7 +100,10 @@ def _points_list(points):
 class Client:
     """A connection to one footpoint server (kept alive across requests)."""
 
-    def __init__(self, server="http://127.0.0.1:8080", timeout=300.0, max_retries=8):
+    def __init__(self, server="http://127.0.0.1:8080", timeout=300.0, max_retries=8, duplex=None):
+        """duplex: send binary bodies from a writer thread while the answer is read (default: over
+        http://; an https:// server reads a body whole before it answers, and one TLS connection
+        is not written and read by two threads at once)."""
         url = urllib.parse.urlsplit(server)
         if url.scheme not in ("http", "https"):
             raise ValueError("server must be an http:// or https:// URL, got %r" % server)
@@ -105,6 +113,9 @@ class Client:
         self._prefix = url.path.rstrip("/")
         self._timeout = timeout
         self._max_retries = max_retries
+        self._duplex = (not self._https) if duplex is None else bool(duplex)
+        if self._duplex and self._https:
+            raise ValueError("duplex sending needs http://: over TLS the server reads the body whole first")
         self._connection = None
         self._ids = {}  # definition (canonical JSON text) -> geometry id
 
@@ -127,15 +138,20 @@ class Client:
             self._connection = cls(self._host, self._port, timeout=self._timeout)
         return self._connection
 
-    def _send(self, method, path, body=None, headers=None):
+    def _send(self, method, path, body=None, headers=None, duplex=False):
         """Sends a request and returns the response with its headers read (the body not yet),
-        retrying 503 after its Retry-After; raises FootpointError for any other status >= 400."""
+        retrying 503 after its Retry-After; raises FootpointError for any other status >= 400.
+        duplex: the body is sent from a writer thread (_start_duplex), and the caller reads the
+        response's body, then calls _finish_duplex(response)."""
         headers = dict(headers or {})
         for attempt in range(self._max_retries + 1):
             try:
                 connection = self._connect()
-                connection.request(method, self._prefix + path, body=body, headers=headers)
-                response = connection.getresponse()
+                if duplex:
+                    response = self._start_duplex(connection, method, path, body, headers)
+                else:
+                    connection.request(method, self._prefix + path, body=body, headers=headers)
+                    response = connection.getresponse()
             except (ConnectionError, http.client.HTTPException):
                 # a kept-alive connection the server closed: once more on a new one
                 self.close()
@@ -145,6 +161,8 @@ class Client:
             if response.status < 400:
                 return response
             text = response.read()
+            if duplex:
+                self._finish_duplex(response, answered=False)
             if response.getheader("Connection", "").lower() == "close":
                 self.close()
             try:
@@ -157,6 +175,56 @@ class Client:
                 continue
             raise FootpointError(response.status, error.get("code"), error.get("message"), error.get("field"))
         raise AssertionError("unreachable")
+
+    def _start_duplex(self, connection, method, path, body, headers):
+        """Sends the request's head, starts a thread writing `body` (1 MiB at a time) to the
+        connection's socket, and reads the response's head meanwhile: the server answers while
+        it reads, and TCP's flow control paces the writer to the server's reading."""
+        connection.putrequest(method, self._prefix + path, skip_accept_encoding=True)
+        for name, value in headers.items():
+            connection.putheader(name, value)
+        connection.putheader("Content-Length", str(len(body)))
+        connection.endheaders()
+        sock = connection.sock
+        failure = []
+
+        def write():
+            view = memoryview(body)
+            try:
+                for at in range(0, len(view), 1 << 20):
+                    sock.sendall(view[at:at + (1 << 20)])
+            except OSError as e:  # the server answered early (an error) and closed
+                failure.append(e)
+
+        writer = threading.Thread(target=write, name="footpoint-body-writer", daemon=True)
+        writer.start()
+        try:
+            response = connection.getresponse()
+        except BaseException:
+            self._stop_writer(sock, writer)
+            raise
+        response.footpoint_writer = (sock, writer, failure)
+        return response
+
+    def _stop_writer(self, sock, writer):
+        # shutdown() wakes a sendall() blocked on a server that reads no more; the connection,
+        # whose body is cut, is not reused
+        try:
+            sock.shutdown(socket.SHUT_RDWR)
+        except OSError:
+            pass
+        writer.join()
+        self.close()
+
+    def _finish_duplex(self, response, answered=True):
+        """After the answer was read: waits for the writer (it has sent the body when the whole
+        answer came, the server reading every point before its last answer); an answer that
+        ended before the body was sent, or a failed write, leaves the connection closed."""
+        sock, writer, failure = response.footpoint_writer
+        if answered:
+            writer.join(self._timeout)
+        if writer.is_alive() or failure:
+            self._stop_writer(sock, writer)
 
     def _json(self, method, path, payload=None):
         body = None if payload is None else json.dumps(payload).encode()
@@ -271,11 +339,16 @@ class Client:
         if query:
             path += "?" + urllib.parse.urlencode(query)
         response = self._send("POST", path, points.tobytes(),
-                              {"Content-Type": "application/octet-stream", "Accept": "application/octet-stream"})
+                              {"Content-Type": "application/octet-stream", "Accept": "application/octet-stream"},
+                              duplex=self._duplex)
         layout = [(name, int(count)) for name, count in
                   (column.split(":") for column in response.getheader("X-Footpoint-Record").split(","))]
         width = sum(count for _, count in layout)
-        body = response.read()
+        try:
+            body = response.read()
+        finally:
+            if self._duplex:
+                self._finish_duplex(response)
         if len(body) != len(points) * width * 8:
             self.close()
             raise FootpointError(response.status, "stream_cut",

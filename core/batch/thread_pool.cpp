@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <utility>
 
 namespace footpoint {
 
@@ -143,7 +144,9 @@ void ThreadPool::run_grain(Job& job, std::size_t begin, std::size_t end) {
     job.grain.store(static_cast<std::size_t>(grain), std::memory_order_relaxed);
   }
   std::lock_guard lock(job.mutex);
-  if (error && !job.error) job.error = error;
+  // The first error is moved into the job, and the caller takes it out (parallel_for): whichever
+  // thread drops the job last, only the caller's thread then holds the exception and frees it.
+  if (error && !job.error) job.error = std::move(error);
   job.dropped += dropped;
   job.remaining -= dropped > 0 ? dropped : items;
   if (job.remaining == 0) job.done.notify_all();
@@ -192,7 +195,7 @@ std::size_t ThreadPool::parallel_for(std::size_t n, std::size_t max_grain,
     cv_.notify_all();
   std::unique_lock lock(job->mutex);
   job->done.wait(lock, [&] { return job->remaining == 0; });
-  if (job->error) std::rethrow_exception(job->error);
+  if (job->error) std::rethrow_exception(std::exchange(job->error, nullptr));
   return n - job->dropped;
 }
 
