@@ -513,6 +513,7 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
     stream->pool = &pool_;
     stream->tenant = std::string(caller.key);
     stream->metrics = &metrics_;
+    stream->client_gone = caller.client_gone;
     // The stream runs after this returns: it keeps its own counts of requests and points in flight
     // (one window of points).
     auto reserved = std::make_shared<PointsReservation>(
