@@ -142,7 +142,7 @@ ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::s
       case Route::geometries: {
         if (method != "POST") return list_geometries(query);  // HEAD: the HTTP layer drops the body
         InFlight counted(in_flight_);
-        return create_geometry(body);
+        return create_geometry(body, caller);
       }
       case Route::geometry:
         if (method == "DELETE") return delete_geometry(match.id, caller);
@@ -260,16 +260,33 @@ formula::CompileLimits Api::compile_limits() const {
   return limits;
 }
 
-GeometryCache::Lookup Api::compile(const GeometryDefinition& def, const std::string& field_prefix) {
+GeometryCache::Lookup Api::compile(const GeometryDefinition& def, const std::string& field_prefix,
+                                   const Caller& caller) {
   try {
-    auto lookup = cache_.get_or_compile(def, compile_limits());
+    auto lookup = cache_.get_or_compile(def, compile_limits(), caller.key);
     if (lookup.compiled) metrics_.observe_compile(lookup.compile_time.count());
     return lookup;
   } catch (const GeometryError& e) {
-    throw ApiError(422, e.code, e.what(), e.field.empty() ? std::string() : field_prefix + e.field,
+    // The cache is full of other keys' geometries and this one would take more than the key's
+    // share: storage, not the definition, is what is missing.
+    const int status = e.code == "cache_share_exceeded" ? 507 : 422;
+    throw ApiError(status, e.code, e.what(), e.field.empty() ? std::string() : field_prefix + e.field,
                    e.position, e.suggestion);
   }
 }
+
+namespace {
+
+// posted_by: the API key that posted a held geometry, null when none is recorded (no keys).
+void write_posted_by(JsonWriter& w, const std::string& owner) {
+  w.key("posted_by");
+  if (owner.empty())
+    w.null();
+  else
+    w.string(owner);
+}
+
+}  // namespace
 
 std::shared_ptr<const CompiledGeometry> Api::held_geometry(std::string_view id) {
   const std::string key(id);
@@ -305,7 +322,7 @@ std::shared_ptr<const CompiledGeometry> Api::geometry_by_id(std::string_view id,
   return geometry;
 }
 
-ApiResponse Api::create_geometry(std::string_view body) {
+ApiResponse Api::create_geometry(std::string_view body, const Caller& caller) {
   GeometryDefinition def;
   try {
     JsonReader reader(body);
@@ -318,7 +335,7 @@ ApiResponse Api::create_geometry(std::string_view body) {
   } catch (const ApiError& e) {
     throw unless_malformed(body, e);
   }
-  const auto lookup = compile(def, "");
+  const auto lookup = compile(def, "", caller);
   const CompiledGeometry& g = *lookup.geometry;
   JsonWriter w;
   w.begin_object();
@@ -341,7 +358,7 @@ ApiResponse Api::create_geometry(std::string_view body) {
   // (the registry is unavailable: this replica only, stored when the registry is back), or
   // "off" (no registry configured).
   w.key("registry");
-  w.string(!registry_ ? "off" : registry_->store(g) ? "stored" : "not_stored");
+  w.string(!registry_ ? "off" : registry_->store(g, caller.key) ? "stored" : "not_stored");
   w.end_object();
   ApiResponse r = json_response(lookup.compiled ? 201 : 200, w.take());
   r.location = "/v1/geometries/" + g.id();
@@ -378,6 +395,7 @@ ApiResponse Api::list_geometries(std::string_view query) {
     w.integer(static_cast<long long>(stats.bytes));
     w.key("hits");
     w.integer(static_cast<long long>(stats.hits));
+    write_posted_by(w, stats.owner);
     w.end_object();
   }
   w.end_array();
@@ -408,6 +426,7 @@ ApiResponse Api::get_geometry(std::string_view id) {
   w.key("methods");
   write_method_names(w, *g);
   write_closure(w, *g);
+  write_posted_by(w, entry ? entry->owner : std::string());
   w.key("cache");
   w.begin_object();
   w.key("hits");
@@ -422,9 +441,13 @@ ApiResponse Api::get_geometry(std::string_view id) {
 ApiResponse Api::delete_geometry(std::string_view id, const Caller& caller) {
   check_geometry_id(id);
   bool held = false;
+  std::string posted_by;
+  if (const auto entry = cache_.entry_stats(std::string(id))) posted_by = entry->owner;
   if (registry_) {
     try {
-      held = registry_->erase(std::string(id));
+      const auto erased = registry_->erase(std::string(id));
+      held = erased.held;
+      if (posted_by.empty()) posted_by = erased.posted_by;
     } catch (const RegistryUnavailable&) {
       throw ApiError(503, "registry_unavailable",
                      "the shared registry cannot be reached, so geometry " + std::string(id) +
@@ -433,11 +456,13 @@ ApiResponse Api::delete_geometry(std::string_view id, const Caller& caller) {
     }
   }
   held = cache_.erase(std::string(id)) || held;
-  // The audit line: who deleted what (the log line's ts says when), whether or not it was held.
+  // The audit line: who deleted what (the log line's ts says when) and who had posted it, whether or
+  // not it was held.
   log_event(spdlog::level::info, "geometry deleted",
             {{"key", caller.key.empty() ? std::string_view("-") : caller.key},
              {"geometry_id", id},
-             {"held", held}});
+             {"held", held},
+             {"posted_by", posted_by.empty() ? std::string_view("-") : std::string_view(posted_by)}});
   if (!held) throw ApiError(404, "geometry_not_found", "geometry " + std::string(id) + " is not held", "id");
   ApiResponse r;
   r.status = 204;
@@ -479,7 +504,7 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
           ? read_binary_project_options(query, geometry->point_dim(), format.source->length, max_points)
       : binary_in ? read_binary_project_request(body, query, geometry->point_dim(), max_points)
                   : read_project_request(body, inline_geometry, max_points);
-  if (inline_geometry) geometry = compile(*request.geometry, "geometry.").geometry;
+  if (inline_geometry) geometry = compile(*request.geometry, "geometry.", caller).geometry;
   const GeometryMethod method = check_project_request(request, *geometry);
   if (caller.charge) caller.charge(request.count);
 

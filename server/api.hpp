@@ -93,7 +93,7 @@ class Api {
   ApiResponse metrics() const;
   ApiResponse openapi() const;
   ApiResponse methods();
-  ApiResponse create_geometry(std::string_view body);
+  ApiResponse create_geometry(std::string_view body, const Caller& caller);
   // GET /v1/geometries?limit=N&after=ID: a page of this replica's cache in id order.
   ApiResponse list_geometries(std::string_view query);
   static constexpr long long kDefaultListLimit = 100, kMaxListLimit = 1000;
@@ -108,7 +108,9 @@ class Api {
   ApiResponse ui(const RouteMatch& match) const;
 
   formula::CompileLimits compile_limits() const;
-  GeometryCache::Lookup compile(const GeometryDefinition& def, const std::string& field_prefix);
+  // Compiles through the cache, the caller's key the entry's owner (its cache share, posted_by).
+  GeometryCache::Lookup compile(const GeometryDefinition& def, const std::string& field_prefix,
+                                const Caller& caller);
   // The geometry with this id from the cache, else from the registry; nullptr when neither holds
   // it. Throws ApiError (503 registry_unavailable, 422 when a stored definition does not compile).
   std::shared_ptr<const CompiledGeometry> held_geometry(std::string_view id);

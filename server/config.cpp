@@ -29,6 +29,22 @@ T parse_integer(const std::string& name, const std::string& text, T min, T max) 
   return value;
 }
 
+// A fraction in (0, 1].
+double parse_fraction(const std::string& name, const std::string& text) {
+  double value = 0.0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (r.ec != std::errc() || r.ptr != text.data() + text.size() || !(value > 0.0 && value <= 1.0))
+    throw ConfigError(name + ": expected a fraction in (0, 1], got '" + text + "'");
+  return value;
+}
+
+// A number as the settings show it: the shortest text that reads back the same.
+std::string show_number(double value) {
+  char text[32];
+  const auto r = std::to_chars(text, text + sizeof text, value);
+  return std::string(text, r.ptr);
+}
+
 struct Setting {
   const char* flag;  // without the leading "--"; nullptr: environment only
   const char* env;
@@ -130,6 +146,12 @@ const std::vector<Setting>& settings() {
          c.max_geometry_bytes = parse_integer<std::size_t>(n, v, 0, kMaxSize);
        },
        [](const ServerConfig& c) { return std::to_string(c.max_geometry_bytes); }},
+      {"cache-share", "FOOTPOINT_CACHE_SHARE",
+       "fraction of the cache one API key's geometries may hold when others hold some (1: plain LRU)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.cache_share = parse_fraction(n, v);
+       },
+       [](const ServerConfig& c) { return show_number(c.cache_share); }},
       {"keep-alive-timeout-s", "FOOTPOINT_KEEP_ALIVE_TIMEOUT_S", "idle connection timeout in seconds",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
          c.keep_alive_timeout_s = parse_integer<int>(n, v, 1, 3600);
@@ -370,7 +392,10 @@ std::string effective_settings_json(const ServerConfig& config) {
     if (!s.flag) continue;  // the password
     w.key(s.flag);
     const std::string value = s.show(effective);
-    if (!value.empty() && value.find_first_not_of("0123456789") == std::string::npos)
+    const bool number = !value.empty() && value.find_first_not_of("0123456789.") == std::string::npos &&
+                        std::count(value.begin(), value.end(), '.') <= 1 && value.front() != '.' &&
+                        value.back() != '.';
+    if (number)
       w.raw(value);
     else
       w.string(value == "\"\"" ? std::string() : value);

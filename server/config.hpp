@@ -68,6 +68,12 @@ struct ServerConfig {
   std::size_t effective_max_geometry_bytes() const {
     return max_geometry_bytes ? max_geometry_bytes : std::max<std::size_t>(cache_bytes / 4, 1);
   }
+  // --cache-share / FOOTPOINT_CACHE_SHARE: the fraction of --cache-bytes (and --cache-entries)
+  // one API key's geometries may hold once the cache is full and other keys hold geometries:
+  // beyond it a key's post evicts its own least recently used geometries, not another key's, and
+  // a geometry that could only be kept by evicting others' beyond the share is refused (507
+  // cache_share_exceeded). A key alone in the cache may fill it. 1: plain LRU across keys.
+  double cache_share = 0.5;
   // --keep-alive-timeout-s / FOOTPOINT_KEEP_ALIVE_TIMEOUT_S: an idle connection is closed after
   // this long (a graceful shutdown closes the idle ones at once).
   int keep_alive_timeout_s = 5;

@@ -391,6 +391,51 @@ TEST_CASE("isolation: a geometry over --max-geometry-bytes gets 422 and evicts n
   CHECK(r->status == 200);
 }
 
+TEST_CASE("isolation: one key's flood evicts its own geometries beyond --cache-share, not another key's") {
+  TempDir dir;
+  const std::string keys = dir.file("keys");
+  write_file(keys, "flooder project,write " + sha256sum("floodsecret") + "\nquiet project,write " +
+                       sha256sum("quietsecret") + "\n");
+  ServerConfig config;
+  config.api_keys = keys;
+  config.cache_entries = 4;
+  config.cache_share = 0.5;
+  TestServer s(config);
+  auto c = s.client();
+  const auto post = [&](const std::string& secret, int k) {
+    auto r = c->Post("/v1/geometries", bearer(secret),
+                     R"J({"type":"parametric_curve","x":"t","y":"t^2+)J" + std::to_string(k) +
+                         R"J(","domain":{"t":[0,1]}})J",
+                     "application/json");
+    REQUIRE(r);
+    REQUIRE(r->status == 201);
+    return json::parse(r->body)["geometry_id"].get<std::string>();
+  };
+  const auto posted_by = [&](const std::string& id) {
+    auto r = c->Get(("/v1/geometries/" + id).c_str(), bearer("quietsecret"));
+    REQUIRE(r);
+    return r->status == 200 ? json::parse(r->body)["posted_by"] : json("gone");
+  };
+  std::vector<std::string> flood;
+  for (int k = 0; k < 4; ++k) flood.push_back(post("floodsecret", k));
+  for (const auto& id : flood) CHECK(posted_by(id) == "flooder");  // alone, it fills the cache
+  const std::string quiet = post("quietsecret", 100);
+  CHECK(posted_by(quiet) == "quiet");
+  for (int k = 4; k < 20; ++k) {
+    const std::string id = post("floodsecret", k);
+    CHECK(posted_by(id) == "flooder");
+    CHECK(posted_by(quiet) == "quiet");
+  }
+  const auto stats = s.server().cache().stats();
+  CHECK(stats.size == 4);
+  auto r = c->Get("/v1/geometries", bearer("quietsecret"));
+  REQUIRE(r);
+  int quiet_held = 0;
+  const json listed = json::parse(r->body);
+  for (const auto& g : listed["geometries"]) quiet_held += g["posted_by"] == "quiet" ? 1 : 0;
+  CHECK(quiet_held == 1);
+}
+
 // A loopback port that was free a moment ago.
 int free_port() {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
