@@ -42,7 +42,9 @@ GeometryCache::Lookup GeometryCache::get_or_compile(const GeometryDefinition& de
   std::shared_ptr<const CompiledGeometry> geometry;
   std::exception_ptr error;
   try {
-    geometry = compile_geometry(def, limits);
+    formula::CompileLimits bounded = limits;
+    if (options_.max_geometry_bytes > 0) bounded.max_geometry_bytes = options_.max_geometry_bytes;
+    geometry = compile_geometry(def, bounded);
     if (const std::size_t bytes = geometry->memory_bytes();
         options_.max_geometry_bytes > 0 && bytes > options_.max_geometry_bytes) {
       geometry.reset();

@@ -40,7 +40,8 @@ struct GeometryCacheOptions {
   std::size_t max_bytes = std::size_t{256} << 20;
   // A compiled geometry whose memory_bytes() exceeds this is refused (GeometryError
   // geometry_too_large, naming the size reached) and not kept, so that one definition cannot take
-  // the cache from every other: 0 = no bound beyond max_bytes.
+  // the cache from every other; the compile itself stops as soon as the structure it has built
+  // passes it (formula::CompileLimits::max_geometry_bytes). 0 = no bound beyond max_bytes.
   std::size_t max_geometry_bytes = 0;
   // The fraction of max_bytes (and of max_entries) one owner's entries may hold once the cache is
   // full and other owners hold entries (see above); 1: plain LRU across owners.
