@@ -24,6 +24,18 @@
 
 namespace footpoint::server {
 
+// What the requests being answered take at once (points, estimated bytes), against a limit. A
+// request over it gets 503 overloaded (counted in `refused`), unless nothing else is in flight
+// (so even one larger than the limit runs, alone) or it takes at most `always` units.
+struct InflightBudget {
+  std::atomic<std::size_t>& in_flight;
+  std::size_t limit;
+  const char* unit;  // "points", "bytes"
+  const char* flag;
+  std::size_t always = 0;
+  std::atomic<std::uint64_t>* refused = nullptr;
+};
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -48,24 +60,24 @@ struct InFlight {
   std::atomic<std::size_t>& n;
 };
 
-// Takes `n` points from the in-flight budget for the life of a request, or refuses: the
-// budget bounds the memory of results and responses. A request is always admitted when nothing
-// else is in flight, so even a request larger than the budget runs, alone.
-class PointsReservation {
+// Takes `n` units of an InflightBudget for the life of a request, or refuses it (see there).
+class Reservation {
  public:
-  PointsReservation(std::atomic<std::size_t>& in_flight, std::size_t n, std::size_t budget)
-      : in_flight_(in_flight), n_(n) {
+  Reservation(const InflightBudget& budget, std::size_t n) : in_flight_(budget.in_flight), n_(n) {
     std::size_t current = in_flight_.load();
     do {
-      if (current != 0 && current + n > budget)
+      if (current != 0 && n > budget.always && current + n > budget.limit) {
+        if (budget.refused) budget.refused->fetch_add(1, std::memory_order_relaxed);
         throw ApiError(503, "overloaded",
-                       "too many points in progress (" + std::to_string(current) + " + " + std::to_string(n) +
-                           " > " + std::to_string(budget) + "); retry shortly");
+                       std::string("too many ") + budget.unit + " in progress (" + std::to_string(current) +
+                           " + " + std::to_string(n) + " > " + std::to_string(budget.limit) + ", " +
+                           budget.flag + "); retry shortly");
+      }
     } while (!in_flight_.compare_exchange_weak(current, current + n));
   }
-  ~PointsReservation() { in_flight_.fetch_sub(n_); }
-  PointsReservation(const PointsReservation&) = delete;
-  PointsReservation& operator=(const PointsReservation&) = delete;
+  ~Reservation() { in_flight_.fetch_sub(n_); }
+  Reservation(const Reservation&) = delete;
+  Reservation& operator=(const Reservation&) = delete;
 
  private:
   std::atomic<std::size_t>& in_flight_;
@@ -103,7 +115,29 @@ void write_method_names(JsonWriter& w, const CompiledGeometry& g) {
 
 Api::Api(const ServerConfig& config, GeometryCache& cache, ThreadPool& pool, Metrics& metrics,
          GeometryRegistry* registry)
-    : config_(config), cache_(cache), pool_(pool), metrics_(metrics), registry_(registry) {}
+    : config_(config),
+      cache_(cache),
+      pool_(pool),
+      metrics_(metrics),
+      registry_(registry),
+      max_inflight_bytes_(config.effective_max_inflight_bytes(0)) {}
+
+namespace {
+
+InflightBudget points_budget(std::atomic<std::size_t>& in_flight, const ServerConfig& config) {
+  return {in_flight, config.max_inflight_points, "points", "--max-inflight-points"};
+}
+
+}  // namespace
+
+InflightBudget Api::memory_budget() {
+  return {in_flight_bytes_,
+          max_inflight_bytes_,
+          "bytes of memory",
+          "--max-inflight-bytes",
+          ServerConfig::kAlwaysAdmittedBytes,
+          &memory_refusals_};
+}
 
 ApiResponse Api::error_response(const ApiError& error) {
   ApiResponse r = json_response(error.status, error_body(error));
@@ -120,6 +154,9 @@ Metrics::Gauges Api::gauges() const {
   g.worker_queue = pool_.queued();
   g.in_flight = in_flight();
   g.in_flight_points = in_flight_points();
+  g.in_flight_bytes = in_flight_bytes_.load(std::memory_order_relaxed);
+  g.max_inflight_bytes = max_inflight_bytes_;
+  g.memory_refusals = memory_refusals_.load(std::memory_order_relaxed);
   g.shutting_down = shutting_down();
   g.registry = registry_ ? &registry_->metrics() : nullptr;
   return g;
@@ -514,6 +551,12 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
           406, "not_acceptable",
           "a single point is answered in JSON; stream a batch (\"points\") or ask for application/json",
           "point");
+    // One window's results and answer, and the binary body read ahead of them.
+    const std::size_t window = std::min(request.count, kStreamWindow);
+    auto memory = std::make_shared<Reservation>(
+        memory_budget(),
+        window * ServerConfig::kBytesPerPoint +
+            (read_as_sent ? kStreamAhead * window * binary_record_bytes(request, geometry->point_dim()) : 0));
     auto stream = std::make_shared<ProjectStream>(geometry, method);
     stream->format = answer;
     if (answer == AnswerFormat::binary)
@@ -541,8 +584,8 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
     stream->client_gone = caller.client_gone;
     // The stream runs after this returns: it keeps its own counts of requests and points in flight
     // (one window of points).
-    auto reserved = std::make_shared<PointsReservation>(
-        in_flight_points_, std::min(stream->request.count, kStreamWindow), config_.max_inflight_points);
+    auto reserved = std::make_shared<Reservation>(points_budget(in_flight_points_, config_),
+                                                  std::min(stream->request.count, kStreamWindow));
     auto counted = std::make_shared<InFlight>(in_flight_);
     ApiResponse r;
     r.points = stream->request.count;
@@ -554,7 +597,7 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
       r.content_type = "application/x-ndjson";
     }
     if (stream->body) r.release = [body = stream->body] { body->stop(); };
-    r.stream = [stream, reserved, counted](const ApiResponse::Write& write) {
+    r.stream = [stream, reserved, memory, counted](const ApiResponse::Write& write) {
       try {
         return run_stream(*stream, write);
       } catch (const std::exception& e) {
@@ -566,7 +609,8 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
     return r;
   }
 
-  const PointsReservation reserved(in_flight_points_, request.count, config_.max_inflight_points);
+  const Reservation reserved(points_budget(in_flight_points_, config_), request.count);
+  const Reservation memory(memory_budget(), request.count * ServerConfig::kBytesPerPoint);
   BatchRequest batch{method};
   batch.options = request.options;
   batch.points = request.coords.data();
@@ -609,6 +653,13 @@ ApiResponse Api::mesh(std::string_view id, std::string_view query) {
                  geometry->num_params() == 2 || geometry->definition().type == GeometryType::implicit_surface
                      ? kDefaultSurfaceResolution
                      : kDefaultCurveResolution);
+  // A surface's mesh has (resolution + 1)^2 vertices at most, a curve's resolution + 1: the mesh,
+  // its text and the answer held at once.
+  const auto side = static_cast<std::size_t>(request.resolution) + 1;
+  const bool surface =
+      geometry->num_params() == 2 || geometry->definition().type == GeometryType::implicit_surface;
+  const Reservation memory(memory_budget(),
+                           (surface ? side * side : side) * ServerConfig::kMeshBytesPerVertex);
   const Mesh mesh = mesh_geometry(*geometry, MeshOptions{request.resolution});
   ApiResponse r;
   if (request.format == MeshFormat::obj) {
@@ -626,7 +677,8 @@ ApiResponse Api::evaluate(std::string_view id, std::string_view body, const Call
   const auto geometry = geometry_by_id(id);
   const EvaluateRequest request = read_evaluate_request(body, config_.max_points);
   if (caller.charge) caller.charge(request.count);
-  const PointsReservation reserved(in_flight_points_, request.count, config_.max_inflight_points);
+  const Reservation reserved(points_budget(in_flight_points_, config_), request.count);
+  const Reservation memory(memory_budget(), request.count * ServerConfig::kBytesPerPoint);
   ApiResponse r = json_response(200, evaluate_response(*geometry, request));
   r.points = request.count;
   return r;

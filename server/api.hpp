@@ -5,6 +5,7 @@
 #pragma once
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -22,6 +23,9 @@
 #include "streamed_body.hpp"
 
 namespace footpoint::server {
+
+// An in-flight budget (points, memory) that requests reserve from (api.cpp).
+struct InflightBudget;
 
 // What the HTTP layer tells of a request's representations.
 struct RequestFormat {
@@ -126,6 +130,12 @@ class Api {
   std::atomic<bool> shutting_down_{false};
   std::atomic<std::size_t> in_flight_{0};
   std::atomic<std::size_t> in_flight_points_{0};
+  // The memory budget (--max-inflight-bytes): bytes reserved by the requests in flight, the
+  // budget, and the requests refused by it.
+  InflightBudget memory_budget();
+  std::atomic<std::size_t> in_flight_bytes_{0};
+  const std::size_t max_inflight_bytes_;
+  std::atomic<std::uint64_t> memory_refusals_{0};
   std::mutex methods_mutex_;
   std::string methods_body_;  // built on first use
 };

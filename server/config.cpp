@@ -92,6 +92,12 @@ const std::vector<Setting>& settings() {
          c.max_inflight_points = parse_integer<std::size_t>(n, v, 1, std::size_t{1} << 40);
        },
        [](const ServerConfig& c) { return std::to_string(c.max_inflight_points); }},
+      {"max-inflight-bytes", "FOOTPOINT_MAX_INFLIGHT_BYTES",
+       "memory the requests in flight may reserve before 503 overloaded (0: from the cgroup's memory limit)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.max_inflight_bytes = parse_integer<std::size_t>(n, v, 0, kMaxSize);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.max_inflight_bytes); }},
       {"max-body-bytes", "FOOTPOINT_MAX_BODY_BYTES", "request body limit in bytes",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
          c.max_body_bytes = parse_integer<std::size_t>(n, v, 1024, kMaxSize);
@@ -363,6 +369,28 @@ std::vector<std::string> unknown_environment(const char* const* environment) {
   return unknown;
 }
 
+std::size_t ServerConfig::effective_max_inflight_bytes(std::size_t memory_limit) const {
+  if (max_inflight_bytes) return max_inflight_bytes;
+  if (memory_limit == 0) return kDefaultInflightBytes;
+  const std::size_t held = cache_bytes + effective_max_geometry_bytes() + kBaselineBytes;
+  return std::max(memory_limit > held ? memory_limit - held : 0, kMinInflightBytes);
+}
+
+std::size_t cgroup_memory_limit(const std::string& root) {
+  for (const char* file : {"/memory.max", "/memory/memory.limit_in_bytes"}) {
+    std::ifstream in(root + file);
+    std::string text;
+    if (!(in >> text)) continue;
+    if (text == "max") return 0;
+    std::size_t value = 0;
+    const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
+    // cgroup v1 writes a huge page-rounded number for "no limit"
+    if (r.ec == std::errc() && value < (std::size_t{1} << 60)) return value;
+    return 0;
+  }
+  return 0;
+}
+
 std::string usage() {
   const ServerConfig defaults;
   std::string text =
@@ -384,6 +412,7 @@ std::string effective_settings_json(const ServerConfig& config) {
   if (effective.threads == 0) effective.threads = default_threads();
   effective.max_inflight = config.effective_max_inflight();
   effective.max_geometry_bytes = config.effective_max_geometry_bytes();
+  effective.max_inflight_bytes = config.effective_max_inflight_bytes(0);
   if (effective.rate_limit > 0) effective.rate_burst = config.effective_rate_burst();
   if (effective.compile_deadline.count() == 0) effective.compile_deadline = effective.deadline;
   JsonWriter w;
@@ -419,6 +448,8 @@ int configure_from_command_line(int argc, const char* const* argv, const char* p
       std::fputs(usage().c_str(), stdout);
       return 0;
     }
+    // The server process reads its container's memory limit once, here.
+    config.max_inflight_bytes = config.effective_max_inflight_bytes(cgroup_memory_limit());
   } catch (const ConfigError& e) {
     std::fprintf(stderr, "%s: %s\n", program, e.what());
     return 2;
