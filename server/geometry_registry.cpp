@@ -216,7 +216,8 @@ GeometryCache::Lookup GeometryRegistry::fetch_and_compile(const std::string& id,
     return refuse(e.what());
   }
   metrics_.hits.fetch_add(1, std::memory_order_relaxed);
-  return cache_.get_or_compile(definition, limits, record->posted_by);
+  // Kept under its poster's share when it fits there; a lookup is answered either way.
+  return cache_.get_or_compile(definition, limits, record->posted_by, false);
 }
 
 void GeometryRegistry::write_record(redis::Connection& c, Clock::time_point deadline, const std::string& k,

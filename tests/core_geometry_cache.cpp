@@ -269,3 +269,18 @@ TEST_CASE("the share bounds bytes, and a geometry that only fits past its owner'
   CHECK(cache.erase(b));
   CHECK(held_by(cache, cache.get_or_compile(curve(4), {}, "C").geometry->id(), "C"));
 }
+
+TEST_CASE("a lookup's geometry past its owner's share is answered and not kept") {
+  GeometryCache probe({16, std::size_t{1} << 30});
+  const std::size_t s0 = probe.get_or_compile(curve(0)).geometry->memory_bytes();
+  const std::size_t s1 = probe.get_or_compile(curve(1)).geometry->memory_bytes();
+  GeometryCacheOptions options{100, s0 + s1 - 1};
+  options.share = 0.1;  // less than either geometry
+  GeometryCache cache(options);
+  const std::string b = cache.get_or_compile(curve(0), {}, "B").geometry->id();
+  const auto loaded = cache.get_or_compile(curve(1), {}, "A", false);
+  REQUIRE(loaded.geometry != nullptr);
+  CHECK(cache.entry_stats(loaded.geometry->id()) == std::nullopt);
+  CHECK(held_by(cache, b, "B"));
+  CHECK_THROWS_AS(cache.get_or_compile(curve(1), {}, "A"), GeometryError);
+}

@@ -13,7 +13,7 @@ GeometryCache::GeometryCache(GeometryCacheOptions options) : options_(options) {
 
 GeometryCache::Lookup GeometryCache::get_or_compile(const GeometryDefinition& def,
                                                     const formula::CompileLimits& limits,
-                                                    std::string_view owner) {
+                                                    std::string_view owner, bool refuse_over_share) {
   const std::string id = def.id();
   std::shared_ptr<Pending> pending;
   {
@@ -64,7 +64,7 @@ GeometryCache::Lookup GeometryCache::get_or_compile(const GeometryDefinition& de
     pending_.erase(id);
     if (!error) {
       try {
-        insert_locked(id, geometry, owner);
+        insert_locked(id, geometry, owner, refuse_over_share);
       } catch (...) {
         error = std::current_exception();
         geometry.reset();
@@ -84,11 +84,12 @@ GeometryCache::Lookup GeometryCache::get_or_compile(const GeometryDefinition& de
 }
 
 void GeometryCache::insert_locked(const std::string& id, std::shared_ptr<const CompiledGeometry> geometry,
-                                  std::string_view owner) {
+                                  std::string_view owner, bool refuse_over_share) {
   const std::size_t bytes = geometry->memory_bytes();
   if (bytes > options_.max_bytes || options_.max_entries == 0) return;  // too large to keep
   const std::string who(owner);
-  if (!make_room_locked(bytes, who))
+  if (!make_room_locked(bytes, who)) {
+    if (!refuse_over_share) return;  // answered, not kept
     throw GeometryError("cache_share_exceeded", "", -1,
                         "the compiled geometry holds " + std::to_string(bytes) +
                             " bytes; keeping it would evict other clients' geometries beyond this client's "
@@ -96,6 +97,7 @@ void GeometryCache::insert_locked(const std::string& id, std::shared_ptr<const C
                             std::to_string(static_cast<std::size_t>(
                                 options_.share * static_cast<double>(options_.max_bytes))) +
                             " bytes): retry later, delete some of your geometries, or narrow the domain");
+  }
   recency_.push_front(id);
   entries_[id] = Entry{std::move(geometry), bytes, 0, who, recency_.begin()};
   stats_.bytes += bytes;

@@ -76,9 +76,10 @@ class GeometryCache {
   // waiting for that same compilation get the same error.
   // `owner` names who posted it (kept with the entry when this call inserts it; an entry already
   // held keeps its owner). Throws GeometryError cache_share_exceeded (see above; the geometry is
-  // not kept, and waiters get the error too).
+  // not kept, and waiters get the error too), unless `refuse_over_share` is false: then such a
+  // geometry is returned and not kept (a definition loaded for a lookup, not posted).
   Lookup get_or_compile(const GeometryDefinition& def, const formula::CompileLimits& limits = {},
-                        std::string_view owner = {});
+                        std::string_view owner = {}, bool refuse_over_share = true);
 
   // The held geometry with this id (marked most recently used), or nullptr.
   std::shared_ptr<const CompiledGeometry> find(const std::string& id);
@@ -130,7 +131,7 @@ class GeometryCache {
 
   // Throws GeometryError cache_share_exceeded (nothing changed then).
   void insert_locked(const std::string& id, std::shared_ptr<const CompiledGeometry> geometry,
-                     std::string_view owner);
+                     std::string_view owner, bool refuse_over_share);
   // Makes room for `bytes` more of `owner` within the bounds and the owner's share, or returns
   // false when only other owners' entries beyond the share could make it.
   bool make_room_locked(std::size_t bytes, const std::string& owner);
