@@ -182,9 +182,10 @@ def test_stream_gone(binary):
         projected = server.metric("footpoint_points_projected_total")
         print("stream_gone: pool free %.2f s after the client closed; %d of %d points dropped, "
               "%d projected (%d when it closed)" % (freed_after, dropped, count, projected, projected_at_close))
-        # The window being solved when the client left is dropped, not finished: no window is
-        # answered after the close, and nearly every point is dropped.
-        assert projected == projected_at_close, (projected, projected_at_close)
+        # The window being solved when the client left is dropped, not finished (one that ended
+        # between the metric's reading and the close may be counted), and nearly every point is
+        # dropped.
+        assert projected - projected_at_close <= 8192, (projected, projected_at_close)
         assert count - projected - 8192 <= dropped <= count - projected, dropped
         assert freed_after < 2.0, freed_after
         records = server.records()
