@@ -482,6 +482,7 @@ def check_deployment(doc, where, known_env, facts, p):
             if p.expect(isinstance(get(e, "name"), str), w, "env[].name is required"):
                 env[e["name"]] = e.get("value")
         check_env(env, known_env, w, p)
+        check_memory_budget(env, get(c, "resources", "limits", "memory"), w, p)
         p.expect(isinstance(grace, int) and grace > deadline_seconds(env), where,
                  "terminationGracePeriodSeconds must exceed the request deadline (FOOTPOINT_DEADLINE_MS)")
         p.expect(get(c, "securityContext", "allowPrivilegeEscalation") is False, w,
@@ -492,6 +493,25 @@ def check_deployment(doc, where, known_env, facts, p):
         facts["registry_password"] = (w, env.get("FOOTPOINT_REGISTRY_PASSWORD_FILE"),
                                       secret_mounts(pod, c))
     facts["deployment"] = get(doc, "metadata", "name")
+
+
+# What a replica holds besides the requests in flight (docs/operations.md, Memory): the process at
+# rest, the geometry cache and one geometry's compile.
+BASELINE_BYTES = 128 << 20
+
+
+def check_memory_budget(env, limit_text, where, p):
+    """The memory limit holds the process at rest, the cache, one compile and the in-flight budget."""
+    limit = redis_memory_bytes(limit_text)
+    budget = int(env.get("FOOTPOINT_MAX_INFLIGHT_BYTES") or 0)
+    if limit is None or budget == 0:
+        return  # 0: the server derives the budget from the limit itself
+    cache = int(env.get("FOOTPOINT_CACHE_BYTES") or 256 << 20)
+    geometry = int(env.get("FOOTPOINT_MAX_GEOMETRY_BYTES") or 0) or cache // 4
+    needed = BASELINE_BYTES + cache + geometry + budget
+    p.expect(needed <= limit, where,
+             f"resources.limits.memory ({limit_text}) is below what the replica may hold: 128 MiB + "
+             f"FOOTPOINT_CACHE_BYTES + one geometry + FOOTPOINT_MAX_INFLIGHT_BYTES = {needed} bytes")
 
 
 def secret_mounts(pod, container):
@@ -825,6 +845,8 @@ MUTATIONS = [
     ("k8s/deployment.yaml", "  selector:\n    matchLabels:\n      app.kubernetes.io/name: footpoint",
      "  selector:\n    matchLabels:\n      app.kubernetes.io/name: footprint", "match spec.template"),
     ("k8s/deployment.yaml", "              memory: 2Gi", "", "resources.limits.memory"),
+    ("k8s/deployment.yaml", "              memory: 2Gi", "              memory: 1Gi", "below what the replica may hold"),
+    ("k8s/deployment.yaml", '"1677721600"', '"1677721601"', "below what the replica may hold"),
     ("k8s/deployment.yaml", "name: footpoint\n  labels", "name: Foot_point\n  labels", "DNS-1123"),
     ("k8s/service.yaml", "targetPort: http", "targetPort: web", "targetPort"),
     ("k8s/service.yaml", "component: server\n  ports", "component: client\n  ports", "select the Deployment"),

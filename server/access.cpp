@@ -52,6 +52,14 @@ Scope required_scope(Route route, std::string_view method, bool metrics_key_free
   return kScopeAdmin;
 }
 
+bool valid_key_name(std::string_view name) {
+  if (name.empty() || name.size() > 64) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
+           c == '_' || c == '-';
+  });
+}
+
 namespace {
 
 int hex_value(char c) {
@@ -59,14 +67,6 @@ int hex_value(char c) {
   if (c >= 'a' && c <= 'f') return c - 'a' + 10;
   if (c >= 'A' && c <= 'F') return c - 'A' + 10;
   return -1;
-}
-
-bool valid_name(std::string_view name) {
-  if (name.empty() || name.size() > 64) return false;
-  return std::all_of(name.begin(), name.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
-           c == '_' || c == '-';
-  });
 }
 
 unsigned parse_scopes(std::string_view text, const std::string& where) {
@@ -109,7 +109,7 @@ KeyRing KeyRing::parse(std::string_view text, const std::string& source) {
     fields >> scopes >> hex >> extra;
     const std::string where = source + " line " + std::to_string(line_number);
     if (hex.empty() || !extra.empty()) throw KeyFileError(where + ": expected NAME SCOPES SHA256HEX");
-    if (!valid_name(name))
+    if (!valid_key_name(name))
       throw KeyFileError(where + ": the name must be 1 to 64 letters, digits, '.', '_' or '-'");
     ApiKey key;
     key.name = name;

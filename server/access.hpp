@@ -34,6 +34,9 @@ enum Scope : unsigned {
 };
 const char* scope_name(Scope scope);
 
+// A key's name: 1 to 64 letters, digits, '.', '_' or '-'.
+bool valid_key_name(std::string_view name);
+
 // The scope a request needs: kScopeNone for the probes (and /openapi.yaml and the pages, which
 // hold no data), kScopeAdmin for /metrics unless `metrics_key_free`.
 Scope required_scope(Route route, std::string_view method, bool metrics_key_free);

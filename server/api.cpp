@@ -24,6 +24,18 @@
 
 namespace footpoint::server {
 
+// What the requests being answered take at once (points, estimated bytes), against a limit. A
+// request over it gets 503 overloaded (counted in `refused`), unless nothing else is in flight
+// (so even one larger than the limit runs, alone) or it takes at most `always` units.
+struct InflightBudget {
+  std::atomic<std::size_t>& in_flight;
+  std::size_t limit;
+  const char* unit;  // "points", "bytes"
+  const char* flag;
+  std::size_t always = 0;
+  std::atomic<std::uint64_t>* refused = nullptr;
+};
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -48,24 +60,24 @@ struct InFlight {
   std::atomic<std::size_t>& n;
 };
 
-// Takes `n` points from the in-flight budget for the life of a request, or refuses: the
-// budget bounds the memory of results and responses. A request is always admitted when nothing
-// else is in flight, so even a request larger than the budget runs, alone.
-class PointsReservation {
+// Takes `n` units of an InflightBudget for the life of a request, or refuses it (see there).
+class Reservation {
  public:
-  PointsReservation(std::atomic<std::size_t>& in_flight, std::size_t n, std::size_t budget)
-      : in_flight_(in_flight), n_(n) {
+  Reservation(const InflightBudget& budget, std::size_t n) : in_flight_(budget.in_flight), n_(n) {
     std::size_t current = in_flight_.load();
     do {
-      if (current != 0 && current + n > budget)
+      if (current != 0 && n > budget.always && current + n > budget.limit) {
+        if (budget.refused) budget.refused->fetch_add(1, std::memory_order_relaxed);
         throw ApiError(503, "overloaded",
-                       "too many points in progress (" + std::to_string(current) + " + " + std::to_string(n) +
-                           " > " + std::to_string(budget) + "); retry shortly");
+                       std::string("too many ") + budget.unit + " in progress (" + std::to_string(current) +
+                           " + " + std::to_string(n) + " > " + std::to_string(budget.limit) + ", " +
+                           budget.flag + "); retry shortly");
+      }
     } while (!in_flight_.compare_exchange_weak(current, current + n));
   }
-  ~PointsReservation() { in_flight_.fetch_sub(n_); }
-  PointsReservation(const PointsReservation&) = delete;
-  PointsReservation& operator=(const PointsReservation&) = delete;
+  ~Reservation() { in_flight_.fetch_sub(n_); }
+  Reservation(const Reservation&) = delete;
+  Reservation& operator=(const Reservation&) = delete;
 
  private:
   std::atomic<std::size_t>& in_flight_;
@@ -103,7 +115,29 @@ void write_method_names(JsonWriter& w, const CompiledGeometry& g) {
 
 Api::Api(const ServerConfig& config, GeometryCache& cache, ThreadPool& pool, Metrics& metrics,
          GeometryRegistry* registry)
-    : config_(config), cache_(cache), pool_(pool), metrics_(metrics), registry_(registry) {}
+    : config_(config),
+      cache_(cache),
+      pool_(pool),
+      metrics_(metrics),
+      registry_(registry),
+      max_inflight_bytes_(config.effective_max_inflight_bytes(0)) {}
+
+namespace {
+
+InflightBudget points_budget(std::atomic<std::size_t>& in_flight, const ServerConfig& config) {
+  return {in_flight, config.max_inflight_points, "points", "--max-inflight-points"};
+}
+
+}  // namespace
+
+InflightBudget Api::memory_budget() {
+  return {in_flight_bytes_,
+          max_inflight_bytes_,
+          "bytes of memory",
+          "--max-inflight-bytes",
+          ServerConfig::kAlwaysAdmittedBytes,
+          &memory_refusals_};
+}
 
 ApiResponse Api::error_response(const ApiError& error) {
   ApiResponse r = json_response(error.status, error_body(error));
@@ -120,6 +154,9 @@ Metrics::Gauges Api::gauges() const {
   g.worker_queue = pool_.queued();
   g.in_flight = in_flight();
   g.in_flight_points = in_flight_points();
+  g.in_flight_bytes = in_flight_bytes_.load(std::memory_order_relaxed);
+  g.max_inflight_bytes = max_inflight_bytes_;
+  g.memory_refusals = memory_refusals_.load(std::memory_order_relaxed);
   g.shutting_down = shutting_down();
   g.registry = registry_ ? &registry_->metrics() : nullptr;
   return g;
@@ -142,7 +179,7 @@ ApiResponse Api::handle(const RouteMatch& match, std::string_view method, std::s
       case Route::geometries: {
         if (method != "POST") return list_geometries(query);  // HEAD: the HTTP layer drops the body
         InFlight counted(in_flight_);
-        return create_geometry(body);
+        return create_geometry(body, caller);
       }
       case Route::geometry:
         if (method == "DELETE") return delete_geometry(match.id, caller);
@@ -260,16 +297,33 @@ formula::CompileLimits Api::compile_limits() const {
   return limits;
 }
 
-GeometryCache::Lookup Api::compile(const GeometryDefinition& def, const std::string& field_prefix) {
+GeometryCache::Lookup Api::compile(const GeometryDefinition& def, const std::string& field_prefix,
+                                   const Caller& caller) {
   try {
-    auto lookup = cache_.get_or_compile(def, compile_limits());
+    auto lookup = cache_.get_or_compile(def, compile_limits(), caller.key);
     if (lookup.compiled) metrics_.observe_compile(lookup.compile_time.count());
     return lookup;
   } catch (const GeometryError& e) {
-    throw ApiError(422, e.code, e.what(), e.field.empty() ? std::string() : field_prefix + e.field,
+    // The cache is full of other keys' geometries and this one would take more than the key's
+    // share: storage, not the definition, is what is missing.
+    const int status = e.code == "cache_share_exceeded" ? 507 : 422;
+    throw ApiError(status, e.code, e.what(), e.field.empty() ? std::string() : field_prefix + e.field,
                    e.position, e.suggestion);
   }
 }
+
+namespace {
+
+// posted_by: the API key that posted a held geometry, null when none is recorded (no keys).
+void write_posted_by(JsonWriter& w, const std::string& owner) {
+  w.key("posted_by");
+  if (owner.empty())
+    w.null();
+  else
+    w.string(owner);
+}
+
+}  // namespace
 
 std::shared_ptr<const CompiledGeometry> Api::held_geometry(std::string_view id) {
   const std::string key(id);
@@ -305,7 +359,7 @@ std::shared_ptr<const CompiledGeometry> Api::geometry_by_id(std::string_view id,
   return geometry;
 }
 
-ApiResponse Api::create_geometry(std::string_view body) {
+ApiResponse Api::create_geometry(std::string_view body, const Caller& caller) {
   GeometryDefinition def;
   try {
     JsonReader reader(body);
@@ -318,7 +372,7 @@ ApiResponse Api::create_geometry(std::string_view body) {
   } catch (const ApiError& e) {
     throw unless_malformed(body, e);
   }
-  const auto lookup = compile(def, "");
+  const auto lookup = compile(def, "", caller);
   const CompiledGeometry& g = *lookup.geometry;
   JsonWriter w;
   w.begin_object();
@@ -341,7 +395,7 @@ ApiResponse Api::create_geometry(std::string_view body) {
   // (the registry is unavailable: this replica only, stored when the registry is back), or
   // "off" (no registry configured).
   w.key("registry");
-  w.string(!registry_ ? "off" : registry_->store(g) ? "stored" : "not_stored");
+  w.string(!registry_ ? "off" : registry_->store(g, caller.key) ? "stored" : "not_stored");
   w.end_object();
   ApiResponse r = json_response(lookup.compiled ? 201 : 200, w.take());
   r.location = "/v1/geometries/" + g.id();
@@ -378,6 +432,7 @@ ApiResponse Api::list_geometries(std::string_view query) {
     w.integer(static_cast<long long>(stats.bytes));
     w.key("hits");
     w.integer(static_cast<long long>(stats.hits));
+    write_posted_by(w, stats.owner);
     w.end_object();
   }
   w.end_array();
@@ -408,6 +463,7 @@ ApiResponse Api::get_geometry(std::string_view id) {
   w.key("methods");
   write_method_names(w, *g);
   write_closure(w, *g);
+  write_posted_by(w, entry ? entry->owner : std::string());
   w.key("cache");
   w.begin_object();
   w.key("hits");
@@ -422,9 +478,13 @@ ApiResponse Api::get_geometry(std::string_view id) {
 ApiResponse Api::delete_geometry(std::string_view id, const Caller& caller) {
   check_geometry_id(id);
   bool held = false;
+  std::string posted_by;
+  if (const auto entry = cache_.entry_stats(std::string(id))) posted_by = entry->owner;
   if (registry_) {
     try {
-      held = registry_->erase(std::string(id));
+      const auto erased = registry_->erase(std::string(id));
+      held = erased.held;
+      if (posted_by.empty()) posted_by = erased.posted_by;
     } catch (const RegistryUnavailable&) {
       throw ApiError(503, "registry_unavailable",
                      "the shared registry cannot be reached, so geometry " + std::string(id) +
@@ -433,11 +493,13 @@ ApiResponse Api::delete_geometry(std::string_view id, const Caller& caller) {
     }
   }
   held = cache_.erase(std::string(id)) || held;
-  // The audit line: who deleted what (the log line's ts says when), whether or not it was held.
+  // The audit line: who deleted what (the log line's ts says when) and who had posted it, whether or
+  // not it was held.
   log_event(spdlog::level::info, "geometry deleted",
             {{"key", caller.key.empty() ? std::string_view("-") : caller.key},
              {"geometry_id", id},
-             {"held", held}});
+             {"held", held},
+             {"posted_by", posted_by.empty() ? std::string_view("-") : std::string_view(posted_by)}});
   if (!held) throw ApiError(404, "geometry_not_found", "geometry " + std::string(id) + " is not held", "id");
   ApiResponse r;
   r.status = 204;
@@ -479,7 +541,7 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
           ? read_binary_project_options(query, geometry->point_dim(), format.source->length, max_points)
       : binary_in ? read_binary_project_request(body, query, geometry->point_dim(), max_points)
                   : read_project_request(body, inline_geometry, max_points);
-  if (inline_geometry) geometry = compile(*request.geometry, "geometry.").geometry;
+  if (inline_geometry) geometry = compile(*request.geometry, "geometry.", caller).geometry;
   const GeometryMethod method = check_project_request(request, *geometry);
   if (caller.charge) caller.charge(request.count);
 
@@ -489,6 +551,12 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
           406, "not_acceptable",
           "a single point is answered in JSON; stream a batch (\"points\") or ask for application/json",
           "point");
+    // One window's results and answer, and the binary body read ahead of them.
+    const std::size_t window = std::min(request.count, kStreamWindow);
+    auto memory = std::make_shared<Reservation>(
+        memory_budget(),
+        window * ServerConfig::kBytesPerPoint +
+            (read_as_sent ? kStreamAhead * window * binary_record_bytes(request, geometry->point_dim()) : 0));
     auto stream = std::make_shared<ProjectStream>(geometry, method);
     stream->format = answer;
     if (answer == AnswerFormat::binary)
@@ -513,10 +581,11 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
     stream->pool = &pool_;
     stream->tenant = std::string(caller.key);
     stream->metrics = &metrics_;
+    stream->client_gone = caller.client_gone;
     // The stream runs after this returns: it keeps its own counts of requests and points in flight
     // (one window of points).
-    auto reserved = std::make_shared<PointsReservation>(
-        in_flight_points_, std::min(stream->request.count, kStreamWindow), config_.max_inflight_points);
+    auto reserved = std::make_shared<Reservation>(points_budget(in_flight_points_, config_),
+                                                  std::min(stream->request.count, kStreamWindow));
     auto counted = std::make_shared<InFlight>(in_flight_);
     ApiResponse r;
     r.points = stream->request.count;
@@ -528,7 +597,7 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
       r.content_type = "application/x-ndjson";
     }
     if (stream->body) r.release = [body = stream->body] { body->stop(); };
-    r.stream = [stream, reserved, counted](const ApiResponse::Write& write) {
+    r.stream = [stream, reserved, memory, counted](const ApiResponse::Write& write) {
       try {
         return run_stream(*stream, write);
       } catch (const std::exception& e) {
@@ -540,7 +609,8 @@ ApiResponse Api::project(std::string_view id, std::string_view body, std::string
     return r;
   }
 
-  const PointsReservation reserved(in_flight_points_, request.count, config_.max_inflight_points);
+  const Reservation reserved(points_budget(in_flight_points_, config_), request.count);
+  const Reservation memory(memory_budget(), request.count * ServerConfig::kBytesPerPoint);
   BatchRequest batch{method};
   batch.options = request.options;
   batch.points = request.coords.data();
@@ -583,6 +653,13 @@ ApiResponse Api::mesh(std::string_view id, std::string_view query) {
                  geometry->num_params() == 2 || geometry->definition().type == GeometryType::implicit_surface
                      ? kDefaultSurfaceResolution
                      : kDefaultCurveResolution);
+  // A surface's mesh has (resolution + 1)^2 vertices at most, a curve's resolution + 1: the mesh,
+  // its text and the answer held at once.
+  const auto side = static_cast<std::size_t>(request.resolution) + 1;
+  const bool surface =
+      geometry->num_params() == 2 || geometry->definition().type == GeometryType::implicit_surface;
+  const Reservation memory(memory_budget(),
+                           (surface ? side * side : side) * ServerConfig::kMeshBytesPerVertex);
   const Mesh mesh = mesh_geometry(*geometry, MeshOptions{request.resolution});
   ApiResponse r;
   if (request.format == MeshFormat::obj) {
@@ -600,7 +677,8 @@ ApiResponse Api::evaluate(std::string_view id, std::string_view body, const Call
   const auto geometry = geometry_by_id(id);
   const EvaluateRequest request = read_evaluate_request(body, config_.max_points);
   if (caller.charge) caller.charge(request.count);
-  const PointsReservation reserved(in_flight_points_, request.count, config_.max_inflight_points);
+  const Reservation reserved(points_budget(in_flight_points_, config_), request.count);
+  const Reservation memory(memory_budget(), request.count * ServerConfig::kBytesPerPoint);
   ApiResponse r = json_response(200, evaluate_response(*geometry, request));
   r.points = request.count;
   return r;

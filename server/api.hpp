@@ -5,6 +5,7 @@
 #pragma once
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -22,6 +23,9 @@
 #include "streamed_body.hpp"
 
 namespace footpoint::server {
+
+// An in-flight budget (points, memory) that requests reserve from (api.cpp).
+struct InflightBudget;
 
 // What the HTTP layer tells of a request's representations.
 struct RequestFormat {
@@ -93,7 +97,7 @@ class Api {
   ApiResponse metrics() const;
   ApiResponse openapi() const;
   ApiResponse methods();
-  ApiResponse create_geometry(std::string_view body);
+  ApiResponse create_geometry(std::string_view body, const Caller& caller);
   // GET /v1/geometries?limit=N&after=ID: a page of this replica's cache in id order.
   ApiResponse list_geometries(std::string_view query);
   static constexpr long long kDefaultListLimit = 100, kMaxListLimit = 1000;
@@ -108,7 +112,9 @@ class Api {
   ApiResponse ui(const RouteMatch& match) const;
 
   formula::CompileLimits compile_limits() const;
-  GeometryCache::Lookup compile(const GeometryDefinition& def, const std::string& field_prefix);
+  // Compiles through the cache, the caller's key the entry's owner (its cache share, posted_by).
+  GeometryCache::Lookup compile(const GeometryDefinition& def, const std::string& field_prefix,
+                                const Caller& caller);
   // The geometry with this id from the cache, else from the registry; nullptr when neither holds
   // it. Throws ApiError (503 registry_unavailable, 422 when a stored definition does not compile).
   std::shared_ptr<const CompiledGeometry> held_geometry(std::string_view id);
@@ -124,6 +130,12 @@ class Api {
   std::atomic<bool> shutting_down_{false};
   std::atomic<std::size_t> in_flight_{0};
   std::atomic<std::size_t> in_flight_points_{0};
+  // The memory budget (--max-inflight-bytes): bytes reserved by the requests in flight, the
+  // budget, and the requests refused by it.
+  InflightBudget memory_budget();
+  std::atomic<std::size_t> in_flight_bytes_{0};
+  const std::size_t max_inflight_bytes_;
+  std::atomic<std::uint64_t> memory_refusals_{0};
   std::mutex methods_mutex_;
   std::string methods_body_;  // built on first use
 };

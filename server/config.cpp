@@ -29,6 +29,22 @@ T parse_integer(const std::string& name, const std::string& text, T min, T max) 
   return value;
 }
 
+// A fraction in (0, 1].
+double parse_fraction(const std::string& name, const std::string& text) {
+  double value = 0.0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (r.ec != std::errc() || r.ptr != text.data() + text.size() || !(value > 0.0 && value <= 1.0))
+    throw ConfigError(name + ": expected a fraction in (0, 1], got '" + text + "'");
+  return value;
+}
+
+// A number as the settings show it: the shortest text that reads back the same.
+std::string show_number(double value) {
+  char text[32];
+  const auto r = std::to_chars(text, text + sizeof text, value);
+  return std::string(text, r.ptr);
+}
+
 struct Setting {
   const char* flag;  // without the leading "--"; nullptr: environment only
   const char* env;
@@ -76,6 +92,12 @@ const std::vector<Setting>& settings() {
          c.max_inflight_points = parse_integer<std::size_t>(n, v, 1, std::size_t{1} << 40);
        },
        [](const ServerConfig& c) { return std::to_string(c.max_inflight_points); }},
+      {"max-inflight-bytes", "FOOTPOINT_MAX_INFLIGHT_BYTES",
+       "memory the requests in flight may reserve before 503 overloaded (0: from the cgroup's memory limit)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.max_inflight_bytes = parse_integer<std::size_t>(n, v, 0, kMaxSize);
+       },
+       [](const ServerConfig& c) { return std::to_string(c.max_inflight_bytes); }},
       {"max-body-bytes", "FOOTPOINT_MAX_BODY_BYTES", "request body limit in bytes",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
          c.max_body_bytes = parse_integer<std::size_t>(n, v, 1024, kMaxSize);
@@ -130,6 +152,12 @@ const std::vector<Setting>& settings() {
          c.max_geometry_bytes = parse_integer<std::size_t>(n, v, 0, kMaxSize);
        },
        [](const ServerConfig& c) { return std::to_string(c.max_geometry_bytes); }},
+      {"cache-share", "FOOTPOINT_CACHE_SHARE",
+       "fraction of the cache one API key's geometries may hold when others hold some (1: plain LRU)",
+       [](ServerConfig& c, const std::string& n, const std::string& v) {
+         c.cache_share = parse_fraction(n, v);
+       },
+       [](const ServerConfig& c) { return show_number(c.cache_share); }},
       {"keep-alive-timeout-s", "FOOTPOINT_KEEP_ALIVE_TIMEOUT_S", "idle connection timeout in seconds",
        [](ServerConfig& c, const std::string& n, const std::string& v) {
          c.keep_alive_timeout_s = parse_integer<int>(n, v, 1, 3600);
@@ -341,6 +369,28 @@ std::vector<std::string> unknown_environment(const char* const* environment) {
   return unknown;
 }
 
+std::size_t ServerConfig::effective_max_inflight_bytes(std::size_t memory_limit) const {
+  if (max_inflight_bytes) return max_inflight_bytes;
+  if (memory_limit == 0) return kDefaultInflightBytes;
+  const std::size_t held = cache_bytes + effective_max_geometry_bytes() + kBaselineBytes;
+  return std::max(memory_limit > held ? memory_limit - held : 0, kMinInflightBytes);
+}
+
+std::size_t cgroup_memory_limit(const std::string& root) {
+  for (const char* file : {"/memory.max", "/memory/memory.limit_in_bytes"}) {
+    std::ifstream in(root + file);
+    std::string text;
+    if (!(in >> text)) continue;
+    if (text == "max") return 0;
+    std::size_t value = 0;
+    const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
+    // cgroup v1 writes a huge page-rounded number for "no limit"
+    if (r.ec == std::errc() && value < (std::size_t{1} << 60)) return value;
+    return 0;
+  }
+  return 0;
+}
+
 std::string usage() {
   const ServerConfig defaults;
   std::string text =
@@ -362,6 +412,7 @@ std::string effective_settings_json(const ServerConfig& config) {
   if (effective.threads == 0) effective.threads = default_threads();
   effective.max_inflight = config.effective_max_inflight();
   effective.max_geometry_bytes = config.effective_max_geometry_bytes();
+  effective.max_inflight_bytes = config.effective_max_inflight_bytes(0);
   if (effective.rate_limit > 0) effective.rate_burst = config.effective_rate_burst();
   if (effective.compile_deadline.count() == 0) effective.compile_deadline = effective.deadline;
   JsonWriter w;
@@ -370,7 +421,10 @@ std::string effective_settings_json(const ServerConfig& config) {
     if (!s.flag) continue;  // the password
     w.key(s.flag);
     const std::string value = s.show(effective);
-    if (!value.empty() && value.find_first_not_of("0123456789") == std::string::npos)
+    const bool number = !value.empty() && value.find_first_not_of("0123456789.") == std::string::npos &&
+                        std::count(value.begin(), value.end(), '.') <= 1 && value.front() != '.' &&
+                        value.back() != '.';
+    if (number)
       w.raw(value);
     else
       w.string(value == "\"\"" ? std::string() : value);
@@ -394,6 +448,8 @@ int configure_from_command_line(int argc, const char* const* argv, const char* p
       std::fputs(usage().c_str(), stdout);
       return 0;
     }
+    // The server process reads its container's memory limit once, here.
+    config.max_inflight_bytes = config.effective_max_inflight_bytes(cgroup_memory_limit());
   } catch (const ConfigError& e) {
     std::fprintf(stderr, "%s: %s\n", program, e.what());
     return 2;

@@ -36,6 +36,23 @@ struct ServerConfig {
   // projected at once. Bounds the memory of results and responses (~0.6 kB per point); a
   // request that would exceed it gets 503 "overloaded", unless nothing else is in flight.
   std::size_t max_inflight_points = 500000;
+  // --max-inflight-bytes / FOOTPOINT_MAX_INFLIGHT_BYTES: one memory budget for every request that
+  // holds much memory while it runs: a batch or evaluation (kBytesPerPoint a point), a stream's
+  // window (and the binary body it reads ahead), a mesh (kMeshBytesPerVertex a vertex). Each
+  // reserves its estimate before it runs; over the budget it gets 503 "overloaded" with
+  // Retry-After (footpoint_memory_refusals_total), unless nothing else is in flight or it is
+  // under kAlwaysAdmittedBytes (single points are always answered). 0: the container's memory
+  // limit (cgroup, read by configure_from_command_line) less the cache, one geometry's compile
+  // and kBaselineBytes, at least kMinInflightBytes; without a limit kDefaultInflightBytes.
+  std::size_t max_inflight_bytes = 0;
+  static constexpr std::size_t kBytesPerPoint = 1321;      // a 100,000-point batch peaks at 126 MiB
+  static constexpr std::size_t kMeshBytesPerVertex = 412;  // a 263,169-vertex mesh: 108 MB
+  static constexpr std::size_t kAlwaysAdmittedBytes = std::size_t{1} << 20;
+  static constexpr std::size_t kBaselineBytes = std::size_t{128} << 20;  // the process at rest
+  static constexpr std::size_t kMinInflightBytes = std::size_t{64} << 20;
+  static constexpr std::size_t kDefaultInflightBytes = std::size_t{1} << 30;
+  // `memory_limit`: the container's (cgroup_memory_limit()), 0 when none.
+  std::size_t effective_max_inflight_bytes(std::size_t memory_limit) const;
   // --max-body-bytes / FOOTPOINT_MAX_BODY_BYTES: request body limit (413 above it): 16 MiB holds
   // a 100,000-point batch at full precision.
   std::size_t max_body_bytes = std::size_t{16} << 20;
@@ -68,6 +85,12 @@ struct ServerConfig {
   std::size_t effective_max_geometry_bytes() const {
     return max_geometry_bytes ? max_geometry_bytes : std::max<std::size_t>(cache_bytes / 4, 1);
   }
+  // --cache-share / FOOTPOINT_CACHE_SHARE: the fraction of --cache-bytes (and --cache-entries)
+  // one API key's geometries may hold once the cache is full and other keys hold geometries:
+  // beyond it a key's post evicts its own least recently used geometries, not another key's, and
+  // a geometry that could only be kept by evicting others' beyond the share is refused (507
+  // cache_share_exceeded). A key alone in the cache may fill it. 1: plain LRU across keys.
+  double cache_share = 0.5;
   // --keep-alive-timeout-s / FOOTPOINT_KEEP_ALIVE_TIMEOUT_S: an idle connection is closed after
   // this long (a graceful shutdown closes the idle ones at once).
   int keep_alive_timeout_s = 5;
@@ -145,6 +168,10 @@ ServerConfig load_config(int argc, const char* const* argv,
 // The FOOTPOINT_* variables of `environment` ("NAME=value" entries, null-terminated, as environ)
 // that are no setting's: a misspelled one would otherwise be ignored in silence.
 std::vector<std::string> unknown_environment(const char* const* environment);
+
+// The memory limit of the cgroup under `root` (v2 memory.max, else v1
+// memory/memory.limit_in_bytes), 0 when there is none or it cannot be read.
+std::size_t cgroup_memory_limit(const std::string& root = "/sys/fs/cgroup");
 
 // The flags, their variables and defaults, one per line.
 std::string usage();

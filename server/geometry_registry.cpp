@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <vector>
 
+#include "access.hpp"
 #include "compiled/sha256.hpp"
 #include "request_log.hpp"
 
@@ -62,6 +63,24 @@ milliseconds refresh_interval(std::chrono::seconds ttl) {
 }  // namespace
 
 std::string GeometryRegistry::key(std::string_view id) { return "footpoint:v1:geometry:" + std::string(id); }
+
+namespace {
+constexpr std::string_view kPostedBy = "posted_by=";
+}
+
+std::string GeometryRegistry::record_text(std::string_view canonical, std::string_view posted_by) {
+  if (posted_by.empty()) return std::string(canonical);
+  return std::string(kPostedBy) + std::string(posted_by) + "\n" + std::string(canonical);
+}
+
+std::optional<GeometryRegistry::Record> GeometryRegistry::parse_record(std::string_view text) {
+  if (text.substr(0, kPostedBy.size()) != kPostedBy) return Record{{}, text};
+  const auto end = text.find('\n');
+  if (end == std::string_view::npos) return std::nullopt;
+  const std::string_view name = text.substr(kPostedBy.size(), end - kPostedBy.size());
+  if (!valid_key_name(name)) return std::nullopt;
+  return Record{std::string(name), text.substr(end + 1)};
+}
 
 // Pub/sub channels are global to a Redis server, not per database: the database number keeps two
 // deployments on one server (e.g. /0 and /1) apart.
@@ -187,26 +206,46 @@ GeometryCache::Lookup GeometryRegistry::fetch_and_compile(const std::string& id,
     return GeometryCache::Lookup{};
   };
   if (text->size() > options_.max_entry_bytes) return refuse("longer than the request body limit");
-  if (sha256_hex(*text).substr(0, 32) != id) return refuse("its content hash is not its id");
+  const std::optional<Record> record = parse_record(*text);
+  if (!record) return refuse("its posted_by line is not a key name");
+  if (sha256_hex(record->canonical).substr(0, 32) != id) return refuse("its content hash is not its id");
   GeometryDefinition definition;
   try {
-    definition = parse_canonical(*text);
+    definition = parse_canonical(record->canonical);
   } catch (const GeometryError& e) {
     return refuse(e.what());
   }
   metrics_.hits.fetch_add(1, std::memory_order_relaxed);
-  return cache_.get_or_compile(definition, limits);
+  // Kept under its poster's share when it fits there; a lookup is answered either way.
+  return cache_.get_or_compile(definition, limits, record->posted_by, false);
 }
 
-bool GeometryRegistry::store(const CompiledGeometry& geometry) {
-  const std::string text = geometry.definition().canonical();
+void GeometryRegistry::write_record(redis::Connection& c, Clock::time_point deadline, const std::string& k,
+                                    const std::string& id, const std::string& record) const {
+  const bool ttl = options_.ttl.count() > 0;
+  redis::Reply r = ttl ? c.command({"SET", k, record, "NX", "EX", ttl_text_}, deadline)
+                       : c.command({"SET", k, record, "NX"}, deadline);
+  if (r.type == redis::Reply::Type::error)
+    throw redis::Error(redis::Error::Kind::reply, "registry: SET: " + r.str);
+  if (r.type != redis::Reply::Type::nil) return;  // written
+  // Held already: kept (its first poster with it) when it is this id's record, else replaced.
+  r = ttl ? c.command({"GETEX", k, "EX", ttl_text_}, deadline) : c.command({"GET", k}, deadline);
+  if (r.is_string()) {
+    const auto held = parse_record(r.str);
+    if (held && sha256_hex(held->canonical).substr(0, 32) == id) return;
+  }
+  r = ttl ? c.command({"SET", k, record, "EX", ttl_text_}, deadline)
+          : c.command({"SET", k, record}, deadline);
+  if (r.type == redis::Reply::Type::error)
+    throw redis::Error(redis::Error::Kind::reply, "registry: SET: " + r.str);
+}
+
+bool GeometryRegistry::store(const CompiledGeometry& geometry, std::string_view posted_by) {
+  const std::string text = record_text(geometry.definition().canonical(), posted_by);
   const std::string k = key(geometry.id());
   try {
     run(RegistryMetrics::Command::set, [&](redis::Connection& c, Clock::time_point deadline) {
-      const redis::Reply r = options_.ttl.count() > 0 ? c.command({"SET", k, text, "EX", ttl_text_}, deadline)
-                                                      : c.command({"SET", k, text}, deadline);
-      if (r.type == redis::Reply::Type::error)
-        throw redis::Error(redis::Error::Kind::reply, "registry: SET: " + r.str);
+      write_record(c, deadline, k, geometry.id(), text);
       return true;
     });
   } catch (const RegistryUnavailable&) {
@@ -221,23 +260,35 @@ bool GeometryRegistry::store(const CompiledGeometry& geometry) {
   return true;
 }
 
-bool GeometryRegistry::erase(const std::string& id) {
-  if (!is_geometry_id(id)) return false;
+GeometryRegistry::Erased GeometryRegistry::erase(const std::string& id) {
+  if (!is_geometry_id(id)) return {};
   const std::string k = key(id), ch = channel();
-  const bool held = run(RegistryMetrics::Command::del, [&](redis::Connection& c, Clock::time_point deadline) {
-    // One transaction: the entry goes and every replica hears of it, or neither happens.
+  Erased erased = run(RegistryMetrics::Command::del, [&](redis::Connection& c, Clock::time_point deadline) {
+    // One transaction: the entry goes and every replica hears of it, or neither happens; the
+    // record read in it names its poster for the audit line.
     c.append({"MULTI"});
+    c.append({"GET", k});
     c.append({"DEL", k});
     c.append({"PUBLISH", ch, id});
     c.append({"EXEC"});
     const auto replies = c.exchange(deadline);
     const redis::Reply& exec = replies.back();
-    if (exec.type != redis::Reply::Type::array || exec.elements.size() != 2)
+    if (exec.type != redis::Reply::Type::array || exec.elements.size() != 3)
       throw redis::Error(redis::Error::Kind::reply, "registry: DELETE transaction failed: " + exec.str);
-    return exec.elements[0].integer > 0;
+    Erased e;
+    e.held = exec.elements[1].integer > 0;
+    if (exec.elements[0].is_string())
+      if (const auto record = parse_record(exec.elements[0].str)) e.posted_by = record->posted_by;
+    return e;
   });
   std::lock_guard lock(unstored_mutex_);
-  return unstored_.erase(id) > 0 || held;
+  if (auto it = unstored_.find(id); it != unstored_.end()) {
+    if (const auto record = parse_record(it->second); record && erased.posted_by.empty())
+      erased.posted_by = record->posted_by;
+    unstored_.erase(it);
+    erased.held = true;
+  }
+  return erased;
 }
 
 void GeometryRegistry::on_deleted(const std::string& id) {
@@ -298,7 +349,7 @@ void GeometryRegistry::recover() {
           return c.exchange(deadline);
         });
     for (std::size_t i = begin; i < end; ++i) {
-      std::string text;  // the canonical text when the id was posted here while down
+      std::string text;  // the record's text when the id was posted here while down
       {
         std::lock_guard lock(unstored_mutex_);
         if (auto it = unstored_.find(ids[i]); it != unstored_.end()) {
@@ -314,8 +365,8 @@ void GeometryRegistry::recover() {
       }
       const std::string k = key(ids[i]);
       run(RegistryMetrics::Command::set, [&](redis::Connection& c, Clock::time_point deadline) {
-        return options_.ttl.count() > 0 ? c.command({"SET", k, text, "EX", ttl_text_}, deadline)
-                                        : c.command({"SET", k, text}, deadline);
+        write_record(c, deadline, k, ids[i], text);
+        return true;
       });
       metrics_.stored.fetch_add(1, std::memory_order_relaxed);
     }

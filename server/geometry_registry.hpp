@@ -1,9 +1,12 @@
 // The shared geometry registry: level 2 under the in-process cache (level 1, core/cache), in
 // Redis, so that an id posted to one replica is answered by every replica until it is deleted.
 //
-// - Redis holds the canonical definition text (GeometryDefinition::canonical()) under
-//   footpoint:v1:geometry:<id>, never compiled state. A POST writes it (SET ... EX ttl; a rewrite
-//   of the same id writes the same bytes, refreshes the TTL and repairs a damaged entry).
+// - Redis holds a record under footpoint:v1:geometry:<id>, never compiled state: the line
+//   "posted_by=NAME\n" (the API key that posted it first; no line without keys) and then the
+//   canonical definition text (GeometryDefinition::canonical()), whose hash is the id. A record
+//   without the line (written before posted_by was kept) is read as posted by nobody. A POST
+//   writes it when it is not there (SET ... NX EX ttl); a rewrite of the same id keeps the record
+//   and its first poster, refreshes the TTL, and replaces a damaged record.
 // - A level-1 hit never waits for Redis: it only notes the id, and the monitor thread refreshes
 //   the TTL (or the LRU clock) of the ids used in batches, off the request path, so that a
 //   geometry in use on any replica does not expire or get evicted in Redis.
@@ -27,6 +30,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -76,13 +80,26 @@ class GeometryRegistry {
   // definition does not compile under `limits`.
   GeometryCache::Lookup load(const std::string& id, const formula::CompileLimits& limits);
 
-  // Stores a posted geometry. false: not stored now (the registry is unavailable); it is stored
-  // when the registry is back, unless it was deleted or evicted from level 1 meanwhile.
-  bool store(const CompiledGeometry& geometry);
+  // Stores a posted geometry, posted by the key `posted_by` ("" without keys). false: not stored
+  // now (the registry is unavailable); it is stored when the registry is back, unless it was
+  // deleted or evicted from level 1 meanwhile.
+  bool store(const CompiledGeometry& geometry, std::string_view posted_by = {});
 
   // Deletes `id` from Redis and, through the published message, from every replica's level 1.
-  // Returns whether Redis held it. Throws RegistryUnavailable (nothing is deleted then).
-  bool erase(const std::string& id);
+  // Throws RegistryUnavailable (nothing is deleted then).
+  struct Erased {
+    bool held = false;      // whether Redis held it
+    std::string posted_by;  // its record's poster ("" when none is recorded)
+  };
+  Erased erase(const std::string& id);
+
+  // A record's text, and the record read back (nullopt: its posted_by line is malformed).
+  struct Record {
+    std::string posted_by;  // "" when the record names none
+    std::string_view canonical;
+  };
+  static std::string record_text(std::string_view canonical, std::string_view posted_by);
+  static std::optional<Record> parse_record(std::string_view text);
 
   bool up() const { return metrics_.up.load(); }
   const RegistryMetrics& metrics() const { return metrics_; }
@@ -102,6 +119,10 @@ class GeometryRegistry {
   template <class F>
   auto run(RegistryMetrics::Command command, F&& f, bool probe = false);
   void mark_down(const std::string& why);
+  // Writes `record` for `id` at key k unless a valid record of the id is there (whose TTL is then
+  // refreshed and whose poster is kept).
+  void write_record(redis::Connection& c, std::chrono::steady_clock::time_point deadline,
+                    const std::string& k, const std::string& id, const std::string& record) const;
   GeometryCache::Lookup fetch_and_compile(const std::string& id, const formula::CompileLimits& limits);
   void on_deleted(const std::string& id);
 
@@ -122,7 +143,7 @@ class GeometryRegistry {
   std::mutex used_mutex_;
   std::unordered_set<std::string> used_;  // ids hit in level 1 since the last TTL refresh
   std::mutex unstored_mutex_;
-  std::map<std::string, std::string> unstored_;  // id -> canonical text, posted while down
+  std::map<std::string, std::string> unstored_;  // id -> record text, posted while down
 
   std::mutex state_mutex_;
   std::condition_variable state_changed_;

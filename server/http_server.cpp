@@ -301,7 +301,7 @@ bool counts_points(Route r) {
 HttpServer::HttpServer(ServerConfig config, Handler handler)
     : config_(std::move(config)),
       cache_(GeometryCacheOptions{config_.cache_entries, config_.cache_bytes,
-                                  config_.effective_max_geometry_bytes()}),
+                                  config_.effective_max_geometry_bytes(), config_.cache_share}),
       registry_(start_registry(config_, cache_)),
       pool_(config_.threads),
       api_(config_, cache_, pool_, metrics_, registry_.get()),

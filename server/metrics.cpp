@@ -115,6 +115,15 @@ std::string Metrics::render(const Gauges& g) const {
   line(out, "footpoint_http_requests_in_flight", "", static_cast<double>(g.in_flight));
   header(out, "footpoint_points_in_flight", "gauge", "Points of the requests being projected now.");
   line(out, "footpoint_points_in_flight", "", static_cast<double>(g.in_flight_points));
+  header(out, "footpoint_memory_in_flight_bytes", "gauge",
+         "Memory reserved by the requests being answered (estimates, --max-inflight-bytes).");
+  line(out, "footpoint_memory_in_flight_bytes", "", static_cast<double>(g.in_flight_bytes));
+  header(out, "footpoint_memory_budget_bytes", "gauge",
+         "The in-flight memory budget (--max-inflight-bytes).");
+  line(out, "footpoint_memory_budget_bytes", "", static_cast<double>(g.max_inflight_bytes));
+  header(out, "footpoint_memory_refusals_total", "counter",
+         "Requests refused (503 overloaded) because the in-flight memory budget was taken.");
+  line(out, "footpoint_memory_refusals_total", "", static_cast<double>(g.memory_refusals));
   header(out, "footpoint_points_projected_total", "counter", "Points projected (every status).");
   line(out, "footpoint_points_projected_total", "",
        static_cast<double>(points_.load(std::memory_order_relaxed)));

@@ -6,6 +6,8 @@
 //   footpoint_api_key_requests_total{key,status}             counter (with --api-keys)
 //   footpoint_http_requests_in_flight                        gauge
 //   footpoint_points_in_flight                               gauge
+//   footpoint_memory_in_flight_bytes, footpoint_memory_budget_bytes   gauges (--max-inflight-bytes)
+//   footpoint_memory_refusals_total                          counter (503 by that budget)
 //   footpoint_points_projected_total                         counter
 //   footpoint_projections_total{status}                      counter (solver statuses)
 //   footpoint_batches_cancelled_total, footpoint_points_cancelled_total   counters (client gone)
@@ -56,6 +58,9 @@ class Metrics {
     std::size_t worker_queue = 0;
     std::size_t in_flight = 0;
     std::size_t in_flight_points = 0;
+    std::size_t in_flight_bytes = 0;     // reserved from --max-inflight-bytes
+    std::size_t max_inflight_bytes = 0;  // the budget
+    std::uint64_t memory_refusals = 0;   // requests refused by it
     bool shutting_down = false;
     const RegistryMetrics* registry = nullptr;  // the shared registry's, when there is one
   };
@@ -69,8 +74,8 @@ class Metrics {
 
  private:
   // Statuses counted by name; anything else lands in "other".
-  static constexpr std::array<int, 20> kHttpStatuses{200, 201, 204, 400, 401, 403, 404, 405, 408, 411,
-                                                     413, 414, 415, 416, 422, 429, 499, 500, 503, 0};
+  static constexpr std::array<int, 21> kHttpStatuses{200, 201, 204, 400, 401, 403, 404, 405, 408, 411, 413,
+                                                     414, 415, 416, 422, 429, 499, 500, 503, 507, 0};
   static int status_index(int status);
 
   std::array<std::array<std::atomic<std::uint64_t>, kHttpStatuses.size()>, kRouteCount> requests_{};

@@ -8,6 +8,7 @@
 #include "api_error.hpp"
 #include "batch/batch.hpp"
 #include "batch/deviation.hpp"
+#include "request_log.hpp"
 #include "result_json.hpp"
 
 namespace footpoint::server {
@@ -114,8 +115,18 @@ bool run_stream(const ProjectStream& stream, const std::function<bool(std::strin
                             request.initials.begin() + static_cast<std::ptrdiff_t>(begin + count));
     batch.deadline = stream.deadline;
     batch.tenant = stream.tenant;
+    batch.cancelled = stream.client_gone;
     out.clear();
-    if (count > 0) answer_window(stream, batch, stats, deviation, out);
+    try {
+      if (stream.client_gone && stream.client_gone()) throw BatchCancelled(0, count);
+      if (count > 0) answer_window(stream, batch, stats, deviation, out);
+    } catch (const BatchCancelled& cancelled) {
+      const std::size_t dropped = request.count - begin - cancelled.done();
+      if (stream.metrics) stream.metrics->add_cancelled(dropped);
+      log_event(spdlog::level::info, "stream cancelled: the client closed the connection",
+                {{"points", request.count}, {"done", begin + cancelled.done()}, {"dropped", dropped}});
+      return false;
+    }
     if (!out.empty() && !send(out)) return false;
     if (bad) {
       if (bad->code == "body_incomplete") return false;

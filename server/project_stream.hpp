@@ -13,8 +13,9 @@
 // point) in place of the stats, the rest of the body is read and dropped; binary records have no
 // room for an error, so the answer is cut (no last chunk, the connection closes). A body that
 // stops before its Content-Length (the client sent nothing for --io-timeout-s) cuts the answer
-// after the last whole point that arrived; a client that closes its side is gone (httplib stops
-// writing to a socket whose peer closed), its answer stops there.
+// after the last whole point that arrived; a client that closes its side is gone: the stream asks
+// its connection before each grain (client_gone below) and httplib stops writing to a socket
+// whose peer closed, so its answer stops there.
 #pragma once
 #include <chrono>
 #include <functional>
@@ -49,6 +50,12 @@ struct ProjectStream {
   ThreadPool* pool = nullptr;
   std::string tenant;  // the pool's fair queue (BatchRequest::tenant): the API key's name
   Metrics* metrics = nullptr;
+  // Whether the client has closed its connection (Caller::client_gone): asked before each window
+  // and between the grains of a window (BatchRequest::cancelled), so that a client gone while no
+  // write is due stops the work within a grain; its points not started are counted as cancelled
+  // (footpoint_batches_cancelled_total, footpoint_points_cancelled_total). Empty: only a failed
+  // write stops the stream.
+  std::function<bool()> client_gone;
 };
 
 // The most points a stream solves at once, and its first window (small, for the first answers to

@@ -2,7 +2,9 @@
 // concurrency, failed compilations leave nothing behind. Real geometries throughout.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <map>
 #include <set>
 #include <string>
 #include <thread>
@@ -185,4 +187,100 @@ TEST_CASE("a geometry over max_geometry_bytes is refused with its size and not k
   // Refused again, not remembered as held.
   CHECK_THROWS_AS(cache.get_or_compile(surface("sin(3*u)*cos(3*v)")), GeometryError);
   CHECK(cache.stats().size == 1);
+}
+
+namespace {
+
+bool held_by(GeometryCache& cache, const std::string& id, const std::string& owner) {
+  const auto entry = cache.entry_stats(id);
+  return entry && entry->owner == owner;
+}
+
+}  // namespace
+
+TEST_CASE("one owner's flood evicts its own entries beyond its share, not another owner's") {
+  GeometryCacheOptions options{4, std::size_t{1} << 30};
+  options.share = 0.5;  // two of the four entries once someone else holds one
+  GeometryCache cache(options);
+  std::vector<std::string> a;
+  for (int k = 0; k < 4; ++k) a.push_back(cache.get_or_compile(curve(k), {}, "A").geometry->id());
+  // Alone, A fills the whole cache.
+  for (const auto& id : a) CHECK(held_by(cache, id, "A"));
+  // B's post evicts A's least recently used entry: A held more than its share, B nothing.
+  const std::string b = cache.get_or_compile(curve(100), {}, "B").geometry->id();
+  CHECK(held_by(cache, b, "B"));
+  CHECK(cache.entry_stats(a[0]) == std::nullopt);
+  // A's flood: each new entry of A evicts A's own least recently used one, never B's.
+  for (int k = 4; k < 40; ++k) {
+    const std::string id = cache.get_or_compile(curve(k), {}, "A").geometry->id();
+    CHECK(held_by(cache, id, "A"));
+    CHECK(held_by(cache, b, "B"));
+  }
+  const auto ids = cache.ids();
+  CHECK(ids.size() == 4);
+  CHECK(std::count_if(ids.begin(), ids.end(),
+                      [&](const std::string& id) { return held_by(cache, id, "A"); }) == 3);
+  // An entry already held keeps its owner whoever asks for it.
+  CHECK_FALSE(cache.get_or_compile(curve(100), {}, "A").compiled);
+  CHECK(held_by(cache, b, "B"));
+  // Without a share (1: plain LRU), the same flood evicts B's entry.
+  GeometryCache plain({4, std::size_t{1} << 30});
+  const std::string b2 = plain.get_or_compile(curve(100), {}, "B").geometry->id();
+  for (int k = 0; k < 4; ++k) plain.get_or_compile(curve(k), {}, "A");
+  CHECK(plain.entry_stats(b2) == std::nullopt);
+}
+
+TEST_CASE("the share bounds bytes, and a geometry that only fits past its owner's share is refused") {
+  // Five curves whose compiled forms hold the same bytes s (the most common size of 40).
+  GeometryCache probe({64, std::size_t{1} << 30});
+  std::map<std::size_t, std::vector<int>> by_size;
+  for (int k = 0; k < 40; ++k) by_size[probe.get_or_compile(curve(k)).geometry->memory_bytes()].push_back(k);
+  const auto most = std::max_element(by_size.begin(), by_size.end(), [](const auto& x, const auto& y) {
+    return x.second.size() < y.second.size();
+  });
+  REQUIRE(most->second.size() >= 5);
+  const std::size_t s = most->first;
+  const auto curve = [&](int i) { return ::curve(most->second[static_cast<std::size_t>(i)]); };
+  GeometryCacheOptions options{100, 3 * s};
+  options.share = 0.3;  // less than one geometry's bytes
+  GeometryCache cache(options);
+  // Alone, B may fill the cache.
+  const std::string b = cache.get_or_compile(curve(0), {}, "B").geometry->id();
+  // A fits beside B without evicting anything, twice; its third evicts its own oldest.
+  const std::string a1 = cache.get_or_compile(curve(1), {}, "A").geometry->id();
+  const std::string a2 = cache.get_or_compile(curve(2), {}, "A").geometry->id();
+  const std::string a3 = cache.get_or_compile(curve(3), {}, "A").geometry->id();
+  CHECK(held_by(cache, b, "B"));
+  CHECK(cache.entry_stats(a1) == std::nullopt);
+  CHECK(held_by(cache, a2, "A"));
+  CHECK(held_by(cache, a3, "A"));
+  CHECK(cache.stats().bytes == 3 * s);
+  // C holds nothing, and its geometry could only be kept by evicting A's or B's beyond C's share.
+  try {
+    cache.get_or_compile(curve(4), {}, "C");
+    FAIL("C's geometry was kept past its share");
+  } catch (const GeometryError& e) {
+    CHECK(e.code == "cache_share_exceeded");
+    CHECK(std::string(e.what()).find(std::to_string(s) + " bytes") != std::string::npos);
+  }
+  CHECK(cache.stats().size == 3);
+  CHECK(held_by(cache, b, "B"));
+  // Once B's entry is deleted, C's geometry fits beside A's.
+  CHECK(cache.erase(b));
+  CHECK(held_by(cache, cache.get_or_compile(curve(4), {}, "C").geometry->id(), "C"));
+}
+
+TEST_CASE("a lookup's geometry past its owner's share is answered and not kept") {
+  GeometryCache probe({16, std::size_t{1} << 30});
+  const std::size_t s0 = probe.get_or_compile(curve(0)).geometry->memory_bytes();
+  const std::size_t s1 = probe.get_or_compile(curve(1)).geometry->memory_bytes();
+  GeometryCacheOptions options{100, s0 + s1 - 1};
+  options.share = 0.1;  // less than either geometry
+  GeometryCache cache(options);
+  const std::string b = cache.get_or_compile(curve(0), {}, "B").geometry->id();
+  const auto loaded = cache.get_or_compile(curve(1), {}, "A", false);
+  REQUIRE(loaded.geometry != nullptr);
+  CHECK(cache.entry_stats(loaded.geometry->id()) == std::nullopt);
+  CHECK(held_by(cache, b, "B"));
+  CHECK_THROWS_AS(cache.get_or_compile(curve(1), {}, "A"), GeometryError);
 }

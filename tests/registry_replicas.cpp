@@ -5,10 +5,13 @@
 
 #include <atomic>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <thread>
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
+#include "compiled/sha256.hpp"
 #include "registry_support.hpp"
 
 using namespace footpoint;
@@ -145,4 +148,75 @@ TEST_CASE("without a registry URL the server is one process: the POST says regis
   CHECK(metric(*c, "footpoint_registry_up") == 0);
   auto r = c->Get("/metrics");
   CHECK(r->body.find("footpoint_registry_") == std::string::npos);
+}
+
+TEST_CASE("the registry records the key that posted a geometry; old records read as posted by nobody") {
+  Redis redis;
+  const std::string dir = make_temp_dir();
+  const std::string keys = dir + "/keys";
+  {
+    std::ofstream out(keys);
+    out << "alice project,write " << sha256_hex("alice-secret") << "\nbob project,write "
+        << sha256_hex("bob-secret") << "\ncarol delete " << sha256_hex("carol-secret") << "\n";
+  }
+  Server a(replica_env(redis, {{"FOOTPOINT_API_KEYS", keys}})),
+      b(replica_env(redis, {{"FOOTPOINT_API_KEYS", keys}}));
+  auto as = [](const Server& s, const char* secret) {
+    auto c = s.client();
+    c->set_bearer_token_auth(secret);
+    return c;
+  };
+  auto alice = as(a, "alice-secret"), bob_on_b = as(b, "bob-secret"), carol_on_b = as(b, "carol-secret");
+
+  const Answer posted = send(*alice, "POST", "/v1/geometries", surface("u*v-v"));
+  REQUIRE(posted.status == 201);
+  const std::string id = posted.body["geometry_id"];
+  // The record: the poster's line, then the canonical text whose hash is still the id.
+  const std::string record = redis.command({"GET", "footpoint:v1:geometry:" + id}).str;
+  REQUIRE(record.rfind("posted_by=alice\n", 0) == 0);
+  CHECK(sha256_hex(record.substr(record.find('\n') + 1)).substr(0, 32) == id);
+  // Replica b loads it from Redis and names alice; bob posting it again changes nothing.
+  Answer info = send(*bob_on_b, "GET", "/v1/geometries/" + id);
+  REQUIRE(info.status == 200);
+  CHECK(info.body["posted_by"] == "alice");
+  CHECK(send(*bob_on_b, "POST", "/v1/geometries", surface("u*v-v")).status == 200);
+  CHECK(redis.command({"GET", "footpoint:v1:geometry:" + id}).str == record);
+  const Answer listed = send(*bob_on_b, "GET", "/v1/geometries");
+  REQUIRE(listed.body["geometries"].size() == 1);
+  CHECK(listed.body["geometries"][0]["posted_by"] == "alice");
+
+  // A record of the earlier format (the canonical text alone) is read, posted by nobody.
+  GeometryDefinition old;
+  old.type = GeometryType::parametric_surface;
+  old.formulas = {{"x", "u"}, {"y", "v"}, {"z", "u-v^3"}};
+  old.domain = {{"u", {-2.0, 2.0}}, {"v", {-2.0, 2.0}}};
+  redis.command({"SET", "footpoint:v1:geometry:" + old.id(), old.canonical()});
+  info = send(*bob_on_b, "GET", "/v1/geometries/" + old.id());
+  REQUIRE(info.status == 200);
+  CHECK(info.body["posted_by"].is_null());
+
+  // Deleted on replica a (which never loaded it): the audit line names the deleter and the
+  // poster, read from the record in the deleting transaction.
+  const Answer third = send(*as(b, "bob-secret"), "POST", "/v1/geometries", surface("u+v^2"));
+  REQUIRE(third.status == 201);
+  const std::string third_id = third.body["geometry_id"];
+  auto carol_on_a = as(a, "carol-secret");
+  REQUIRE(send(*carol_on_a, "DELETE", "/v1/geometries/" + third_id).status == 204);
+  CHECK(eventually([&] {
+    const std::string log = a.log();
+    const auto at = log.find("\"msg\":\"geometry deleted\"");
+    if (at == std::string::npos) return false;
+    const std::string line = log.substr(at, log.find('\n', at) - at);
+    return line.find("\"key\":\"carol\"") != std::string::npos &&
+           line.find("\"geometry_id\":\"" + third_id + "\"") != std::string::npos &&
+           line.find("\"posted_by\":\"bob\"") != std::string::npos;
+  }));
+  CHECK(a.log().find("\"level\":\"info\"") != std::string::npos);
+  // Deleted where it is held: the poster from the cache entry.
+  REQUIRE(send(*carol_on_b, "DELETE", "/v1/geometries/" + id).status == 204);
+  CHECK(eventually([&] {
+    return b.log().find("\"key\":\"carol\",\"geometry_id\":\"" + id +
+                        "\",\"held\":true,\"posted_by\":\"alice\"") != std::string::npos;
+  }));
+  std::filesystem::remove_all(dir);
 }

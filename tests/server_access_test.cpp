@@ -6,11 +6,13 @@
 #include <doctest/doctest.h>
 #include <openssl/ssl.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -389,6 +391,118 @@ TEST_CASE("isolation: a geometry over --max-geometry-bytes gets 422 and evicts n
   r = c->Get(("/v1/geometries/" + kept).c_str());
   REQUIRE(r);
   CHECK(r->status == 200);
+}
+
+TEST_CASE("isolation: one key's flood evicts its own geometries beyond --cache-share, not another key's") {
+  TempDir dir;
+  const std::string keys = dir.file("keys");
+  write_file(keys, "flooder project,write " + sha256sum("floodsecret") + "\nquiet project,write " +
+                       sha256sum("quietsecret") + "\n");
+  ServerConfig config;
+  config.api_keys = keys;
+  config.cache_entries = 4;
+  config.cache_share = 0.5;
+  TestServer s(config);
+  auto c = s.client();
+  const auto post = [&](const std::string& secret, int k) {
+    auto r = c->Post("/v1/geometries", bearer(secret),
+                     R"J({"type":"parametric_curve","x":"t","y":"t^2+)J" + std::to_string(k) +
+                         R"J(","domain":{"t":[0,1]}})J",
+                     "application/json");
+    REQUIRE(r);
+    REQUIRE(r->status == 201);
+    return json::parse(r->body)["geometry_id"].get<std::string>();
+  };
+  const auto posted_by = [&](const std::string& id) {
+    auto r = c->Get(("/v1/geometries/" + id).c_str(), bearer("quietsecret"));
+    REQUIRE(r);
+    return r->status == 200 ? json::parse(r->body)["posted_by"] : json("gone");
+  };
+  std::vector<std::string> flood;
+  for (int k = 0; k < 4; ++k) flood.push_back(post("floodsecret", k));
+  for (const auto& id : flood) CHECK(posted_by(id) == "flooder");  // alone, it fills the cache
+  const std::string quiet = post("quietsecret", 100);
+  CHECK(posted_by(quiet) == "quiet");
+  for (int k = 4; k < 20; ++k) {
+    const std::string id = post("floodsecret", k);
+    CHECK(posted_by(id) == "flooder");
+    CHECK(posted_by(quiet) == "quiet");
+  }
+  const auto stats = s.server().cache().stats();
+  CHECK(stats.size == 4);
+  auto r = c->Get("/v1/geometries", bearer("quietsecret"));
+  REQUIRE(r);
+  int quiet_held = 0;
+  const json listed = json::parse(r->body);
+  for (const auto& g : listed["geometries"]) quiet_held += g["posted_by"] == "quiet" ? 1 : 0;
+  CHECK(quiet_held == 1);
+}
+
+TEST_CASE("isolation: maximum meshes reserve from --max-inflight-bytes; single points are still answered") {
+  ServerConfig config;
+  config.max_inflight_bytes = std::size_t{150} << 20;  // one maximum mesh (~108 MB), not two
+  config.max_mesh_resolution = 512;
+  TestServer s(config);
+  auto c = s.client();
+  const std::string sphere =
+      create(*c, R"J({"type":"parametric_surface","x":"cos(u)*cos(v)","y":"sin(u)*cos(v)","z":"sin(v)",)J"
+                 R"J("domain":{"u":[0,6.283185307179586],"v":[-1.5707963267948966,1.5707963267948966]}})J");
+  const std::string curve = create(*c, kCurve);
+  const std::string mesh_path = "/v1/geometries/" + sphere + "/mesh?resolution=512";
+  std::atomic<int> ready{0}, ok{0}, refused{0}, singles_ok{0}, singles{0};
+  std::atomic<bool> go{false}, meshes_done{false};
+  std::vector<std::string> refusals;
+  std::mutex refusals_mutex;
+  std::vector<std::thread> threads;
+  for (int i = 0; i < 8; ++i)
+    threads.emplace_back([&] {
+      auto mc = s.client();
+      ++ready;
+      while (!go.load()) std::this_thread::yield();
+      auto r = mc->Get(mesh_path.c_str());
+      REQUIRE(r);
+      if (r->status == 200) {
+        ++ok;
+      } else {
+        ++refused;
+        std::lock_guard lock(refusals_mutex);
+        refusals.push_back(std::to_string(r->status) + " " + r->get_header_value("Retry-After") + " " +
+                           r->body);
+      }
+    });
+  std::thread single([&] {
+    auto sc = s.client();
+    while (!go.load()) std::this_thread::yield();
+    do {
+      auto r = sc->Post(("/v1/geometries/" + curve + "/project").c_str(), R"({"point":[1.5,0.5]})",
+                        "application/json");
+      ++singles;
+      if (r && r->status == 200) ++singles_ok;
+    } while (!meshes_done.load());
+  });
+  while (ready.load() < 8) std::this_thread::yield();
+  go = true;
+  for (auto& t : threads) t.join();
+  meshes_done = true;
+  single.join();
+  MESSAGE("maximum meshes: " << ok.load() << " answered, " << refused.load() << " refused; single points "
+                             << singles_ok.load() << " of " << singles.load() << " answered");
+  CHECK(ok.load() >= 1);
+  CHECK(refused.load() >= 1);  // not all eight were admitted at once
+  CHECK(ok.load() + refused.load() == 8);
+  CHECK(singles.load() >= 1);
+  CHECK(singles_ok.load() == singles.load());
+  for (const auto& r : refusals) {
+    CHECK(r.rfind("503 1 ", 0) == 0);
+    CHECK(r.find("\"code\":\"overloaded\"") != std::string::npos);
+    CHECK(r.find("--max-inflight-bytes") != std::string::npos);
+  }
+  auto m = c->Get("/metrics");
+  REQUIRE(m);
+  CHECK(m->body.find("\nfootpoint_memory_refusals_total " + std::to_string(refused.load()) + "\n") !=
+        std::string::npos);
+  CHECK(m->body.find("\nfootpoint_memory_budget_bytes 157286400\n") != std::string::npos);
+  CHECK(m->body.find("\nfootpoint_memory_in_flight_bytes 0\n") != std::string::npos);
 }
 
 // A loopback port that was free a moment ago.

@@ -7,6 +7,10 @@
                 "batch cancelled" log line and the request's 499 client_closed_request line), the
                 worker pool is free again long before the batch would have ended, and the server
                 answers the next requests; a batch whose client waits is answered whole.
+  stream_gone   a client asks for a 100,000-point batch streamed as NDJSON and closes its
+                connection while a window is being solved, with no write due: the stream stops
+                within a grain (its connection is polled between grains), the window is not
+                finished, its points are counted as cancelled and a "stream cancelled" line logged.
   slow_clients  with --read-timeout-s 3: a connection sending its request line and headers one
                 byte a second, and one sending its body one byte a second, are closed about 3 s
                 after their first byte (footpoint_read_timeouts_total, a log line each), while a
@@ -147,6 +151,54 @@ def test_client_gone(binary):
         server.stop()
 
 
+def test_stream_gone(binary):
+    # One worker thread: a window of 8,192 points of the surface takes far longer than a grain.
+    server = Server(binary, "--threads", "1")
+    try:
+        gid = surface_id(server)
+        path = "/v1/geometries/%s/project" % gid
+        count = 100000
+        body = points_body(count, 13)
+        s = socket.create_connection((HOST, server.port))
+        s.sendall(("POST %s HTTP/1.1\r\nHost: %s\r\nContent-Type: application/json\r\n"
+                   "Accept: application/x-ndjson\r\nContent-Length: %d\r\n\r\n" % (path, HOST, len(body))).encode()
+                  + body)
+        # The answer has begun: read until the first window's lines (256 points) are in, then stop
+        # reading while the next windows are being solved.
+        received = b""
+        s.settimeout(60)
+        while received.count(b"\n") < 300:
+            chunk = s.recv(65536)
+            assert chunk, "the stream ended early"
+            received += chunk
+        time.sleep(0.5)
+        projected_at_close = server.metric("footpoint_points_projected_total")
+        closed_at = time.monotonic()
+        s.close()  # the client goes away while a window is being solved and no write is due
+        wait_for("the stream cancelled", lambda: server.metric("footpoint_batches_cancelled_total") == 1, 20)
+        wait_for("no points in flight", lambda: server.metric("footpoint_points_in_flight") == 0, 20)
+        freed_after = time.monotonic() - closed_at
+        dropped = server.metric("footpoint_points_cancelled_total")
+        projected = server.metric("footpoint_points_projected_total")
+        print("stream_gone: pool free %.2f s after the client closed; %d of %d points dropped, "
+              "%d projected (%d when it closed)" % (freed_after, dropped, count, projected, projected_at_close))
+        # The window being solved when the client left is dropped, not finished (one that ended
+        # between the metric's reading and the close may be counted), and nearly every point is
+        # dropped.
+        assert projected - projected_at_close <= 8192, (projected, projected_at_close)
+        assert count - projected - 8192 <= dropped <= count - projected, dropped
+        assert freed_after < 2.0, freed_after
+        records = server.records()
+        cancelled = [r for r in records if r.get("msg") == "stream cancelled: the client closed the connection"]
+        assert len(cancelled) == 1 and cancelled[0]["points"] == count and cancelled[0]["dropped"] == dropped, \
+            cancelled
+        # The server goes on answering, streams included.
+        status, body = server.request("POST", path, json.dumps({"points": [[1.0, 0.5, 0.2]]}))
+        assert status == 200, (status, body)
+    finally:
+        server.stop()
+
+
 def trickle(server, data, seconds_per_byte, limit):
     """Sends `data` a byte at a time; returns the seconds until the server closed the connection
     (None if it did not within `limit` seconds or before the bytes ran out)."""
@@ -240,7 +292,7 @@ def test_slow_clients(binary):
         server.stop()
 
 
-TESTS = {"client_gone": test_client_gone, "slow_clients": test_slow_clients}
+TESTS = {"client_gone": test_client_gone, "stream_gone": test_stream_gone, "slow_clients": test_slow_clients}
 
 
 def main():

@@ -12,7 +12,8 @@ namespace footpoint {
 GeometryCache::GeometryCache(GeometryCacheOptions options) : options_(options) {}
 
 GeometryCache::Lookup GeometryCache::get_or_compile(const GeometryDefinition& def,
-                                                    const formula::CompileLimits& limits) {
+                                                    const formula::CompileLimits& limits,
+                                                    std::string_view owner, bool refuse_over_share) {
   const std::string id = def.id();
   std::shared_ptr<Pending> pending;
   {
@@ -41,7 +42,9 @@ GeometryCache::Lookup GeometryCache::get_or_compile(const GeometryDefinition& de
   std::shared_ptr<const CompiledGeometry> geometry;
   std::exception_ptr error;
   try {
-    geometry = compile_geometry(def, limits);
+    formula::CompileLimits bounded = limits;
+    if (options_.max_geometry_bytes > 0) bounded.max_geometry_bytes = options_.max_geometry_bytes;
+    geometry = compile_geometry(def, bounded);
     if (const std::size_t bytes = geometry->memory_bytes();
         options_.max_geometry_bytes > 0 && bytes > options_.max_geometry_bytes) {
       geometry.reset();
@@ -59,40 +62,101 @@ GeometryCache::Lookup GeometryCache::get_or_compile(const GeometryDefinition& de
   {
     std::lock_guard lock(mutex_);
     pending_.erase(id);
+    if (!error) {
+      try {
+        insert_locked(id, geometry, owner, refuse_over_share);
+      } catch (...) {
+        error = std::current_exception();
+        geometry.reset();
+      }
+    }
     pending->finished = true;
     pending->geometry = geometry;
     pending->error = error;
-    if (error) {
+    if (error)
       ++stats_.failed_compilations;
-    } else {
+    else
       ++stats_.compilations;
-      insert_locked(id, geometry);
-    }
   }
   done_.notify_all();
   if (error) std::rethrow_exception(error);
   return {std::move(geometry), true, elapsed};
 }
 
-void GeometryCache::insert_locked(const std::string& id, std::shared_ptr<const CompiledGeometry> geometry) {
+void GeometryCache::insert_locked(const std::string& id, std::shared_ptr<const CompiledGeometry> geometry,
+                                  std::string_view owner, bool refuse_over_share) {
   const std::size_t bytes = geometry->memory_bytes();
   if (bytes > options_.max_bytes || options_.max_entries == 0) return;  // too large to keep
+  const std::string who(owner);
+  if (!make_room_locked(bytes, who)) {
+    if (!refuse_over_share) return;  // answered, not kept
+    throw GeometryError("cache_share_exceeded", "", -1,
+                        "the compiled geometry holds " + std::to_string(bytes) +
+                            " bytes; keeping it would evict other clients' geometries beyond this client's "
+                            "share of the cache (" +
+                            std::to_string(static_cast<std::size_t>(
+                                options_.share * static_cast<double>(options_.max_bytes))) +
+                            " bytes): retry later, delete some of your geometries, or narrow the domain");
+  }
   recency_.push_front(id);
-  entries_[id] = Entry{std::move(geometry), bytes, 0, recency_.begin()};
+  entries_[id] = Entry{std::move(geometry), bytes, 0, who, recency_.begin()};
   stats_.bytes += bytes;
-  evict_locked();
+  OwnerUse& use = owners_[who];
+  use.bytes += bytes;
+  ++use.entries;
+  stats_.size = entries_.size();
 }
 
-void GeometryCache::evict_locked() {
-  // The newest entry (front) fits on its own, so this stops before reaching it.
-  while (entries_.size() > options_.max_entries || stats_.bytes > options_.max_bytes) {
-    const std::string& oldest = recency_.back();
-    auto it = entries_.find(oldest);
-    stats_.bytes -= it->second.bytes;
-    entries_.erase(it);
-    recency_.pop_back();
+bool GeometryCache::make_room_locked(std::size_t bytes, const std::string& owner) {
+  const bool shared = options_.share < 1.0;
+  const auto share_bytes = static_cast<std::size_t>(options_.share * static_cast<double>(options_.max_bytes));
+  const auto share_entries = std::max<std::size_t>(
+      1, static_cast<std::size_t>(options_.share * static_cast<double>(options_.max_entries)));
+  const auto mine = [&] {
+    const auto it = owners_.find(owner);
+    return it == owners_.end() ? OwnerUse{} : it->second;
+  };
+  const auto over_share = [&](const OwnerUse& use) {
+    return shared && (use.bytes + bytes > share_bytes || use.entries + 1 > share_entries);
+  };
+  const auto full = [&] {
+    return stats_.bytes + bytes > options_.max_bytes || entries_.size() + 1 > options_.max_entries;
+  };
+  // With all of its own entries gone, would the owner still have to evict others' beyond its share?
+  {
+    const OwnerUse use = mine();
+    const std::size_t others_bytes = stats_.bytes - use.bytes, others_entries = entries_.size() - use.entries;
+    if (over_share(OwnerUse{}) &&
+        (others_bytes + bytes > options_.max_bytes || others_entries + 1 > options_.max_entries))
+      return false;
+  }
+  while (full()) {
+    const OwnerUse use = mine();
+    auto victim = recency_.end();
+    if (use.entries > 0 && (use.entries == entries_.size() || over_share(use))) {
+      // alone, or over its share: its own least recently used entry
+      for (auto r = recency_.rbegin(); r != recency_.rend(); ++r)
+        if (entries_.find(*r)->second.owner == owner) {
+          victim = std::prev(r.base());
+          break;
+        }
+    } else {
+      victim = std::prev(recency_.end());
+    }
+    drop_locked(entries_.find(*victim));
     ++stats_.evictions;
   }
+  return true;
+}
+
+void GeometryCache::drop_locked(std::unordered_map<std::string, Entry>::iterator it) {
+  stats_.bytes -= it->second.bytes;
+  if (auto use = owners_.find(it->second.owner); use != owners_.end()) {
+    use->second.bytes -= it->second.bytes;
+    if (--use->second.entries == 0) owners_.erase(use);
+  }
+  recency_.erase(it->second.recency);
+  entries_.erase(it);
   stats_.size = entries_.size();
 }
 
@@ -113,10 +177,7 @@ bool GeometryCache::erase(const std::string& id) {
   std::lock_guard lock(mutex_);
   auto it = entries_.find(id);
   if (it == entries_.end()) return false;
-  stats_.bytes -= it->second.bytes;
-  recency_.erase(it->second.recency);
-  entries_.erase(it);
-  stats_.size = entries_.size();
+  drop_locked(it);
   return true;
 }
 
@@ -129,7 +190,7 @@ std::optional<GeometryCache::EntryStats> GeometryCache::entry_stats(const std::s
   std::lock_guard lock(mutex_);
   auto it = entries_.find(id);
   if (it == entries_.end()) return std::nullopt;
-  return EntryStats{it->second.hits, it->second.bytes};
+  return EntryStats{it->second.hits, it->second.bytes, it->second.owner};
 }
 
 GeometryCache::Page GeometryCache::page(const std::string& after, std::size_t limit) const {
@@ -143,8 +204,8 @@ GeometryCache::Page GeometryCache::page(const std::string& after, std::size_t li
   Page page;
   page.more = later.size() > n;
   for (std::size_t i = 0; i < n; ++i)
-    page.held.push_back(
-        {later[i]->second.geometry, EntryStats{later[i]->second.hits, later[i]->second.bytes}});
+    page.held.push_back({later[i]->second.geometry,
+                         EntryStats{later[i]->second.hits, later[i]->second.bytes, later[i]->second.owner}});
   return page;
 }
 

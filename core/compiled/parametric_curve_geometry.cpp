@@ -66,12 +66,23 @@ const MethodTable<ParametricCurve>& table() {
 
 }  // namespace
 
+// Each sample commits the curve to its place in samples_ (params included) and to a quarter of a
+// cell and of a node of cells_ (a cell per four sample gaps, so n samples make at least (n-1)/4
+// cells: the count is over by at most a quarter cell, less than sizeof(*this) and index_, which
+// it leaves out).
+ParametricSampling ParametricCurve::sampling() {
+  ParametricSampling s;
+  s.bytes_per_sample =
+      ParametricSampling::kSampleBytes + (sizeof(ParametricCurveCell) + sizeof(ParametricCurveCellNode)) / 4;
+  return s;
+}
+
 ParametricCurve::ParametricCurve(GeometryDefinition def, CurveFormulas formulas, ParamInterval domain)
     : CompiledGeometry(std::move(def)),
       formulas_(std::move(formulas)),
       domain_(domain),
       closure_(detect_curve_closure(formulas_, domain_, declared_periodic(definition(), {"t"})[0])),
-      samples_(sample_parametric_curve(formulas_, domain_)),
+      samples_(sample_parametric_curve(formulas_, domain_, sampling())),
       index_(samples_),
       cells_(formulas_, domain_, samples_.params) {}
 

@@ -8,6 +8,7 @@
 #include "compiled/compiled_geometry.hpp"
 #include "parametric/geometry/curve_closure.hpp"
 #include "parametric/geometry/parametric_curve.hpp"
+#include "parametric/seeding/curve_parametric_samples.hpp"
 #include "parametric/seeding/parametric_curve_cells.hpp"
 #include "seeding/curve_sample_index.hpp"
 #include "seeding/curve_samples.hpp"
@@ -38,6 +39,8 @@ class ParametricCurve final : public CompiledGeometry {
 
  private:
   ProjectionResult project_with(std::size_t index, const double* p, const Options& options) const override;
+  // The sampling of samples_, with the bytes each sample commits the curve to.
+  static ParametricSampling sampling();
 
   CurveFormulas formulas_;
   ParamInterval domain_;

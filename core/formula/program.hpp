@@ -5,6 +5,7 @@
 // threads at once without locks (scratch space is thread-local).
 #pragma once
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -52,6 +53,9 @@ struct CompileLimits {
   std::size_t max_nodes = 20000;  // tape length over all formulas
   // When compiling the whole geometry (with what `auto` precomputes) must be done.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  // The most bytes the geometry's search structure may reach while it is built
+  // (geometry/compile_budget.hpp); 0: no bound.
+  std::size_t max_geometry_bytes = 0;
 };
 
 // A truth value for each of some conditions of a tape's selects (c ? a : b), named by the

@@ -40,6 +40,8 @@ struct CurveSamples {
     prev[static_cast<std::size_t>(b)] = a;
   }
   std::size_t size() const { return points.size(); }
+  // What add() stores per sample (a point, two links, a kind), params aside.
+  static constexpr std::size_t kBytesPerSample = sizeof(Vec3) + 2 * sizeof(std::int32_t) + sizeof(SampleKind);
   std::size_t memory_bytes() const {
     return points.capacity() * sizeof(Vec3) + (prev.capacity() + next.capacity()) * sizeof(std::int32_t) +
            kind.capacity() + params.capacity() * sizeof(double);

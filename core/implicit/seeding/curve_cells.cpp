@@ -77,6 +77,7 @@ void subdivide(const ImplicitEquations& equations, const CurveEnclosure& enclosu
       out.crossings.insert(out.crossings.end(), proof.crossings.begin(), proof.crossings.end());
       out.capsules.insert(out.capsules.end(), proof.capsules.begin(), proof.capsules.end());
       out.capsule_begin.push_back(static_cast<std::int32_t>(out.capsules.size()));
+      CompileBudget::grow(sizeof(cell) + sizeof(std::int32_t));
       out.cells.push_back(cell);
       continue;
     }

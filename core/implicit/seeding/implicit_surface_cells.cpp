@@ -179,6 +179,7 @@ ImplicitSurfaceCells subdivide_surface(const ImplicitSurfaceEquation& equation, 
         count();
         const Box3 child = octant_of(parent, octant);
         if (enclosure(equation, child).excludes_zero()) continue;
+        CompileBudget::grow(sizeof(ImplicitSurfaceCell));
         out.cells.push_back({child});
       }
       out.cells[i].first_child = first;
@@ -194,6 +195,7 @@ ImplicitSurfaceCells subdivide_surface(const ImplicitSurfaceEquation& equation, 
     Vec3 x = cell.box.center();
     if (land_on_surface(equation, x) && cell.box.contains(x, 0.5 * cell.box.max_edge()) && box.contains(x)) {
       cell.sample = static_cast<std::int32_t>(out.samples.size());
+      CompileBudget::grow(sizeof(Vec3));
       out.samples.push_back(x);
     }
     const ImplicitSurfaceIntervalJet j = equation.interval_gradient(cell.box);

@@ -56,7 +56,11 @@ CurveSamples sample_parametric_curve(const CurveFormulas& formulas, const ParamI
   // bisected down to neighbouring doubles, so that the part's end is a sample. An interval with
   // no finite end is left (a finite part inside it, between two coarse samples, is not looked for).
   std::vector<Emitted> out;
-  if (coarse.front().finite()) out.push_back({coarse.front(), false});
+  auto emit = [&](const Node& node, bool linked) {
+    CompileBudget::grow(settings.bytes_per_sample);
+    out.push_back({node, linked});
+  };
+  if (coarse.front().finite()) emit(coarse.front(), false);
   std::vector<std::pair<Node, Node>> stack;
   for (int i = 0; i < n0; ++i) {
     stack.push_back({coarse[static_cast<std::size_t>(i)], coarse[static_cast<std::size_t>(i) + 1]});
@@ -69,7 +73,7 @@ CurveSamples sample_parametric_curve(const CurveFormulas& formulas, const ParamI
       if (!a.finite() || !b.finite()) {
         if (!a.finite() && !b.finite()) continue;
         if (!room) {
-          if (b.finite()) out.push_back({b, false});  // the part starts at b
+          if (b.finite()) emit(b, false);  // the part starts at b
           continue;
         }
         const Node m{tm, formulas.jet(tm)};
@@ -87,7 +91,7 @@ CurveSamples sample_parametric_curve(const CurveFormulas& formulas, const ParamI
                         turn(m.j.d1, b.j.d1) <= settings.max_turn && norm(m.j.c - a.j.c) <= h_max &&
                         norm(b.j.c - m.j.c) <= h_max;
       if (((fine || b.t - a.t <= min_dt) && m.finite()) || !room) {
-        out.push_back({b, true});
+        emit(b, true);
         continue;
       }
       stack.push_back({m, b});

@@ -21,6 +21,11 @@ struct ParametricSampling {
   // Intervals shorter than this fraction of the domain are not split (cusps, c'(t) = 0).
   double min_interval_fraction = 1e-9;
   std::size_t max_samples = 1000000;
+  // The bytes each sample commits the compiled geometry to (CompileBudget::grow, counted as the
+  // sample is taken): at least the sample's own in CurveSamples (a point, two links, a kind, a
+  // parameter); a caller building more per sample says how much more.
+  std::size_t bytes_per_sample = kSampleBytes;
+  static constexpr std::size_t kSampleBytes = CurveSamples::kBytesPerSample + sizeof(double);
 };
 
 CurveSamples sample_parametric_curve(const CurveFormulas& formulas, const ParamInterval& domain,

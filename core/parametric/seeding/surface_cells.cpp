@@ -258,6 +258,7 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     leaves_in_space.push_back(leaf);
     cells_.push_back(cell);
     CompileBudget::check();
+    CompileBudget::grow(sizeof(SurfaceCell) + sizeof(SurfaceCellBounds));
     bounds_.push_back(cell_bounds(formulas, r, e.jet));
   }
   // sub-boxes on demand (by default up to four pairs per cell, at least 4096 pairs, ~4 MB; about
