@@ -48,14 +48,15 @@ struct GeometryDefinition {
   // Parameter domain (surfaces: u, v; curves: t) or box (implicit: x, y[, z]), in that order.
   std::vector<std::pair<std::string, std::array<double, 2>>> domain;
   std::map<std::string, double> constants;
-  // bspline_curve and bspline_surface: the net (no formulas, domain or constants: the domain is
-  // [knots[p], knots[n]] of each parameter).
-  BSplineNet bspline;
   // Parameters declared periodic (parametric/geometry/surface_closure.hpp, curve_closure.hpp): "u", "v" of a
   // surface, "t" of a curve; none for implicit curves. Any order; repeats count once.
   std::vector<std::string> periodic;
   // `periodic` sorted, each name once: as the canonical form and the JSON form list them.
   std::vector<std::string> periodic_parameters() const;
+  // bspline_curve and bspline_surface: the net (no formulas, domain or constants: the domain is
+  // [knots[p], knots[n]] of each parameter). Last, with a default, so that the definitions of the
+  // other types are written as before.
+  BSplineNet bspline{};
 
   // Deterministic text form: same definition -> same text (formula whitespace removed, numbers
   // in shortest round-trip form, periodic names sorted, once each and only when there are any, so
