@@ -147,7 +147,9 @@ async function main() {
   }
 
   // 503: a server answering one request at a time, busy with a long stream
-  server = await startServer('--threads', '1', '--max-inflight', '1', '--connection-threads', '2');
+  // Connection threads to spare: fetch keeps the /metrics poll's connection open (a thread), and the
+  // second request must reach the admission check, not wait in the accept queue.
+  server = await startServer('--threads', '1', '--max-inflight', '1', '--connection-threads', '4');
   try {
     const id = await createGeometry(SPHERE, {server: server.url});
     const long = pointsAndExpected(400000).points;
