@@ -80,7 +80,10 @@ def main():
     sys.path.insert(0, args.client)
     import footpoint
 
-    with LiveServer(args.server, "--threads", "2", "--max-body-bytes", "64000000") as server:
+    # The 10^6-point requests below may take minutes on an instrumented build (scripts/sanitize.sh):
+    # no request deadline or read deadline cuts them there.
+    with LiveServer(args.server, "--threads", "2", "--max-body-bytes", "64000000", "--deadline-ms", "1200000",
+                    "--read-timeout-s", "0") as server:
         base = server.url
         points, expected = points_and_expected(250)
         client = footpoint.Client(base)
