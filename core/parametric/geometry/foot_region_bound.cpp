@@ -29,6 +29,88 @@ double least_eigenvalue_lower(double m00, double r00, double m01, double r01, do
   return lambda - kBoundRounding * (std::abs(half_sum) + root);
 }
 
+// The bound direction by direction (N = 2). Along a ray h = r ĥ from z, with w = Lᵀh, ρ = |w|:
+//   |J h + R| >= (σ - ψ) ρ,  ψ >= ½ Σ_ij |w_i| |w_j| m_ij / |w| at the ray's end on the box (m_ij
+//   bounds of |T_ij| over the box: |R| <= ½ Σ |w_i||w_j| m_ij, and the ratio grows along the ray);
+//   R·(s(z) - p) >= ½ hᵀ N h = ½ Λ ρ²,  Λ <= hᵀ N h / |w|² (N_ab ⊇ ∂_a∂_b s·(s(z) - p) over the box);
+// so f(t) - f(z) >= ½ ((σ - ψ)² + Λ) ρ² - γρ on the ray, and c = the least (σ - ψ)² + Λ over
+// the rays replaces a² + λ, which pairs the largest |T| with the farthest corner and the least
+// curvature with every direction. The ray ends cover the box's sides; a side not through z,
+// h_a = c with h_b = x in [l, u], is cut into kSideSteps pieces; w is affine in x, so on a piece
+// |w_i| is at most its larger end value, and |w|² = (L00 h0 + L10 h1)² + (L11 h1)² (a sum of
+// squares) lies between its least value and its larger end value. A side through z adds no ray of
+// its own: its points are multiples of its corners, which lie on the other sides. -inf where some
+// ray has σ <= ψ. With `lambda` (a lower bound of Λ over all rays), also (σ - max ψ)² + λ: the
+// larger of the two.
+double least_curvature_by_direction(const double (&L)[2][2], const double (&m)[2][2],
+                                    const double (&n_lo)[2][2], const double (&n_hi)[2][2], double sigma,
+                                    double lambda, const Params<2>& lo, const Params<2>& hi,
+                                    const Params<2>& z) {
+  constexpr int kSideSteps = 8;
+  double least = std::numeric_limits<double>::infinity(), psi_max = 0.0;
+  for (int a = 0; a < 2; ++a) {
+    const int b = 1 - a;
+    const std::size_t ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+    for (const double side : {lo[ua], hi[ua]}) {
+      const double c = side - z[ua];
+      if (c == 0.0) continue;
+      auto w_at = [&](double x, double(&w)[2]) {
+        const double h0 = a == 0 ? c : x, h1 = a == 0 ? x : c;
+        w[0] = L[0][0] * h0 + L[1][0] * h1;
+        w[1] = L[1][1] * h1;
+      };
+      // |w|² along the side is least at x = -L00 L10 c / (L10² + L11²) (a = 0), -L10 c / L00 (a = 1)
+      const double g11 = L[1][0] * L[1][0] + L[1][1] * L[1][1];
+      const double vertex = a == 0 ? -L[0][0] * L[1][0] * c / g11 : -L[1][0] * c / L[0][0];
+      const double least_at_vertex =
+          a == 0 ? (L[0][0] * L[1][1] * c) * (L[0][0] * L[1][1] * c) / g11 : (L[1][1] * c) * (L[1][1] * c);
+      const double l = lo[ub] - z[ub], u = hi[ub] - z[ub];
+      double w_prev[2];
+      w_at(l, w_prev);
+      for (int k = 0; k < kSideSteps; ++k) {
+        const double x0 = l + (u - l) * k / kSideSteps;
+        const double x1 = k + 1 == kSideSteps ? u : l + (u - l) * (k + 1) / kSideSteps;
+        double w_next[2];
+        w_at(x1, w_next);
+        const double q0 = w_prev[0] * w_prev[0] + w_prev[1] * w_prev[1];
+        const double q1 = w_next[0] * w_next[0] + w_next[1] * w_next[1];
+        double q_lo = std::min(q0, q1);
+        if (vertex > x0 && vertex < x1) q_lo = std::min(q_lo, least_at_vertex);
+        q_lo *= 1.0 - 1e-9;
+        const double q_hi = std::max(q0, q1) * (1.0 + 1e-9);
+        if (!(q_lo > 0.0)) return kNoBound;
+        // ψ on the piece
+        const double W0 = std::max(std::abs(w_prev[0]), std::abs(w_next[0])) * kUp;
+        const double W1 = std::max(std::abs(w_prev[1]), std::abs(w_next[1])) * kUp;
+        const double num = 0.5 * (m[0][0] * W0 * W0 + 2.0 * m[0][1] * W0 * W1 + m[1][1] * W1 * W1) * kUp;
+        const double psi = std::sqrt(num * num / q_lo) * kUp * kUp;
+        if (!(psi < sigma)) return kNoBound;
+        psi_max = std::max(psi_max, psi);
+        // hᵀNh on the piece: c² N_aa + 2 c x N_ab + x² N_bb, each term at its least
+        const double x_abs_lo = x0 <= 0.0 && x1 >= 0.0 ? 0.0 : std::min(std::abs(x0), std::abs(x1));
+        const double x_abs_hi = std::max(std::abs(x0), std::abs(x1));
+        auto least_product = [](double p_lo, double p_hi, double v_lo, double v_hi) {
+          return std::min({p_lo * v_lo, p_lo * v_hi, p_hi * v_lo, p_hi * v_hi});
+        };
+        const double t_aa = c * c * (n_lo[a][a] >= 0.0 ? n_lo[a][a] : n_lo[a][a]);
+        const double t_ab = least_product(2.0 * c * x0, 2.0 * c * x1, n_lo[a][b], n_hi[a][b]);
+        const double t_bb =
+            n_lo[b][b] >= 0.0 ? x_abs_lo * x_abs_lo * n_lo[b][b] : x_abs_hi * x_abs_hi * n_lo[b][b];
+        const double quad = t_aa + t_ab + t_bb;
+        const double quad_lo = quad - kBoundRounding * (std::abs(t_aa) + std::abs(t_ab) + std::abs(t_bb));
+        const double curvature = quad_lo >= 0.0 ? quad_lo / q_hi : quad_lo / q_lo;
+        const double margin = sigma - psi;
+        least = std::min(least, margin * margin * (1.0 - 4.0 * kBoundRounding) +
+                                    curvature * (curvature < 0.0 ? kUp : 1.0 - kBoundRounding));
+        w_prev[0] = w_next[0];
+        w_prev[1] = w_next[1];
+      }
+    }
+  }
+  const double margin = sigma - psi_max;
+  return std::max(least, margin * margin * (1.0 - 4.0 * kBoundRounding) + lambda);
+}
+
 }  // namespace
 
 template <int N>
@@ -157,9 +239,31 @@ double foot_region_lower_bound(const PointEnclosure<N>& at_z, const GradientEncl
     rho_max = std::max(rho_max, std::sqrt(w2) * (1.0 + 1e-9));
   }
 
+  // c: f(t) - f(z) >= ½ c ρ² - γρ on the box, from a = σ - ½Mρmax (|J h + R| >= a ρ) and λ, or
+  // where they do not give c > 0, ray by ray (least_curvature_by_direction).
   const double a = sigma - 0.5 * M * rho_max * kUp;
-  if (!(a > 0.0)) return kNoBound;
-  const double c = a * a * (1.0 - 4.0 * kBoundRounding) + lambda;
+  double c = a > 0.0 ? a * a * (1.0 - 4.0 * kBoundRounding) + lambda : kNoBound;
+  if constexpr (N == 2) {
+    if (!(c > 0.0)) {
+      // N_ab ⊇ ∂_a∂_b s·(s(z) - p) over the box, in the parameters
+      double n_lo[2][2], n_hi[2][2];
+      for (int i = 0; i < 2; ++i)
+        for (int j = i; j < 2; ++j) {
+          const std::size_t q = static_cast<std::size_t>(pair_index<2>(i, j));
+          double mid = 0.0, rad = 0.0, magnitude = 0.0;
+          for (int k = 0; k < 3; ++k) {
+            const double dm = d2.d2_mid[q][k], dr = d2.d2_rad[q][k];
+            mid += dm * e[k];
+            magnitude += std::abs(dm * e[k]);
+            rad += dr * std::abs(e[k]) + (std::abs(dm) + dr) * at_z.s_rad[k];
+          }
+          rad = (rad + kBoundRounding * magnitude) * kUp;
+          n_lo[i][j] = n_lo[j][i] = mid - rad;
+          n_hi[i][j] = n_hi[j][i] = mid + rad;
+        }
+      c = least_curvature_by_direction(L, m, n_lo, n_hi, sigma, lambda, lo, hi, z);
+    }
+  }
   if (!(c > 0.0)) return kNoBound;
   const double loss = gamma * gamma / (2.0 * c) * kUp * kUp;
   const double bound = f_z.f_lo - loss;

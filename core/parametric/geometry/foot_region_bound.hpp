@@ -22,6 +22,13 @@
 //                                   edge of the domain and H lies on the domain's side).
 // With ρ <= ρmax on H and a = σ - ½ M ρmax > 0: |J h + R| >= σρ - ½Mρ² >= a ρ, hence
 //   f(t) - f(z) >= ½ (a² + λ) ρ² - γ ρ >= -γ² / (2 (a² + λ))   where c = a² + λ > 0.
+// On a surface (N = 2) whose J is far from isometric, M and λ are each the worst over all
+// directions: M pairs the soft direction's bending (T scaled by 1/σmin²) with the stiff
+// direction's reach ρmax. Where a² + λ <= 0 the bound is taken ray by ray from z instead: on the
+// ray through a point of the box's boundary with w = Lᵀh there, |R| <= ψρ with
+// ψ = ½ Σ |w_i||w_j| max|T_ij| / |w| (the ratio grows along the ray), and R·(s(z) - p) >= ½Λρ²
+// with Λ = hᵀNh/|w|², N ⊇ ∂²s·(s(z) - p) over H in the parameters; c = min over the rays of
+// (σ - ψ)² + Λ (the boundary cut into pieces, each bounded from its ends).
 // The bound is the same for every box inside H: f(z) less γ²/(2c), with γ at the rounding level
 // of the solved foot point. It needs no convexity of f beyond what the surface's own geometry
 // gives: for a point near the surface (|s(z) - p| small against the radius of curvature, so λ is
