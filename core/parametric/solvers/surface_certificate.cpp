@@ -323,6 +323,17 @@ class Certifier {
     return true;
   }
 
+  // Adds t to the known minimisers unless one lies within 2^-40 of the domain's widths of it (a
+  // solve that found a known minimiser again: its bounds would repeat that one's). False then.
+  bool learn(const Params2& t) {
+    const double tol_u = 0x1p-40 * (domain_.umax - domain_.umin),
+                 tol_v = 0x1p-40 * (domain_.vmax - domain_.vmin);
+    for (const Known& k : known_)
+      if (std::abs(k.t[0] - t[0]) <= tol_u && std::abs(k.t[1] - t[1]) <= tol_v) return false;
+    known_.emplace_back(t);
+    return true;
+  }
+
   // Where a local solve starts in the box: the minimiser over it of the Newton model at its
   // centre (a cell's stored jet), or its centre.
   Params2 start_in(const OpenBox& b) const {
@@ -347,7 +358,7 @@ class Certifier {
     const Params2 t = start_in(b);
     const LocalSolution s = solve_(t[0], t[1]);
     if (!std::isfinite(s.distance)) return;
-    known_.emplace_back(Params2{s.u, s.v});
+    if (!learn(Params2{s.u, s.v})) return;  // a minimiser known already
     if (!(s.distance < best_.distance)) return;
     if (!may_improve_) {
       if (s.distance < best_.distance - ledger_.gap()) ledger_.refute();
