@@ -123,7 +123,9 @@ SwaggerStyles swagger_styles_without_data_urls(const std::string& css) {
       at = i + 2;
     } else if (css.compare(next, raster.size(), raster) == 0) {
       out.css += "none";
-      at = css.find(')', next) + 1;
+      const std::size_t end = css.find(')', next);
+      REQUIRE(end != std::string::npos);
+      at = end + 1;
     } else {
       out.css += "url(";
       at = next + 4;
