@@ -31,9 +31,11 @@ test_packages=(
   python3-matplotlib                         # examples/inspection/: the deviation colour map and histogram
   nodejs                                     # tests/client_js_test.mjs: the JavaScript client (ui/footpoint-client.js)
 )
-# tests/openapi_lint.sh: Redocly's linter (pinned by tests/tools/redocly/package-lock.json) needs
-# npm; Debian's, unless an npm is already there (e.g. with another Node.js distribution).
-command -v npm >/dev/null || test_packages+=(npm)
+# npm (with Node.js): the build installs Swagger UI for /docs with it (npm ci against
+# ui/vendor/package-lock.json; server/CMakeLists.txt), and tests/openapi_lint.sh Redocly's linter
+# (tests/tools/redocly/package-lock.json). Debian's, unless an npm is already there (e.g. with
+# another Node.js distribution).
+command -v npm >/dev/null || packages+=(npm)
 extra=()
 for arg in "$@"; do
   if [ "$arg" = "--test" ]; then packages+=("${test_packages[@]}"); else extra+=("$arg"); fi

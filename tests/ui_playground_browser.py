@@ -15,8 +15,9 @@ protocol (python3-websocket), against the built footpoint-server on a loopback p
     and max shown and the legend's range equal the closed-form signed distances', the histogram's
     bins add up, the canvas shows the cloud, the exported CSV (downloaded by the browser) holds
     every point with its closed-form signed distance; bad files show their line;
-  - the mesh endpoint from the page (JSON, OBJ) and /docs, whose reading of openapi.yaml equals
-    PyYAML's and which lists every operation;
+  - the mesh endpoint from the page (JSON, OBJ);
+  - /docs (Swagger UI) shows every operation of openapi.yaml (as PyYAML reads it) with its summary,
+    under the same policy, and its "Try it out" on GET /v1/methods shows the API's answer;
   - page weight and time to first render are printed.
 
 Screenshots go to --out (the build folder). Exit 77 (ctest: skipped) when chromium or
@@ -602,19 +603,45 @@ def run(args):
         show_preset("o.textContent === 'Torus'", "the torus preset", "playground_torus_preset.png")
         page.screenshot("body", os.path.join(args.out, "playground.png"))
 
-        # ---- /docs ---------------------------------------------------------------------------
+        # ---- /docs: Swagger UI on openapi.yaml, under the same policy, "Try it out" ----------------
+        docs_from = len(page.events)
         page.call("Page.navigate", url=origin + "/docs")
         page.wait_for("document.body.dataset.state === 'ready' || document.body.dataset.state === 'error'", "the API reference")
         check(page.evaluate("document.body.dataset.state") == "ready", "/docs rendered openapi.yaml")
         with open(os.path.join(args.source, "openapi.yaml")) as f:
             spec = yaml.safe_load(f)
-        read = page.evaluate("JSON.stringify(window.footpointDocs.spec)")
-        check(json.loads(read) == spec, "the page's reading of openapi.yaml equals PyYAML's")
-        operations = sorted(f"{m.upper()} {p}" for p, item in spec["paths"].items() for m in item if m in ("get", "post", "delete"))
-        listed = sorted(page.evaluate("[...document.querySelectorAll('details.operation')].map(d => d.dataset.method + ' ' + d.dataset.path)"))
-        check(listed == operations, f"/docs lists every operation ({len(operations)})")
-        page.evaluate("document.querySelectorAll('details.operation')[0].open = true")
-        page.screenshot("body", os.path.join(args.out, "docs.png"))
+        shown = page.evaluate("[...document.querySelectorAll('.opblock')].map(o => [o.querySelector('.opblock-summary-method').textContent,"
+                              " o.querySelector('.opblock-summary-path').dataset.path,"
+                              " o.querySelector('.opblock-summary-description').textContent])")
+        operations = sorted([m.upper(), p, op["summary"]] for p, item in spec["paths"].items()
+                            for m, op in item.items() if m in ("get", "post", "delete"))
+        check(sorted(shown) == operations, f"/docs shows every operation of openapi.yaml with its summary ({len(operations)})")
+        check(page.evaluate("document.querySelector('.info .title').textContent").startswith(spec["info"]["title"]),
+              "/docs shows openapi.yaml's title")
+        # "Try it out" on GET /v1/methods: the request goes to this server, the answer is shown.
+        page.evaluate("document.querySelector('#operations-projection-listMethods .opblock-summary-control').click()")
+        page.wait_for("!!document.querySelector('#operations-projection-listMethods .try-out__btn')", "the Try it out button")
+        page.press("#operations-projection-listMethods .try-out__btn")
+        page.wait_for("!!document.querySelector('#operations-projection-listMethods .execute')", "the Execute button")
+        page.press("#operations-projection-listMethods .execute")
+        answer = "#operations-projection-listMethods .live-responses-table"
+        body = page.wait_for(f"document.querySelector('{answer} .microlight')?.textContent", "the answer of Try it out")
+        status = page.evaluate(f"document.querySelector('{answer} tr.response .response-col_status').textContent.trim()")
+        want = http(port, "GET", "/v1/methods")[2]
+        check(status == "200" and body is not None and json.loads(body) == json.loads(want),
+              f"Try it out on GET /v1/methods shows the API's answer (status {status}, {len(body or '')} characters)")
+        docs_events = page.events[docs_from:]
+        docs_requests = [e["params"]["request"]["url"] for e in docs_events if e["method"] == "Network.requestWillBeSent"]
+        check(docs_requests and all(u.startswith(origin + "/") for u in docs_requests),
+              f"every request of /docs goes to the page's own origin ({len(docs_requests)} requests)")
+        docs_response = next(e["params"]["response"] for e in docs_events
+                             if e["method"] == "Network.responseReceived" and e["params"]["response"]["url"] == origin + "/docs")
+        check({k.lower(): v for k, v in docs_response["headers"].items()}.get("content-security-policy") == "default-src 'self'",
+              "GET /docs sends Content-Security-Policy: default-src 'self'")
+        docs_weight = sum(e["params"]["encodedDataLength"] for e in docs_events if e["method"] == "Network.loadingFinished")
+        print(f"figure: /docs weight {docs_weight / 1024:.0f} KiB (Swagger UI, openapi.yaml, one Try it out)")
+        page.evaluate("document.querySelector('#operations-projection-listMethods').scrollIntoView()")
+        page.screenshot("body", os.path.join(args.out, "docs.png"))  # the operation and its answer
 
         # ---- the console ---------------------------------------------------------------------
         # The one failed request the test asked for: the 422 of the bad formula.
