@@ -55,6 +55,14 @@ constexpr Method<ImplicitSurface> kMethods[] = {
       kLocalOptions | option_max_distance,
       kLocalStatuses},
      local<surface_implicit::first_order_method>},
+    {{"hu_wallner",
+      "Hu and Wallner's second-order iteration: the foot of p on the curvature circle of the normal "
+      "section toward p, moved onto the surface, until the surface points stop moving",
+      "Hu and Wallner, A second order algorithm for orthogonal projection onto curves and surfaces",
+      {kCitationHuWallner, kCitationGsa},
+      kLocalOptions | option_max_distance,
+      kLocalStatuses},
+     local<surface_implicit::hu_wallner_method>},
 };
 
 const MethodTable<ImplicitSurface>& table() {
