@@ -350,6 +350,68 @@ TEST_CASE("implicit surface hu_wallner: from p on an ellipsoid and a torus") {
   CHECK(f[1].iterations.back() <= 3);
 }
 
+TEST_CASE("implicit surface: a product of factors is the union of the factor surfaces") {
+  // Closed forms: the distance to the unit sphere is ||p| - 1|, to the plane z = c it is |z - c|
+  // (its foot (x, y, c) lies in the box for every p drawn), to the union the least of the two.
+  struct Union {
+    const char* equation;
+    double plane;
+  };
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-2.5, 2.5);
+  for (const Union& c : {Union{"(x^2+y^2+z^2-1)*(z-2)", 2.0}, Union{"(x^2+y^2+z^2-1)*(2*z-1)", 0.5},
+                         Union{"(x^2+y^2+z^2-1)^2*(z-2)^3", 2.0}}) {
+    CAPTURE(c.equation);
+    const auto g = implicit_surface_of(c.equation, -3, 3, -3, 3);
+    const auto& s = dynamic_cast<const ImplicitSurface&>(*g);
+    CHECK(s.pieces().size() == 2);
+    for (int i = 0; i < 40; ++i) {
+      const double p[3] = {u(rng), u(rng), u(rng)};
+      const double r = std::hypot(p[0], p[1], p[2]);
+      const double to_sphere = std::fabs(r - 1.0), to_plane = std::fabs(p[2] - c.plane);
+      const auto a = g->project(p, "auto", {});
+      REQUIRE(a);
+      CHECK(a->summary.status == Status::converged);
+      CHECK(std::fabs(a->distance - std::min(to_sphere, to_plane)) <= 1e-13);
+      CHECK(a->summary.certificate.certified);
+      CHECK(a->summary.certificate.lower_bound <= std::min(to_sphere, to_plane));
+      const std::array<double, 3> foot = to_sphere < to_plane
+                                             ? std::array<double, 3>{p[0] / r, p[1] / r, p[2] / r}
+                                             : std::array<double, 3>{p[0], p[1], c.plane};
+      for (int k = 0; k < 3; ++k) CHECK(std::fabs(a->foot[static_cast<std::size_t>(k)] - foot[k]) <= 1e-12);
+      // A local method's certificate bounds both factor surfaces.
+      Options certify;
+      certify.certify = true;
+      const auto n = g->project(p, "lagrange_newton", certify);
+      if (n->summary.status == Status::converged && n->summary.certificate.certified)
+        CHECK(n->distance <= std::min(to_sphere, to_plane) * (1.0 + 1e-9) + 1e-15);
+    }
+  }
+  // Equidistant from the sphere and the plane z = 2: two feet, tied.
+  const auto g = implicit_surface_of("(x^2+y^2+z^2-1)*(z-2)", -3, 3, -3, 3);
+  const double mid[3] = {0.0, 0.0, 1.5};
+  const auto t = g->project(mid, "auto", {});
+  CHECK(std::fabs(t->distance - 0.5) <= 1e-15);
+  CHECK(t->summary.multiplicity.kind == Multiplicity::tied);
+  CHECK(t->summary.multiplicity.count == 2);
+  Options all;
+  all.all_minima = true;
+  const auto m = g->project(mid, "auto", all);
+  CHECK(m->minima.size() >= 2);
+  // The plane z = 1 touches the sphere at (0, 0, 1): the foot of (0, 0, 3) on both, where the
+  // product's gradient vanishes.
+  const auto touching = implicit_surface_of("(x^2+y^2+z^2-1)*(z-1)", -3, 3, -3, 3);
+  const double above[3] = {0.0, 0.0, 3.0};
+  const auto a = touching->project(above, "auto", {});
+  CHECK(std::fabs(a->distance - 2.0) <= 1e-15);
+  CHECK(a->summary.location == Location::singular_point);
+  CHECK(a->summary.multiplicity.kind == Multiplicity::unique);
+  CHECK(a->summary.certificate.certified);
+  // A factor with no point in the box is dropped: the plane z = 5 lies outside it.
+  const auto outside = implicit_surface_of("(x^2+y^2+z^2-1)*(z-5)", -3, 3, -3, 3);
+  CHECK(dynamic_cast<const ImplicitSurface&>(*outside).pieces().size() == 1);
+}
+
 TEST_CASE("implicit surface errors: empty_surface, geometry_too_complex, wrong shape") {
   auto code_of = [](const std::string& equation, double lo, double hi) {
     try {
