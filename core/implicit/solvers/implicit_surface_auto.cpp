@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
 #include <vector>
 
 #include "implicit/solvers/implicit_surface_certificate.hpp"
@@ -109,37 +108,11 @@ class Search {
       }
   }
 
-  // The sample nearest to p: best first over the tree, by the boxes' distance bounds.
+  // The sample nearest to p (the k-d tree over the samples).
   int nearest_sample() const {
-    struct Item {
-      double bound;
-      std::int32_t cell;
-      bool operator<(const Item& o) const { return bound > o.bound; }
-    };
-    std::priority_queue<Item> queue;
-    queue.push({0.0, 0});
-    double best = curve::kInfinity;
-    int found = -1;
-    while (!queue.empty()) {
-      const Item item = queue.top();
-      queue.pop();
-      if (item.bound >= best) break;
-      const ImplicitSurfaceCell& cell = cells_.cells[static_cast<std::size_t>(item.cell)];
-      if (cell.first_child < 0) {
-        if (cell.sample < 0) continue;
-        const double d = norm2(p_ - cells_.samples[static_cast<std::size_t>(cell.sample)]);
-        if (d < best) {
-          best = d;
-          found = cell.sample;
-        }
-        continue;
-      }
-      for (std::int32_t i = 0; i < cell.children; ++i) {
-        const std::int32_t child = cell.first_child + i;
-        queue.push({distance2_lower_bound(p_, cells_.cells[static_cast<std::size_t>(child)].box), child});
-      }
-    }
-    return found;
+    if (!cells_.sample_index) return -1;
+    double d2 = 0.0;
+    return cells_.sample_index->nearest(p_, d2);
   }
 
   // Whether no other sample within `radius` of sample i is nearer to p (a discrete local minimum of
