@@ -367,8 +367,15 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     }
     ++c.boxes;
     if (lagrangian_settled(piece.box, bound)) continue;
+    // Halved along the edges at least half its longest (a flat leaf of a flat box is not made
+    // flatter).
+    const Box3& b = piece.box;
+    const double longest = b.max_edge();
+    int axes = 0;
+    for (int k = 0; k < 3; ++k)
+      if (b.hi[k] - b.lo[k] >= 0.5 * longest) axes |= 1 << k;
     for (int octant = 0; octant < 8; ++octant)
-      pieces.push_back({octant_of(piece.box, octant), piece.depth + 1});
+      if ((octant & ~axes) == 0) pieces.push_back({octant_of(b, octant), piece.depth + 1});
   }
   c.lower_bound = std::min(lower, distance);
   c.certified = Certificate::meets_gap(distance, c.lower_bound, c.absolute_gap);
