@@ -95,6 +95,23 @@ TEST_CASE("implicit surface auto: the references' distances, feet and locations"
   CHECK(certified == points);
 }
 
+TEST_CASE("implicit surface auto: a nearer minimum close to the answer on Goursat's surface") {
+  // Two local minima of the distance 0.46 apart, at 0.41917 and 0.42064: the samples nearest to p
+  // lead to the second; the certificate fails with no sample nearer, and the rivals near the
+  // answer find the first. Reference: mpmath at 40 digits, Newton on the Lagrange system from 300
+  // random starts in the box; the nearest stationary points at 0.4191690698513278259,
+  // 0.4206358274150170143 and 0.4277582910754676146.
+  const auto goursat = implicit_surface_of("x^4+y^4+z^4-5*(x^2+y^2+z^2)+11.8", -3, 3, -3, 3);
+  const double p[3] = {1.5664, 1.4012, 0.7571};
+  const auto r = goursat->project(p, "auto", {});
+  REQUIRE(r);
+  CHECK(std::fabs(r->distance - 0.4191690698513278259) <= 1e-14);
+  CHECK(std::fabs(r->foot[0] - 1.8700491683908192016) <= 1e-10);
+  CHECK(std::fabs(r->foot[1] - 1.1916092632958823766) <= 1e-10);
+  CHECK(std::fabs(r->foot[2] - 0.55817384600456250503) <= 1e-10);
+  CHECK(r->summary.certificate.certified);
+}
+
 TEST_CASE("implicit surface certificate: points inside a torus' tube near its core circle") {
   // The distance to the torus of radii 2 and 0.5 is |rho - 0.5|, rho the distance to its core
   // circle. Inside the tube near the core the Lagrangian's Hessian I + l H is indefinite along the

@@ -142,8 +142,10 @@ class Search {
   // Other feet at the answer's distance (a tie): the certificate's rivals (samples within a leaf
   // diagonal of every point of S at the answer's distance outside its convex box) that lie away
   // from the answer and are discrete local minima of the distance over the samples start solves,
-  // nearest first, at most kTieStarts.
-  void solve_from_rivals(std::vector<Vec3> rivals) {
+  // nearest first, at most kTieStarts. `near_minima`: a nearer minimum the samples do not show
+  // (the certificate failed with no sample nearer than the answer; two minima of nearly equal
+  // distance within two leaf diagonals): every rival more than a leaf diagonal from the answer.
+  void solve_from_rivals(std::vector<Vec3> rivals, bool near_minima = false) {
     if (!std::isfinite(best_.distance)) return;
     const double h = cells_.leaf_diagonal;
     const Vec3 answer = best_.x;
@@ -151,7 +153,8 @@ class Search {
     std::size_t started = 0;
     for (const Vec3& s : rivals) {
       if (started >= kTieStarts) break;
-      if (norm(s - answer) <= 2.0 * h || !discrete_minimum(s, 2.0 * h)) continue;
+      if (near_minima ? norm(s - answer) <= h : norm(s - answer) <= 2.0 * h || !discrete_minimum(s, 2.0 * h))
+        continue;
       solve_from(s);
       ++started;
     }
@@ -206,9 +209,13 @@ ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
   Certificate certificate;
   const bool certify = options.certify.value_or(true);
   if (std::isfinite(search.best().distance) && certify) {
+    // The first round on a tenth of the box budget: an answer that needs more is often not the
+    // nearest (a nearer minimum close to it, which the rivals' solves then find), and one that is
+    // gets the full budget in the next round.
+    int budget = kCertificateBoxes / 10;
     for (int round = 0; round < kRounds; ++round) {
       SurfaceCertificate c =
-          certify_surface_answer(equation, cells, p, search.best().x, search.best().distance);
+          certify_surface_answer(equation, cells, p, search.best().x, search.best().distance, budget);
       certificate = c.certificate;
       if (certificate.certified) {
         search.solve_from_rivals(std::move(c.rivals));  // a tie's other feet
@@ -217,15 +224,18 @@ ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
       const double before = search.best().distance;
       if (c.nearer.empty()) {
         // nothing sampled is nearer, yet the bound stayed below: the answer may be off a flat
-        // minimum (a continuum), whose other points are among the rivals
-        search.solve_from_rivals(std::move(c.rivals));
+        // minimum (a continuum), whose other points are among the rivals, or a nearer minimum
+        // lies close to the answer, where its own samples are not nearer than the answer
+        search.solve_from_rivals(c.rivals);
+        if (!(search.best().distance < before)) search.solve_from_rivals(std::move(c.rivals), true);
       } else {
         std::sort(c.nearer.begin(), c.nearer.end(),
                   [&](Vec3 a, Vec3 b) { return norm2(p - a) < norm2(p - b); });
         for (std::size_t i = 0; i < std::min(c.nearer.size(), kStartsPerRound); ++i)
           search.solve_from(c.nearer[i]);
       }
-      if (!(search.best().distance < before)) break;
+      if (!(search.best().distance < before) && budget == kCertificateBoxes) break;
+      budget = kCertificateBoxes;
     }
   }
   const Candidate& best = search.best();

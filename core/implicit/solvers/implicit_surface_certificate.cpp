@@ -220,7 +220,7 @@ double lower_sqrt(double twice_half_square) {
 
 SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equation,
                                           const ImplicitSurfaceCells& cells, Vec3 p, Vec3 foot,
-                                          double distance) {
+                                          double distance, int budget) {
   SurfaceCertificate out;
   Certificate& c = out.certificate;
   c.computed = true;
@@ -361,7 +361,7 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     pieces.pop_back();
     double bound = 0.0;
     if (near_settled(piece.box, bound)) continue;
-    if (c.boxes >= kCertificateBoxes || piece.depth >= 16) {
+    if (c.boxes >= budget || piece.depth >= 16) {
       lower = std::min(lower, bound);
       continue;
     }

@@ -42,8 +42,9 @@ struct SurfaceCertificate {
 // The box budget of one certificate (pieces of leaves subdivided for this point).
 inline constexpr int kCertificateBoxes = 20000;
 
+// `budget`: the boxes it may bound beyond the compiled cells (kCertificateBoxes by default).
 SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equation,
                                           const ImplicitSurfaceCells& cells, Vec3 p, Vec3 foot,
-                                          double distance);
+                                          double distance, int budget = kCertificateBoxes);
 
 }  // namespace footpoint::surface_implicit
