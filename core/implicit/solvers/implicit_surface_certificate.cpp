@@ -189,23 +189,22 @@ std::array<double, 2> augmentations(const ImplicitSurfaceJet& j, double l) {
   if (!(g2 > 0.0)) return {0.0, -1.0};
   const Mat3 a = lagrangian_hessian(j, l);
   const double tangent = tangent_form(a, j.grad / std::sqrt(g2)).least_eigenvalue();
-  auto least = [&](double c) {
+  // Whether the least eigenvalue of a + c grad f grad f^T exceeds `floor`: Sylvester's criterion,
+  // the leading principal minors of a + c grad f grad f^T - floor I positive.
+  auto above = [&](double c, double floor) {
     Mat3 b = a;
     for (int r = 0; r < 3; ++r)
-      for (int q = 0; q < 3; ++q) b[r][q] += c * j.grad[r] * j.grad[q];
-    const Mat3 v = eigenvectors(b);
-    double e = std::numeric_limits<double>::infinity();
-    for (int col = 0; col < 3; ++col) {
-      const Vec3 u{v[0][col], v[1][col], v[2][col]};
-      e = std::min(e, dot(u, b * u));
-    }
-    return e;
+      for (int q = 0; q < 3; ++q) b[r][q] += c * j.grad[r] * j.grad[q] - (r == q ? floor : 0.0);
+    const double m2 = b[0][0] * b[1][1] - b[0][1] * b[1][0];
+    const double m3 = b[0][0] * (b[1][1] * b[2][2] - b[1][2] * b[2][1]) -
+                      b[0][1] * (b[1][0] * b[2][2] - b[1][2] * b[2][0]) +
+                      b[0][2] * (b[1][0] * b[2][1] - b[1][1] * b[2][0]);
+    return b[0][0] > 0.0 && m2 > 0.0 && m3 > 0.0;
   };
-  const double plain = least(0.0);
-  std::array<double, 2> out{plain > 0.0 ? 0.0 : -1.0, -1.0};
-  if (!(tangent > 0.0) || plain >= 0.5 * tangent) return out;
+  std::array<double, 2> out{above(0.0, 0.0) ? 0.0 : -1.0, -1.0};
+  if (!(tangent > 0.0) || above(0.0, 0.5 * tangent)) return out;
   for (double scale = 0.25; scale <= 64.0; scale *= 4.0)
-    if (least(scale / g2) >= 0.5 * tangent) {
+    if (above(scale / g2, 0.5 * tangent)) {
       out[1] = scale / g2;
       break;
     }
