@@ -284,24 +284,23 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     if (!over.smooth) return 0.0;
     const Vec3 centre = b.center();
     const ImplicitSurfaceIntervalJet at = equation.interval_gradient({centre, centre});
-    double best = -std::numeric_limits<double>::infinity();
-    for (const double weight : {0.0, augment}) {
-      if (weight == 0.0 && best > -std::numeric_limits<double>::infinity()) break;  // no weight to add
-      Interval value = add(mul(l, at.f), mul(0.5 * weight, iv::sqr(at.f)));
-      const Interval multiplier = add(iv::point(l), mul(weight, at.f));
+    // The bound with multiplier `lm` and weight `weight`.
+    auto bound_with = [&](double lm, double weight) {
+      Interval value = add(mul(lm, at.f), mul(0.5 * weight, iv::sqr(at.f)));
+      const Interval multiplier = add(iv::point(lm), mul(weight, at.f));
       double cross_terms = 0.0, linear = 0.0;
       for (int i = 0; i < 3; ++i) {
         const Interval to_p = sub(iv::point(centre[i]), iv::point(p[i]));
         value = add(value, mul(0.5, iv::sqr(to_p)));
         const Interval slope = add(to_p, mul(multiplier, at.grad[i]));
-        Interval diagonal = add(iv::point(1.0), mul(l, over.hess[i][i]));
+        Interval diagonal = add(iv::point(1.0), mul(lm, over.hess[i][i]));
         if (weight > 0.0)
           diagonal = add(diagonal, mul(weight, add(iv::sqr(over.grad[i]), mul(over.f, over.hess[i][i]))));
         const double half = 0.5 * (b.hi[i] - b.lo[i]) * (1.0 + kRound);
         linear += separable_minimum(slope, diagonal.lo, b.lo[i] - centre[i], b.hi[i] - centre[i]);
         for (int c = 0; c < 3; ++c) {
           if (c == i) continue;
-          Interval entry = mul(l, over.hess[i][c]);
+          Interval entry = mul(lm, over.hess[i][c]);
           if (weight > 0.0)
             entry =
                 add(entry, mul(weight, add(mul(over.grad[i], over.grad[c]), mul(over.f, over.hess[i][c]))));
@@ -309,7 +308,16 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
         }
       }
       const double half_square = value.lo + linear - cross_terms * (1.0 + kRound);
-      best = std::max(best, half_square - kRound * std::fabs(half_square));
+      return half_square - kRound * std::fabs(half_square);
+    };
+    double best = bound_with(l, 0.0);
+    if (augment > 0.0) best = std::max(best, bound_with(l, augment));
+    // Every multiplier gives a bound (the Lagrangian is |p - x|^2 / 2 on S for any): where the
+    // foot's fails, the least-squares one of p - c = l grad f(c) at b's centre c.
+    const Vec3 g{iv::mid(at.grad[0]), iv::mid(at.grad[1]), iv::mid(at.grad[2])};
+    if (lower_sqrt(2.0 * best) < threshold && norm2(g) > 0.0) {
+      const double own = dot(p - centre, g) / norm2(g);
+      if (std::isfinite(own)) best = std::max(best, bound_with(own, 0.0));
     }
     return best;
   };
