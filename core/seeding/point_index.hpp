@@ -19,6 +19,8 @@ class PointIndex {
 
   // The index of the point nearest to p (-1 when there are none); distance2 = |p - point|^2.
   std::int32_t nearest(Vec3 p, double& distance2) const;
+  // Whether a point t other than s (t != s) with |t - s| <= radius has |q - t|^2 < distance2.
+  bool nearer_within(Vec3 s, double radius, Vec3 q, double distance2) const;
   std::size_t memory_bytes() const;
 
  private:

@@ -121,22 +121,7 @@ class Search {
     return discrete_minimum(cells_.samples[static_cast<std::size_t>(i)], radius);
   }
   bool discrete_minimum(Vec3 s, double radius) const {
-    const double d2 = norm2(p_ - s);
-    std::vector<std::int32_t> stack{0};
-    while (!stack.empty()) {
-      const ImplicitSurfaceCell& cell = cells_.cells[static_cast<std::size_t>(stack.back())];
-      stack.pop_back();
-      if (distance2_lower_bound(s, cell.box) > radius * radius) continue;
-      if (cell.first_child >= 0) {
-        for (std::int32_t c = 0; c < cell.children; ++c) stack.push_back(cell.first_child + c);
-        continue;
-      }
-      if (cell.sample < 0) continue;
-      const Vec3 t = cells_.samples[static_cast<std::size_t>(cell.sample)];
-      if (t.x == s.x && t.y == s.y && t.z == s.z) continue;
-      if (norm2(t - s) <= radius * radius && norm2(p_ - t) < d2) return false;
-    }
-    return true;
+    return !cells_.sample_index || !cells_.sample_index->nearer_within(s, radius, p_, norm2(p_ - s));
   }
 
   // Other feet at the answer's distance (a tie): the certificate's rivals (samples within a leaf
