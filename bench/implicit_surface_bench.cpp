@@ -31,6 +31,10 @@ struct SurfaceCase {
   std::array<std::array<double, 2>, 3> box;
 };
 
+// With --checksum: the sum of auto's distances and of its feet's coordinates over the points,
+// to compare the answers of two builds.
+bool checksum = false;
+
 void row(const SurfaceCase& c) {
   GeometryDefinition def;
   def.type = GeometryType::implicit_surface;
@@ -43,6 +47,7 @@ void row(const SurfaceCase& c) {
   std::vector<double> compile, t_auto, t_newton;
   std::shared_ptr<const CompiledGeometry> g;
   int certified = 0, newton_converged = 0, newton_iterations = 0;
+  double sum = 0.0;
   for (int r = 0; r < kRuns; ++r) {
     double t0 = bench::thread_cpu_ns();
     g = compile_geometry(def);
@@ -50,9 +55,12 @@ void row(const SurfaceCase& c) {
     const GeometryMethod a = g->method("auto").value(), n = g->method("lagrange_newton").value();
     certified = newton_converged = newton_iterations = 0;
     t0 = bench::thread_cpu_ns();
-    for (int i = 0; i < kPoints; ++i)
-      certified +=
-          a.project(&points[static_cast<std::size_t>(3 * i)], {}).summary.certificate.certified ? 1 : 0;
+    sum = 0.0;
+    for (int i = 0; i < kPoints; ++i) {
+      const ProjectionResult r = a.project(&points[static_cast<std::size_t>(3 * i)], {});
+      certified += r.summary.certificate.certified ? 1 : 0;
+      sum += r.distance + r.foot[0] + r.foot[1] + r.foot[2];
+    }
     t_auto.push_back((bench::thread_cpu_ns() - t0) * 1e-3 / kPoints);
     t0 = bench::thread_cpu_ns();
     for (int i = 0; i < kPoints; ++i) {
@@ -69,11 +77,21 @@ void row(const SurfaceCase& c) {
               s.cells().leaves, median(t_auto), 100.0 * certified / kPoints, median(t_newton),
               100.0 * newton_converged / kPoints,
               static_cast<double>(newton_iterations) / std::max(1, newton_converged));
+  if (checksum) std::printf("%-16s checksum %.17g\n", c.name, sum);
 }
 
 }  // namespace
 
-int main() {
+// Arguments: the cases to run (a case runs when its name starts with one of them; none: all), and
+// --checksum.
+int main(int argc, char** argv) {
+  std::vector<std::string> names;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--checksum")
+      checksum = true;
+    else
+      names.emplace_back(argv[i]);
+  }
   std::printf("[%s]\n", bench::load_average().c_str());
   std::printf("%-16s %10s %7s %11s %10s %11s %10s %8s\n", "implicit surface", "compile ms", "leaves",
               "us/pt auto", "certified", "us/pt LN", "LN conv", "LN its");
@@ -86,5 +104,9 @@ int main() {
       {"hyperboloid 2", "z^2-x^2-y^2-1", {{{-3, 3}, {-3, 3}, {-3, 3}}}},
       {"Goursat", "x^4+y^4+z^4-5*(x^2+y^2+z^2)+11.8", {{{-3, 3}, {-3, 3}, {-3, 3}}}},
   };
-  for (const auto& c : cases) row(c);
+  for (const auto& c : cases) {
+    bool chosen = names.empty();
+    for (const std::string& n : names) chosen = chosen || std::string(c.name).rfind(n, 0) == 0;
+    if (chosen) row(c);
+  }
 }

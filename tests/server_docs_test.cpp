@@ -79,7 +79,17 @@ TEST_CASE("GET /v1/methods: each method's full citations, the options it reads, 
                                            "max_distance", "certify", "max_minima"}));
       }
     }
-  CHECK(methods == 26);
+  CHECK(methods == 27);
+  // Hu and Wallner's method on implicit surfaces cites its paper and the one its steps follow.
+  bool hu_wallner = false;
+  for (const auto& type : list["geometry_types"])
+    for (const auto& m : type["methods"])
+      if (type["type"] == "implicit_surface" && m["name"] == "hu_wallner") {
+        hu_wallner = true;
+        CHECK(m["citations"].size() == 2);
+        CHECK(m["citations"][0].get<std::string>().find("Hu, J. Wallner") != std::string::npos);
+      }
+  CHECK(hu_wallner);
   const json& gsa = list["geometry_types"][0]["methods"][1];
   CHECK(gsa["name"] == "gsa");
   CHECK(gsa["citations"] ==

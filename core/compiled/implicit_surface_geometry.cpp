@@ -1,9 +1,9 @@
 #include "compiled/implicit_surface_geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "implicit/solvers/implicit_surface_auto.hpp"
 #include "implicit/solvers/implicit_surface_certificate.hpp"
 #include "implicit/solvers/implicit_surface_methods.hpp"
 
@@ -18,8 +18,7 @@ ProjectionResult local(const ImplicitSurface& s, Vec3 p, const Options& o) {
   ProjectionResult r = solve(s.equation(), s.box(), p, o);
   const Vec3 foot{r.foot[0], r.foot[1], r.foot[2]};
   if (o.certify.value_or(false) && std::isfinite(r.distance) && s.box().contains(foot))
-    r.summary.certificate =
-        surface_implicit::certify_surface_answer(s.equation(), s.cells(), p, foot, r.distance).certificate;
+    r.summary.certificate = surface_implicit::certify_union_answer(s.pieces(), p, foot, r.distance);
   return r;
 }
 
@@ -38,7 +37,7 @@ constexpr Method<ImplicitSurface> kMethods[] = {
       statuses(
           {Status::converged, Status::degenerate, Status::beyond_max_distance, Status::deadline_exceeded})},
      [](const ImplicitSurface& s, Vec3 p, const Options& o) {
-       return surface_implicit::implicit_surface_auto(s.equation(), s.cells(), p, o);
+       return surface_implicit::implicit_surface_union_auto(s.pieces(), p, o);
      }},
     {{"lagrange_newton",
       "Newton's method on the Lagrange system p - x = l grad f(x), f(x) = 0 from the start",
@@ -55,6 +54,14 @@ constexpr Method<ImplicitSurface> kMethods[] = {
       kLocalOptions | option_max_distance,
       kLocalStatuses},
      local<surface_implicit::first_order_method>},
+    {{"hu_wallner",
+      "Hu and Wallner's second-order iteration: the foot of p on the curvature circle of the normal "
+      "section toward p, moved onto the surface, until the surface points stop moving",
+      "Hu and Wallner, A second order algorithm for orthogonal projection onto curves and surfaces",
+      {kCitationHuWallner, kCitationGsa},
+      kLocalOptions | option_max_distance,
+      kLocalStatuses},
+     local<surface_implicit::hu_wallner_method>},
 };
 
 const MethodTable<ImplicitSurface>& table() {
@@ -64,12 +71,25 @@ const MethodTable<ImplicitSurface>& table() {
 
 }  // namespace
 
+// At most this many factor surfaces (each costs a subdivision at compile time and a search and a
+// certificate per point); equations with more stay whole.
+constexpr std::size_t kMaxFactorSurfaces = 8;
+
 ImplicitSurface::ImplicitSurface(GeometryDefinition def, formula::Program program, Box3 box)
     : CompiledGeometry(std::move(def)),
       written_(std::move(program)),
       equation_(written_.program().square_free()),
-      box_(box),
-      cells_(subdivide_surface(equation_, box_)) {}
+      box_(box) {
+  std::vector<formula::Program> systems = written_.program().factor_systems(kMaxFactorSurfaces);
+  if (systems.size() > 1)
+    for (formula::Program& system : systems) {
+      ImplicitSurfaceEquation factor(std::move(system));
+      ImplicitSurfaceCells cells = subdivide_surface(factor, box_);
+      if (!cells.empty()) pieces_.push_back({std::move(factor), std::move(cells)});  // else none in the box
+    }
+  // Not split, or no factor surface in the box (nor then the whole, empty_surface below).
+  if (pieces_.empty()) pieces_.push_back({equation_, subdivide_surface(equation_, box_)});
+}
 
 const std::vector<MethodInfo>& ImplicitSurface::methods() const { return table().infos(); }
 
@@ -110,8 +130,14 @@ ProjectionResult ImplicitSurface::project_with(std::size_t index, const double* 
 
 std::size_t ImplicitSurface::memory_bytes() const {
   const formula::Program& written = written_.program();
-  return sizeof(*this) + equation_.program().memory_bytes() +
-         (written.same_tape(equation_.program()) ? 0 : written.memory_bytes()) + cells_.memory_bytes();
+  std::size_t bytes = sizeof(*this) + equation_.program().memory_bytes() +
+                      (written.same_tape(equation_.program()) ? 0 : written.memory_bytes()) +
+                      pieces_.capacity() * sizeof(surface_implicit::SurfacePiece);
+  for (const surface_implicit::SurfacePiece& piece : pieces_)
+    bytes += piece.cells.memory_bytes() + (piece.equation.program().same_tape(equation_.program())
+                                               ? 0
+                                               : piece.equation.program().memory_bytes());
+  return bytes;
 }
 
 std::shared_ptr<const CompiledGeometry> compile_implicit_surface(const GeometryDefinition& def,
@@ -130,14 +156,19 @@ std::shared_ptr<const CompiledGeometry> compile_implicit_surface(const GeometryD
         box.hi[static_cast<int>(k)] = range[1];
       }
   auto surface = std::make_shared<ImplicitSurface>(def, std::move(program), box);
-  const ImplicitSurfaceCells& cells = surface->cells();
-  if (cells.empty())
+  const std::vector<surface_implicit::SurfacePiece>& pieces = surface->pieces();
+  const bool points =
+      std::any_of(pieces.begin(), pieces.end(), [](const surface_implicit::SurfacePiece& piece) {
+        const ImplicitSurfaceCells& c = piece.cells;
+        return !c.samples.empty() || !c.edge_points.empty() || !c.singular_points.empty();
+      });
+  if (pieces.size() == 1 && pieces.front().cells.empty())
     throw GeometryError(
         "empty_surface", "domain", -1,
         "no point of the surface lies in the box (the interval search excluded the whole box)");
   // Cells that may hold the surface but no point of it found: the leaves are too large for Newton
   // from their centres to land (a box of 1e300), or the surface is smaller than its leaves.
-  if (cells.samples.empty() && cells.edge_points.empty() && cells.singular_points.empty())
+  if (!points)
     throw GeometryError(
         "geometry_too_complex", "domain", -1,
         "the interval search could not exclude the whole box, but no point of the surface was "

@@ -3,24 +3,10 @@
 #include <cmath>
 #include <limits>
 
-#include <nanoflann.hpp>
+#include "seeding/points_kd_tree.hpp"
 
 namespace footpoint {
 namespace {
-
-// nanoflann's adaptor: "how many points" and "coordinate k of point i".
-struct PointsAdaptor {
-  const std::vector<Vec3>* points;
-  std::size_t kdtree_get_point_count() const { return points->size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t k) const { return (*points)[i][static_cast<int>(k)]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointsAdaptor>,
-                                                   PointsAdaptor, 3, std::uint32_t>;
 
 // A nanoflann result set that keeps, among the samples within the search radius, only the
 // discrete local minima of the distance along the curve (each sample is compared with its linked
@@ -78,7 +64,7 @@ class LocalMinimaResultSet {
 
 struct CurveSampleIndex::Tree {
   PointsAdaptor adaptor;
-  KdTree tree;
+  PointsKdTree tree;
   explicit Tree(const std::vector<Vec3>* points)
       : adaptor{points}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
     if (!points->empty()) tree.buildIndex();
@@ -91,14 +77,7 @@ CurveSampleIndex::CurveSampleIndex(const CurveSamples& samples)
 CurveSampleIndex::~CurveSampleIndex() = default;
 
 std::int32_t CurveSampleIndex::nearest(Vec3 p, double& distance2) const {
-  distance2 = std::numeric_limits<double>::infinity();
-  if (samples_.points.empty()) return -1;
-  std::uint32_t index = 0;
-  nanoflann::KNNResultSet<double, std::uint32_t> result(1);
-  result.init(&index, &distance2);
-  const double q[3] = {p.x, p.y, p.z};
-  tree_->tree.findNeighbors(result, q, nanoflann::SearchParams());
-  return static_cast<std::int32_t>(index);
+  return nearest_point(tree_->tree, samples_.points.size(), p, distance2);
 }
 
 std::int32_t CurveSampleIndex::nearest_and_local_minima(Vec3 p, double margin, SampleCandidates& out,

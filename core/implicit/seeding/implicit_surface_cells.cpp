@@ -149,7 +149,8 @@ bool land_on_surface(const ImplicitSurfaceEquation& equation, Vec3& x, int itera
 
 std::size_t ImplicitSurfaceCells::memory_bytes() const {
   return sizeof(*this) + cells.capacity() * sizeof(ImplicitSurfaceCell) + samples.capacity() * sizeof(Vec3) +
-         edge_points.capacity() * sizeof(BoxEdgePoint) + singular_points.capacity() * sizeof(Vec3);
+         edge_points.capacity() * sizeof(BoxEdgePoint) + singular_points.capacity() * sizeof(Vec3) +
+         (sample_index ? sample_index->memory_bytes() : 0);
 }
 
 ImplicitSurfaceCells subdivide_surface(const ImplicitSurfaceEquation& equation, const Box3& box,
@@ -225,6 +226,7 @@ ImplicitSurfaceCells subdivide_surface(const ImplicitSurfaceEquation& equation, 
     for (int k = 0; k < 3; ++k) at_bounds += (x[k] == box.lo[k] || x[k] == box.hi[k]) ? 1 : 0;
     out.edge_points.push_back({x, at_bounds == 3});
   }
+  out.sample_index = std::make_shared<const PointIndex>(out.samples);
   return out;
 }
 

@@ -4,7 +4,8 @@
 //    R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM 2009, Sec. 6.4)
 //    contains 0, so every point of S lies in a leaf; the tree is what the search orders its starts by
 //    and what the certificate's branch and bound descends;
-//  - a sample point of S in each leaf (Newton steps along the gradient from the leaf's centre);
+//  - a sample point of S in each leaf (Newton steps along the gradient from the leaf's centre), and
+//    a k-d tree over the samples;
 //  - the points where S meets the twelve edges of B (1-D interval subdivision of f along each edge,
 //    then bisection and Newton on each sign change), the corners among them;
 //  - the singular points of S (f = 0 and grad f = 0: a cone's apex), found by Newton on grad f = 0
@@ -14,10 +15,12 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "geometry/box3.hpp"
 #include "implicit/geometry/implicit_surface.hpp"
+#include "seeding/point_index.hpp"
 
 namespace footpoint {
 
@@ -46,6 +49,7 @@ struct ImplicitSurfaceCells {
   Box3 box;
   std::vector<ImplicitSurfaceCell> cells;  // cells[0] is the box itself, unless S misses it (no cells)
   std::vector<Vec3> samples;
+  std::shared_ptr<const PointIndex> sample_index;  // a k-d tree over the samples (the nearest to p)
   std::vector<BoxEdgePoint> edge_points;
   std::vector<Vec3> singular_points;
   std::size_t examined = 0;  // cells whose enclosure was computed

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
 #include <vector>
 
 #include "implicit/solvers/implicit_surface_certificate.hpp"
@@ -109,37 +108,11 @@ class Search {
       }
   }
 
-  // The sample nearest to p: best first over the tree, by the boxes' distance bounds.
+  // The sample nearest to p (the k-d tree over the samples).
   int nearest_sample() const {
-    struct Item {
-      double bound;
-      std::int32_t cell;
-      bool operator<(const Item& o) const { return bound > o.bound; }
-    };
-    std::priority_queue<Item> queue;
-    queue.push({0.0, 0});
-    double best = curve::kInfinity;
-    int found = -1;
-    while (!queue.empty()) {
-      const Item item = queue.top();
-      queue.pop();
-      if (item.bound >= best) break;
-      const ImplicitSurfaceCell& cell = cells_.cells[static_cast<std::size_t>(item.cell)];
-      if (cell.first_child < 0) {
-        if (cell.sample < 0) continue;
-        const double d = norm2(p_ - cells_.samples[static_cast<std::size_t>(cell.sample)]);
-        if (d < best) {
-          best = d;
-          found = cell.sample;
-        }
-        continue;
-      }
-      for (std::int32_t i = 0; i < cell.children; ++i) {
-        const std::int32_t child = cell.first_child + i;
-        queue.push({distance2_lower_bound(p_, cells_.cells[static_cast<std::size_t>(child)].box), child});
-      }
-    }
-    return found;
+    if (!cells_.sample_index) return -1;
+    double d2 = 0.0;
+    return cells_.sample_index->nearest(p_, d2);
   }
 
   // Whether no other sample within `radius` of sample i is nearer to p (a discrete local minimum of
@@ -148,29 +121,16 @@ class Search {
     return discrete_minimum(cells_.samples[static_cast<std::size_t>(i)], radius);
   }
   bool discrete_minimum(Vec3 s, double radius) const {
-    const double d2 = norm2(p_ - s);
-    std::vector<std::int32_t> stack{0};
-    while (!stack.empty()) {
-      const ImplicitSurfaceCell& cell = cells_.cells[static_cast<std::size_t>(stack.back())];
-      stack.pop_back();
-      if (distance2_lower_bound(s, cell.box) > radius * radius) continue;
-      if (cell.first_child >= 0) {
-        for (std::int32_t c = 0; c < cell.children; ++c) stack.push_back(cell.first_child + c);
-        continue;
-      }
-      if (cell.sample < 0) continue;
-      const Vec3 t = cells_.samples[static_cast<std::size_t>(cell.sample)];
-      if (t.x == s.x && t.y == s.y && t.z == s.z) continue;
-      if (norm2(t - s) <= radius * radius && norm2(p_ - t) < d2) return false;
-    }
-    return true;
+    return !cells_.sample_index || !cells_.sample_index->nearer_within(s, radius, p_, norm2(p_ - s));
   }
 
   // Other feet at the answer's distance (a tie): the certificate's rivals (samples within a leaf
   // diagonal of every point of S at the answer's distance outside its convex box) that lie away
   // from the answer and are discrete local minima of the distance over the samples start solves,
-  // nearest first, at most kTieStarts.
-  void solve_from_rivals(std::vector<Vec3> rivals) {
+  // nearest first, at most kTieStarts. `near_minima`: a nearer minimum the samples do not show
+  // (the certificate failed with no sample nearer than the answer; two minima of nearly equal
+  // distance within two leaf diagonals): every rival more than a leaf diagonal from the answer.
+  void solve_from_rivals(std::vector<Vec3> rivals, bool near_minima = false) {
     if (!std::isfinite(best_.distance)) return;
     const double h = cells_.leaf_diagonal;
     const Vec3 answer = best_.x;
@@ -178,7 +138,8 @@ class Search {
     std::size_t started = 0;
     for (const Vec3& s : rivals) {
       if (started >= kTieStarts) break;
-      if (norm(s - answer) <= 2.0 * h || !discrete_minimum(s, 2.0 * h)) continue;
+      if (near_minima ? norm(s - answer) <= h : norm(s - answer) <= 2.0 * h || !discrete_minimum(s, 2.0 * h))
+        continue;
       solve_from(s);
       ++started;
     }
@@ -233,9 +194,13 @@ ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
   Certificate certificate;
   const bool certify = options.certify.value_or(true);
   if (std::isfinite(search.best().distance) && certify) {
+    // The first round on a tenth of the box budget: an answer that needs more is often not the
+    // nearest (a nearer minimum close to it, which the rivals' solves then find), and one that is
+    // gets the full budget in the next round.
+    int budget = kCertificateBoxes / 10;
     for (int round = 0; round < kRounds; ++round) {
       SurfaceCertificate c =
-          certify_surface_answer(equation, cells, p, search.best().x, search.best().distance);
+          certify_surface_answer(equation, cells, p, search.best().x, search.best().distance, budget);
       certificate = c.certificate;
       if (certificate.certified) {
         search.solve_from_rivals(std::move(c.rivals));  // a tie's other feet
@@ -244,15 +209,18 @@ ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
       const double before = search.best().distance;
       if (c.nearer.empty()) {
         // nothing sampled is nearer, yet the bound stayed below: the answer may be off a flat
-        // minimum (a continuum), whose other points are among the rivals
-        search.solve_from_rivals(std::move(c.rivals));
+        // minimum (a continuum), whose other points are among the rivals, or a nearer minimum
+        // lies close to the answer, where its own samples are not nearer than the answer
+        search.solve_from_rivals(c.rivals);
+        if (!(search.best().distance < before)) search.solve_from_rivals(std::move(c.rivals), true);
       } else {
         std::sort(c.nearer.begin(), c.nearer.end(),
                   [&](Vec3 a, Vec3 b) { return norm2(p - a) < norm2(p - b); });
         for (std::size_t i = 0; i < std::min(c.nearer.size(), kStartsPerRound); ++i)
           search.solve_from(c.nearer[i]);
       }
-      if (!(search.best().distance < before)) break;
+      if (!(search.best().distance < before) && budget == kCertificateBoxes) break;
+      budget = kCertificateBoxes;
     }
   }
   const Candidate& best = search.best();

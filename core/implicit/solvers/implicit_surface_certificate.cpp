@@ -1,8 +1,11 @@
 #include "implicit/solvers/implicit_surface_certificate.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+
+#include "implicit/solvers/implicit_surface_lagrange.hpp"
 
 namespace footpoint::surface_implicit {
 
@@ -133,30 +136,79 @@ double eigenvalue_lower_bound(const IMat3& a) {
 }
 
 // A lower bound of |p - x|^2 / 2 over the points x of S in k (a box around x* within the box),
-// or -inf where the Lagrangian is not shown convex there.
-double convex_bound(const ImplicitSurfaceEquation& equation, const Box3& k, Vec3 p, Vec3 x, double l) {
+// or -inf where the Lagrangian is not shown convex there. The augmented Lagrangian
+// L(x) = |p - x|^2 / 2 + l f(x) + c/2 f(x)^2 (c >= 0; [NW06] Sec. 17.3) is |p - x|^2 / 2 on S as
+// well; its Hessian I + l H + c (grad f grad f^T + f H) adds c |grad f|^2 along the normal, where
+// I + l H alone is indefinite when p lies inside a tube of the surface near its core (a torus),
+// while its form on the tangent plane is the distance's.
+// The better of the bounds with the weights c in `weights` (negative: not tried).
+double convex_bound(const ImplicitSurfaceEquation& equation, const Box3& k, Vec3 p, Vec3 x, double l,
+                    std::array<double, 2> weights) {
   const ImplicitSurfaceIntervalJet over = equation.interval_jet(k);
   if (!over.smooth) return -std::numeric_limits<double>::infinity();
-  IMat3 lagrangian;
-  for (int i = 0; i < 3; ++i)
-    for (int c = 0; c < 3; ++c)
-      lagrangian[i][c] = add(iv::point(i == c ? 1.0 : 0.0), mul(l, over.hess[i][c]));
-  const double m = eigenvalue_lower_bound(lagrangian);
-  if (!(m > 0.0)) return -std::numeric_limits<double>::infinity();
   const ImplicitSurfaceIntervalJet at = equation.interval_gradient({x, x});
   if (!at.lipschitz) return -std::numeric_limits<double>::infinity();
-  // L(x*) = |p - x*|^2 / 2 + l f(x*), r = x* - p + l grad f(x*), enclosed.
-  Interval value = mul(l, at.f);
-  for (int c = 0; c < 3; ++c) {
-    const Interval gap = sub(iv::point(x[c]), iv::point(p[c]));
-    value = add(value, mul(0.5, iv::sqr(gap)));
+  double best = -std::numeric_limits<double>::infinity();
+  for (const double c : weights) {
+    if (c < 0.0) continue;
+    IMat3 lagrangian;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        lagrangian[i][j] = add(iv::point(i == j ? 1.0 : 0.0), mul(l, over.hess[i][j]));
+        if (c > 0.0) {
+          const Interval gg = i == j ? iv::sqr(over.grad[i]) : mul(over.grad[i], over.grad[j]);
+          lagrangian[i][j] = add(lagrangian[i][j], mul(c, add(gg, mul(over.f, over.hess[i][j]))));
+        }
+      }
+    const double m = eigenvalue_lower_bound(lagrangian);
+    if (!(m > 0.0)) continue;
+    // L(x*) = |p - x*|^2 / 2 + l f(x*) + c/2 f(x*)^2, r = x* - p + (l + c f(x*)) grad f(x*), enclosed.
+    const Interval multiplier = add(iv::point(l), mul(c, at.f));
+    Interval value = add(mul(l, at.f), mul(0.5 * c, iv::sqr(at.f)));
+    for (int i = 0; i < 3; ++i) {
+      const Interval gap = sub(iv::point(x[i]), iv::point(p[i]));
+      value = add(value, mul(0.5, iv::sqr(gap)));
+    }
+    double bound = value.lo;
+    for (int i = 0; i < 3; ++i) {
+      const Interval r = add(sub(iv::point(x[i]), iv::point(p[i])), mul(multiplier, at.grad[i]));
+      bound += separable_minimum(r, m, k.lo[i] - x[i], k.hi[i] - x[i]);
+    }
+    best = std::max(best, bound - kRound * std::fabs(bound));
   }
-  double bound = value.lo;
-  for (int c = 0; c < 3; ++c) {
-    const Interval r = add(sub(iv::point(x[c]), iv::point(p[c])), mul(l, at.grad[c]));
-    bound += separable_minimum(r, m, k.lo[c] - x[c], k.hi[c] - x[c]);
-  }
-  return bound - kRound * std::fabs(bound);
+  return best;
+}
+
+// The weights c of the augmented Lagrangian worth trying about the foot: 0 (the plain Lagrangian)
+// unless I + l H is indefinite there, where no box about it can be shown convex; and, where the
+// least eigenvalue of I + l H is below half the tangent form's, the least of |grad f|^-2 times 1/4,
+// 1, 4, 16, 64 that lifts it there (the tangent form's, approached as c grows, bounds it above).
+// -1 for a weight not to try.
+std::array<double, 2> augmentations(const ImplicitSurfaceJet& j, double l) {
+  const double g2 = norm2(j.grad);
+  if (!(g2 > 0.0)) return {0.0, -1.0};
+  const Mat3 a = lagrangian_hessian(j, l);
+  const double tangent = tangent_form(a, j.grad / std::sqrt(g2)).least_eigenvalue();
+  // Whether the least eigenvalue of a + c grad f grad f^T exceeds `floor`: Sylvester's criterion,
+  // the leading principal minors of a + c grad f grad f^T - floor I positive.
+  auto above = [&](double c, double floor) {
+    Mat3 b = a;
+    for (int r = 0; r < 3; ++r)
+      for (int q = 0; q < 3; ++q) b[r][q] += c * j.grad[r] * j.grad[q] - (r == q ? floor : 0.0);
+    const double m2 = b[0][0] * b[1][1] - b[0][1] * b[1][0];
+    const double m3 = b[0][0] * (b[1][1] * b[2][2] - b[1][2] * b[2][1]) -
+                      b[0][1] * (b[1][0] * b[2][2] - b[1][2] * b[2][0]) +
+                      b[0][2] * (b[1][0] * b[2][1] - b[1][1] * b[2][0]);
+    return b[0][0] > 0.0 && m2 > 0.0 && m3 > 0.0;
+  };
+  std::array<double, 2> out{above(0.0, 0.0) ? 0.0 : -1.0, -1.0};
+  if (!(tangent > 0.0) || above(0.0, 0.5 * tangent)) return out;
+  for (double scale = 0.25; scale <= 64.0; scale *= 4.0)
+    if (above(scale / g2, 0.5 * tangent)) {
+      out[1] = scale / g2;
+      break;
+    }
+  return out;
 }
 
 double lower_sqrt(double twice_half_square) {
@@ -167,7 +219,7 @@ double lower_sqrt(double twice_half_square) {
 
 SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equation,
                                           const ImplicitSurfaceCells& cells, Vec3 p, Vec3 foot,
-                                          double distance) {
+                                          double distance, int budget) {
   SurfaceCertificate out;
   Certificate& c = out.certificate;
   c.computed = true;
@@ -187,11 +239,13 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
   // the Lagrangian is shown convex with a bound within half the gap.
   const ImplicitSurfaceJet j = equation.jet(foot);
   const double l = foot_multiplier(j, box, p, foot);
+  const std::array<double, 2> weights = augmentations(j, l);
+  const double augment = std::max(weights[1], 0.0);
   Box3 k{foot, foot};
   bool have_k = false;
   for (double w = box.max_edge(); w >= box.max_edge() * 0x1p-14; w *= 0.5) {
     const Box3 trial = intersection(box, {foot - Vec3{w, w, w}, foot + Vec3{w, w, w}});
-    const double half_square = convex_bound(equation, trial, p, foot, l);
+    const double half_square = convex_bound(equation, trial, p, foot, l, weights);
     const double bound = lower_sqrt(2.0 * half_square);
     if (half_square > -std::numeric_limits<double>::infinity() && bound >= threshold) {
       k = trial;
@@ -223,25 +277,49 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
   // Second order, where the first does not settle b: Taylor's theorem about the centre c with the
   // Hessian I + l H(b) enclosed over b, g(c + d) >= g(c) + grad g(c) . d + d^T Q d / 2, bounded below
   // by the separable diagonal part less the off-diagonal entries at b's half-widths.
+  // With the augmented Lagrangian's weight (convex_bound) as well, g + c/2 f^2, whose Hessian adds
+  // c (grad f grad f^T + f H): the better of the two bounds.
   auto second_order_bound = [&](const Box3& b) {
     const ImplicitSurfaceIntervalJet over = equation.interval_jet(b);
     if (!over.smooth) return 0.0;
     const Vec3 centre = b.center();
     const ImplicitSurfaceIntervalJet at = equation.interval_gradient({centre, centre});
-    Interval value = mul(l, at.f);
-    double cross_terms = 0.0, linear = 0.0;
-    for (int i = 0; i < 3; ++i) {
-      const Interval to_p = sub(iv::point(centre[i]), iv::point(p[i]));
-      value = add(value, mul(0.5, iv::sqr(to_p)));
-      const Interval slope = add(to_p, mul(l, at.grad[i]));
-      const Interval diagonal = add(iv::point(1.0), mul(l, over.hess[i][i]));
-      const double half = 0.5 * (b.hi[i] - b.lo[i]) * (1.0 + kRound);
-      linear += separable_minimum(slope, diagonal.lo, b.lo[i] - centre[i], b.hi[i] - centre[i]);
-      for (int c = 0; c < 3; ++c)
-        if (c != i) cross_terms += 0.5 * mag(mul(l, over.hess[i][c])) * half * (0.5 * (b.hi[c] - b.lo[c]));
+    // The bound with multiplier `lm` and weight `weight`.
+    auto bound_with = [&](double lm, double weight) {
+      Interval value = add(mul(lm, at.f), mul(0.5 * weight, iv::sqr(at.f)));
+      const Interval multiplier = add(iv::point(lm), mul(weight, at.f));
+      double cross_terms = 0.0, linear = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        const Interval to_p = sub(iv::point(centre[i]), iv::point(p[i]));
+        value = add(value, mul(0.5, iv::sqr(to_p)));
+        const Interval slope = add(to_p, mul(multiplier, at.grad[i]));
+        Interval diagonal = add(iv::point(1.0), mul(lm, over.hess[i][i]));
+        if (weight > 0.0)
+          diagonal = add(diagonal, mul(weight, add(iv::sqr(over.grad[i]), mul(over.f, over.hess[i][i]))));
+        const double half = 0.5 * (b.hi[i] - b.lo[i]) * (1.0 + kRound);
+        linear += separable_minimum(slope, diagonal.lo, b.lo[i] - centre[i], b.hi[i] - centre[i]);
+        for (int c = 0; c < 3; ++c) {
+          if (c == i) continue;
+          Interval entry = mul(lm, over.hess[i][c]);
+          if (weight > 0.0)
+            entry =
+                add(entry, mul(weight, add(mul(over.grad[i], over.grad[c]), mul(over.f, over.hess[i][c]))));
+          cross_terms += 0.5 * mag(entry) * half * (0.5 * (b.hi[c] - b.lo[c]));
+        }
+      }
+      const double half_square = value.lo + linear - cross_terms * (1.0 + kRound);
+      return half_square - kRound * std::fabs(half_square);
+    };
+    double best = bound_with(l, 0.0);
+    if (augment > 0.0) best = std::max(best, bound_with(l, augment));
+    // Every multiplier gives a bound (the Lagrangian is |p - x|^2 / 2 on S for any): where the
+    // foot's fails, the least-squares one of p - c = l grad f(c) at b's centre c.
+    const Vec3 g{iv::mid(at.grad[0]), iv::mid(at.grad[1]), iv::mid(at.grad[2])};
+    if (lower_sqrt(2.0 * best) < threshold && norm2(g) > 0.0) {
+      const double own = dot(p - centre, g) / norm2(g);
+      if (std::isfinite(own)) best = std::max(best, bound_with(own, 0.0));
     }
-    const double half_square = value.lo + linear - cross_terms * (1.0 + kRound);
-    return half_square - kRound * std::fabs(half_square);
+    return best;
   };
   auto lagrangian_settled = [&](const Box3& b, double& bound) {
     const ImplicitSurfaceIntervalJet jb = equation.interval_gradient(b);
@@ -290,14 +368,21 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     pieces.pop_back();
     double bound = 0.0;
     if (near_settled(piece.box, bound)) continue;
-    if (c.boxes >= kCertificateBoxes || piece.depth >= 16) {
+    if (c.boxes >= budget || piece.depth >= 16) {
       lower = std::min(lower, bound);
       continue;
     }
     ++c.boxes;
     if (lagrangian_settled(piece.box, bound)) continue;
+    // Halved along the edges at least half its longest (a flat leaf of a flat box is not made
+    // flatter).
+    const Box3& b = piece.box;
+    const double longest = b.max_edge();
+    int axes = 0;
+    for (int k = 0; k < 3; ++k)
+      if (b.hi[k] - b.lo[k] >= 0.5 * longest) axes |= 1 << k;
     for (int octant = 0; octant < 8; ++octant)
-      pieces.push_back({octant_of(piece.box, octant), piece.depth + 1});
+      if ((octant & ~axes) == 0) pieces.push_back({octant_of(b, octant), piece.depth + 1});
   }
   c.lower_bound = std::min(lower, distance);
   c.certified = Certificate::meets_gap(distance, c.lower_bound, c.absolute_gap);

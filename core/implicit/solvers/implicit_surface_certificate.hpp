@@ -13,7 +13,11 @@
 //    whose minimum over the box K ∩ B - x* is separable by coordinate (a second-order sufficient
 //    condition made global on K: [NW06] Theorem 12.6 and its proof; the box faces' multipliers
 //    are r's components along the faces x* lies on, of the sign that makes r . (x - x*) >= 0).
-//    L(x*) and r are enclosed with interval arithmetic at the point x*.
+//    L(x*) and r are enclosed with interval arithmetic at the point x*. Where I + l H is indefinite
+//    at x* (p inside a tube near its core: the normal direction) or its least eigenvalue is well
+//    below the tangent form's, the augmented Lagrangian L + c/2 f^2 ([NW06] Sec. 17.3), also
+//    |p - x|^2 / 2 on S, whose Hessian adds c (grad f grad f^T + f H), is bounded the same way;
+//    the leaves' second-order bounds take the better of the two.
 // The leaves' sample points nearer than the answer are reported (nearer), for the search to start
 // from them; so are the samples of the leaves that meet the ball of the answer's radius about p
 // away from the foot's convex box K (rivals): every other foot at the answer's distance lies in
@@ -38,8 +42,9 @@ struct SurfaceCertificate {
 // The box budget of one certificate (pieces of leaves subdivided for this point).
 inline constexpr int kCertificateBoxes = 20000;
 
+// `budget`: the boxes it may bound beyond the compiled cells (kCertificateBoxes by default).
 SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equation,
                                           const ImplicitSurfaceCells& cells, Vec3 p, Vec3 foot,
-                                          double distance);
+                                          double distance, int budget = kCertificateBoxes);
 
 }  // namespace footpoint::surface_implicit
