@@ -7,7 +7,7 @@
 // and two point sets each: `box`, uniform in the box of twice the surface's extent, and `near`,
 // points of the surface moved along the normal by up to 1 % of its size.
 //
-//   build/bench/bspline_bench [points per set, default 300]
+//   build/bench/bspline_bench [points per set, default 300] [surface: B8 or RS, default both]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -109,6 +109,7 @@ std::vector<Set> point_sets(const CompiledGeometry& g, int count, std::mt19937& 
 
 int main(int argc, char** argv) {
   const int count = argc > 1 ? std::atoi(argv[1]) : 300;
+  const std::string only = argc > 2 ? argv[2] : "";
   std::mt19937 rng(2026);
   const double overhead = bench::timer_overhead_ns();
   std::printf("%s\n", bench::load_average().c_str());
@@ -119,6 +120,7 @@ int main(int argc, char** argv) {
     GeometryDefinition def;
   };
   for (const Named& n : {Named{"B8", bicubic(rng)}, Named{"RS", sphere()}}) {
+    if (!only.empty() && only != n.name) continue;
     const auto start = std::chrono::steady_clock::now();
     const auto g = compile_geometry(n.def);
     const double compile_ms =
