@@ -67,7 +67,7 @@ double foot_scale(const std::array<double, 3>& f) {
 
 PiecewiseNearest nearest_over_pieces(
     const PieceTree& pieces, const Vec3& p, const Options& options,
-    const std::function<ProjectionResult(std::size_t, const Options&)>& solve) {
+    const std::function<ProjectionResult(std::size_t, const Options&, double)>& solve) {
   // Best first over the tree: entries are nodes (id >= 0) and pieces (id = -1 - piece), keyed by
   // the lower bound of their box; a node popped pushes its children (a leaf its pieces).
   struct Entry {
@@ -78,6 +78,7 @@ PiecewiseNearest nearest_over_pieces(
     return a.lower > b.lower || (a.lower == b.lower && a.id < b.id);
   };
   std::vector<Entry> heap;
+  heap.reserve(32);
   if (pieces.size() > 0) heap.push_back({distance_lower_bound(pieces.nodes()[0].box, p), 0});
 
   struct Solved {
@@ -86,6 +87,7 @@ PiecewiseNearest nearest_over_pieces(
     ProjectionResult r;
   };
   std::vector<Solved> solved;
+  solved.reserve(4);
   const Solved* best = nullptr;
   double unsolved_bound = std::numeric_limits<double>::infinity();  // the nearest box left out
   while (!heap.empty()) {
@@ -114,7 +116,9 @@ PiecewiseNearest nearest_over_pieces(
       continue;
     }
     const auto k = static_cast<std::size_t>(-1 - e.id);
-    solved.push_back({k, e.lower, solve(k, options)});
+    const double cutoff =
+        best ? best->r.distance + tie_gap(best->r, p) : std::numeric_limits<double>::infinity();
+    solved.push_back({k, e.lower, solve(k, options, cutoff)});
     if (solved.back().r.summary.status == Status::deadline_exceeded) break;
     best = nullptr;
     for (const Solved& s : solved)
