@@ -19,6 +19,8 @@
 #include "compiled/bspline_geometry.hpp"
 #include "compiled/compiled_geometry.hpp"
 #include "cpu_time.hpp"
+#include "parametric/geometry/nurbs_patches.hpp"
+#include "parametric/solvers/bezier_patch_nearest.hpp"
 #include "solvers/piecewise_nearest.hpp"
 
 using namespace footpoint;
@@ -149,6 +151,35 @@ int main(int argc, char** argv) {
                   boxes / static_cast<double>(set.points.size()),
                   dynamic_cast<const BSplineSurface&>(*g).pieces());
       std::printf("     pieces solved per point %.2f\n", solved / static_cast<double>(set.points.size()));
+      {
+        // The polynomial pieces' own branch and bound alone (nearest_on_patch), on the piece whose
+        // box is nearest each point.
+        const auto& surface = dynamic_cast<const BSplineSurface&>(*g);
+        if (!surface.surface().rational) {
+          std::vector<BezierPatch> patches;
+          for (const nurbs::SurfacePiece& piece : nurbs::bezier_pieces(surface.surface(), 1 << 20)) {
+            std::vector<Vec3> net;
+            for (const auto& h : piece.bezier) net.push_back({h[0], h[1], h[2]});
+            patches.emplace_back(surface.surface().degree[0], surface.surface().degree[1], std::move(net));
+          }
+          int proved = 0;
+          double patch_boxes = 0.0;
+          const double t0 = bench::thread_cpu_ns();
+          for (const Vec3& p : set.points) {
+            std::size_t nearest = 0;
+            for (std::size_t k = 1; k < surface.pieces(); ++k)
+              if (distance_lower_bound(surface.hull(k), p) < distance_lower_bound(surface.hull(nearest), p))
+                nearest = k;
+            const PatchNearest n = nearest_on_patch(patches[nearest], p);
+            proved += n.proved;
+            patch_boxes += n.boxes;
+          }
+          std::printf("     nearest_on_patch (nearest box's piece) mean %.2f us, proved %.1f%%, boxes %.1f\n",
+                      (bench::thread_cpu_ns() - t0) / 1e3 / static_cast<double>(set.points.size()),
+                      100.0 * proved / static_cast<double>(set.points.size()),
+                      patch_boxes / static_cast<double>(set.points.size()));
+        }
+      }
       {
         Options o;
         o.certify = false;
