@@ -586,6 +586,11 @@ BezierPatch::BezierPatch(int p, int q, std::vector<Vec3> net) : p_(p), q_(q), ne
   // The cells of the first kCellLevels levels of quarters, each with its net.
   const double m = magnitude_ + std::numeric_limits<double>::min();
   const auto stride = static_cast<std::size_t>((p_ + 1) * (q_ + 1));
+  std::size_t cells = 1;
+  for (int level = 0, width = 1; level < kCellLevels; ++level, width *= 4)
+    cells += 4 * static_cast<std::size_t>(width);
+  cells_.reserve(cells);
+  cell_nets_.reserve(cells * stride);
   cell_nets_ = net_;
   cells_.push_back(bz_make_cell(net_.data(), p_, q_, 0.0, m, 0.0, 1.0, 0.0, 1.0));
   cells_.back().net = 0;
