@@ -77,8 +77,9 @@ PiecewiseNearest nearest_over_pieces(
   const auto farther = [](const Entry& a, const Entry& b) {
     return a.lower > b.lower || (a.lower == b.lower && a.id < b.id);
   };
-  std::vector<Entry> heap;
-  heap.reserve(32);
+  // The walk's storage is kept by each thread from one point to the next (no allocation a point).
+  thread_local std::vector<Entry> heap;
+  heap.clear();
   if (pieces.size() > 0) heap.push_back({distance_lower_bound(pieces.nodes()[0].box, p), 0});
 
   struct Solved {
@@ -86,8 +87,8 @@ PiecewiseNearest nearest_over_pieces(
     double lower;
     ProjectionResult r;
   };
-  std::vector<Solved> solved;
-  solved.reserve(4);
+  thread_local std::vector<Solved> solved;
+  solved.clear();
   const Solved* best = nullptr;
   double unsolved_bound = std::numeric_limits<double>::infinity();  // the nearest box left out
   while (!heap.empty()) {
