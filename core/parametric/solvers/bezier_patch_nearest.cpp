@@ -341,6 +341,7 @@ class BzSearch {
 
   PatchNearest run(int max_boxes) {
     PatchNearest out;
+    if (beyond_cutoff(out)) return out;
     // Newton from the parameters of the control point nearest p.
     int best = 0;
     for (int i = 1; i < stride_; ++i)
@@ -395,6 +396,90 @@ class BzSearch {
   }
 
  private:
+  // Whether the kept cells of one level (the root, its quarters, theirs) are all beyond the
+  // cutoff, by their hulls and a second-order form from their corner nearest p: then no point of
+  // the patch is within it, and `out` is its corner nearest p (a point of it: a Bézier patch
+  // interpolates its corner points) with the least of those bounds.
+  bool beyond_cutoff(PatchNearest& out) const {
+    if (!(f_cut_ < std::numeric_limits<double>::infinity())) return false;
+    const std::vector<BzCell>& cells = patch_.cells();
+    std::size_t begin = 0, count = 1;
+    for (int level = 0; level <= BezierPatch::kCellLevels && begin + count <= cells.size(); ++level) {
+      double least = std::numeric_limits<double>::infinity();
+      for (std::size_t i = begin; i < begin + count && least > f_cut_; ++i)
+        least = std::min(least, beyond_bound(cells[i]));
+      out.boxes += static_cast<int>(count);
+      if (least > f_cut_) {
+        const int corners[4][2] = {{0, 0}, {deg_[0], 0}, {0, deg_[1]}, {deg_[0], deg_[1]}};
+        int nearest = 0;
+        double d2 = std::numeric_limits<double>::infinity();
+        for (int c = 0; c < 4; ++c) {
+          const double e = norm2(
+              patch_.net()[static_cast<std::size_t>(corners[c][0] * (deg_[1] + 1) + corners[c][1])] - p_);
+          if (e < d2) {
+            d2 = e;
+            nearest = c;
+          }
+        }
+        out.proved = true;
+        out.s = corners[nearest][0] == 0 ? 0.0 : 1.0;
+        out.t = corners[nearest][1] == 0 ? 0.0 : 1.0;
+        out.jet = patch_.jet(out.s, out.t);
+        out.distance = norm(out.jet.s - p_);
+        out.lower_bound = std::min(out.distance, bz_down(std::sqrt(bz_down(2.0 * least))));
+        return true;
+      }
+      begin += count;
+      count *= 4;
+    }
+    return false;
+  }
+
+  // A cell's lower bound of f without a candidate: its hull's, else the larger of that and the
+  // second-order form from its corner nearest p.
+  double beyond_bound(const BzCell& c) const {
+    BzVec r;
+    const double lower = hull_bound(c, r);
+    if (lower > f_cut_) return lower;
+    const BzInterval fss = bz_add(c.su2, bz_dot(r, c.suu)), ftt = bz_add(c.sv2, bz_dot(r, c.svv));
+    const BzInterval fst = bz_add(c.susv, bz_dot(r, c.suv));
+    int best = 0;
+    double least = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 4; ++i) {
+      double e = 0.0;
+      for (std::size_t d = 0; d < 3; ++d) {
+        const double mid = 0.5 * (c.corners[static_cast<std::size_t>(i)].point[d].lo +
+                                  c.corners[static_cast<std::size_t>(i)].point[d].hi) -
+                           p_[static_cast<int>(d)];
+        e += mid * mid;
+      }
+      if (e < least) {
+        least = e;
+        best = i;
+      }
+    }
+    const double taylor = corner_taylor(c, best / 2, best % 2, fss, fst, ftt);
+    return std::isfinite(taylor) ? std::max(lower, taylor) : lower;
+  }
+
+  // The second-order lower bound of f over a cell from its corner (cs, ct), in the inward local
+  // parameters δ in [0, 1]².
+  double corner_taylor(const BzCell& c, int cs, int ct, BzInterval fss, BzInterval fst,
+                       BzInterval ftt) const {
+    const BzCell::Corner& corner = c.corners[static_cast<std::size_t>(cs * 2 + ct)];
+    BzVec rc;
+    for (int d = 0; d < 3; ++d)
+      rc[static_cast<std::size_t>(d)] = {bz_down(corner.point[static_cast<std::size_t>(d)].lo - p_[d]),
+                                         bz_up(corner.point[static_cast<std::size_t>(d)].hi - p_[d])};
+    const double fc = 0.5 * bz_norm2(rc).lo;
+    // The inward directions: δs = sign_s x with sign_s = +1 from s = 0, -1 from s = 1; es and et
+    // already point inwards (the gradient's sign is folded in), the cross term's sign is not.
+    const BzInterval gs = bz_dot(corner.es, rc), gt = bz_dot(corner.et, rc);
+    const int sign_s = cs ? -1 : 1, sign_t = ct ? -1 : 1;
+    const double E = sign_s * sign_t > 0 ? fst.lo : -fst.hi;
+    return bz_down(fc + bz_min_form(gs.lo, gt.lo, fss.lo, ftt.lo, E, 1.0, 1.0));
+  }
+
   const BzCell& cell(int id) const {
     return id >= 0 ? patch_.cells()[static_cast<std::size_t>(id)] : cells_[static_cast<std::size_t>(-1 - id)];
   }
@@ -464,18 +549,23 @@ class BzSearch {
     return single && b.lower >= f_cert_;
   }
 
-  void bound(BzBox& b, const BzCell& c) const {
-    BzVec r;
+  // f's lower bound over a cell from the box of its net (the hull), and S - p enclosed as r.
+  double hull_bound(const BzCell& c, BzVec& r) const {
     Box3 hull;
     for (int d = 0; d < 3; ++d) {
       r[static_cast<std::size_t>(d)] = {bz_down(c.lo[d] - p_[d]), bz_up(c.hi[d] - p_[d])};
       hull.lo[d] = c.lo[d];
       hull.hi[d] = c.hi[d];
     }
-    // The hull: the distance to the box of the net.
     const double dh = distance_lower_bound(hull, p_);
-    double lower = bz_down(0.5 * bz_down(dh * dh));
-    b.lower = std::isfinite(lower) ? lower : 0.0;
+    const double lower = bz_down(0.5 * bz_down(dh * dh));
+    return std::isfinite(lower) ? lower : 0.0;
+  }
+
+  void bound(BzBox& b, const BzCell& c) const {
+    BzVec r;
+    double lower = hull_bound(c, r);
+    b.lower = lower;
     b.lambda = -std::numeric_limits<double>::infinity();
     b.fs = b.ft = {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
     b.fss = b.ftt = -std::numeric_limits<double>::infinity();
@@ -519,20 +609,9 @@ class BzSearch {
       b.ft = {std::max(b.ft.lo, ct.lo), std::min(b.ft.hi, ct.hi)};
       return;
     }
-    // Taylor from the corner nearest the candidate, in the inward local parameters δ in [0, 1]².
-    const int cs = s_ - b.s0 > b.s1 - s_ ? 1 : 0, ct = t_ - b.t0 > b.t1 - t_ ? 1 : 0;
-    const BzCell::Corner& corner = c.corners[static_cast<std::size_t>(cs * 2 + ct)];
-    BzVec rc;
-    for (int d = 0; d < 3; ++d)
-      rc[static_cast<std::size_t>(d)] = {bz_down(corner.point[static_cast<std::size_t>(d)].lo - p_[d]),
-                                         bz_up(corner.point[static_cast<std::size_t>(d)].hi - p_[d])};
-    const double fc = 0.5 * bz_norm2(rc).lo;
-    // The inward directions: δs = sign_s x with sign_s = +1 from s = 0, -1 from s = 1; es and et
-    // already point inwards (the gradient's sign is folded in), the cross term's sign is not.
-    const BzInterval gs = bz_dot(corner.es, rc), gt = bz_dot(corner.et, rc);
-    const int sign_s = cs ? -1 : 1, sign_t = ct ? -1 : 1;
-    const double E = sign_s * sign_t > 0 ? fst.lo : -fst.hi;
-    const double taylor = bz_down(fc + bz_min_form(gs.lo, gt.lo, fss.lo, ftt.lo, E, 1.0, 1.0));
+    // Taylor from the corner nearest the candidate.
+    const double taylor =
+        corner_taylor(c, s_ - b.s0 > b.s1 - s_ ? 1 : 0, t_ - b.t0 > b.t1 - t_ ? 1 : 0, fss, fst, ftt);
     lower = std::max(lower, taylor);
     b.lower = std::isfinite(lower) ? lower : 0.0;
   }
