@@ -7,7 +7,7 @@
 // and two point sets each: `box`, uniform in the box of twice the surface's extent, and `near`,
 // points of the surface moved along the normal by up to 1 % of its size.
 //
-//   build/bench/bspline_bench [points per set, default 300]
+//   build/bench/bspline_bench [points per set, default 300] [surface: B8 or RS, default both]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +19,8 @@
 #include "compiled/bspline_geometry.hpp"
 #include "compiled/compiled_geometry.hpp"
 #include "cpu_time.hpp"
+#include "parametric/geometry/nurbs_patches.hpp"
+#include "parametric/solvers/bezier_patch_nearest.hpp"
 #include "solvers/piecewise_nearest.hpp"
 
 using namespace footpoint;
@@ -109,6 +111,7 @@ std::vector<Set> point_sets(const CompiledGeometry& g, int count, std::mt19937& 
 
 int main(int argc, char** argv) {
   const int count = argc > 1 ? std::atoi(argv[1]) : 300;
+  const std::string only = argc > 2 ? argv[2] : "";
   std::mt19937 rng(2026);
   const double overhead = bench::timer_overhead_ns();
   std::printf("%s\n", bench::load_average().c_str());
@@ -123,8 +126,11 @@ int main(int argc, char** argv) {
     const auto g = compile_geometry(n.def);
     const double compile_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    for (const Set& set : point_sets(*g, count, rng)) {
-      std::vector<double> us;
+    // A surface left out still draws its points, so that the others' sets are the full run's.
+    const std::vector<Set> sets = point_sets(*g, count, rng);
+    if (!only.empty() && only != n.name) continue;
+    for (const Set& set : sets) {
+      std::vector<double> us, distances;
       int certified = 0;
       double boxes = 0.0, solved = 0.0;
       const double batch_start = bench::thread_cpu_ns();
@@ -134,19 +140,58 @@ int main(int argc, char** argv) {
         const ProjectionResult r = g->project(x, "auto", {}).value();
         us.push_back((bench::thread_cpu_ns() - t0 - overhead) / 1e3);
         certified += r.summary.certificate.certified;
-        for (std::size_t k = 0; k < dynamic_cast<const BSplineSurface&>(*g).pieces(); ++k)
-          solved += distance_lower_bound(dynamic_cast<const BSplineSurface&>(*g).hull(k), p) <=
-                    r.distance * (1 + 1e-9);
+        distances.push_back(r.distance);
         boxes += r.summary.certificate.boxes;
       }
       const double mean =
           (bench::thread_cpu_ns() - batch_start) / 1e3 / static_cast<double>(set.points.size());
+      // The pieces whose box is within the answer's distance (outside the timing).
+      const auto& bspline = dynamic_cast<const BSplineSurface&>(*g);
+      for (std::size_t i = 0; i < set.points.size(); ++i)
+        for (std::size_t k = 0; k < bspline.pieces(); ++k)
+          solved += distance_lower_bound(bspline.hull(k), set.points[i]) <= distances[i] * (1 + 1e-9);
       std::printf("%-4s %-5s %6.1fms %8.1f %8.1f %8.1f %8.1f%% %7.1f %9zu\n", n.name, set.name.c_str(),
                   compile_ms, bench::percentile(us, 0.5), bench::percentile(us, 0.9), mean,
                   100.0 * certified / static_cast<double>(set.points.size()),
                   boxes / static_cast<double>(set.points.size()),
                   dynamic_cast<const BSplineSurface&>(*g).pieces());
-      std::printf("     pieces solved per point %.2f\n", solved / static_cast<double>(set.points.size()));
+      std::printf("     pieces solved per point %.2f; compiled %.1f MB\n",
+                  solved / static_cast<double>(set.points.size()),
+                  static_cast<double>(g->memory_bytes()) / 1e6);
+      {
+        // The polynomial pieces' own branch and bound alone (nearest_on_patch), on the piece whose
+        // box is nearest each point.
+        const auto& surface = dynamic_cast<const BSplineSurface&>(*g);
+        if (!surface.surface().rational) {
+          std::vector<BezierPatch> patches;
+          for (const nurbs::SurfacePiece& piece : nurbs::bezier_pieces(surface.surface(), 1 << 20)) {
+            std::vector<Vec3> net;
+            for (const auto& h : piece.bezier) net.push_back({h[0], h[1], h[2]});
+            patches.emplace_back(surface.surface().degree[0], surface.surface().degree[1], std::move(net));
+          }
+          int proved = 0;
+          double patch_boxes = 0.0;
+          const double t0 = bench::thread_cpu_ns();
+          for (const Vec3& p : set.points) {
+            std::size_t nearest = 0;
+            for (std::size_t k = 1; k < surface.pieces(); ++k)
+              if (distance_lower_bound(surface.hull(k), p) < distance_lower_bound(surface.hull(nearest), p))
+                nearest = k;
+            const PatchNearest n = nearest_on_patch(patches[nearest], p);
+            proved += n.proved;
+            patch_boxes += n.boxes;
+          }
+          std::size_t patch_bytes = 0;
+          for (const BezierPatch& patch : patches) patch_bytes += patch.memory_bytes();
+          std::printf(
+              "     nearest_on_patch (nearest box's piece; patches %.1f MB) mean %.2f us, proved %.1f%%, "
+              "boxes %.1f\n",
+              static_cast<double>(patch_bytes) / 1e6,
+              (bench::thread_cpu_ns() - t0) / 1e3 / static_cast<double>(set.points.size()),
+              100.0 * proved / static_cast<double>(set.points.size()),
+              patch_boxes / static_cast<double>(set.points.size()));
+        }
+      }
       {
         Options o;
         o.certify = false;

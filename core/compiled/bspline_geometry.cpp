@@ -8,6 +8,7 @@
 
 #include "geometry/compile_budget.hpp"
 #include "parametric/geometry/nurbs_patches.hpp"
+#include "parametric/solvers/surface_result.hpp"
 #include "solvers/piecewise_nearest.hpp"
 
 namespace footpoint {
@@ -76,28 +77,47 @@ GeometryDefinition piece_definition(
 // The global parameter of the local s in [0, 1] on [a, b]: the ends exactly.
 double global_of(double s, double a, double b) { return s <= 0.0 ? a : s >= 1.0 ? b : a + (b - a) * s; }
 
+// A non-rational piece's Bézier patch (its formula's points: the net's w x, w y, w z with the
+// weights left out, as nurbs_patches does), for nearest_on_patch; none for a rational piece or a
+// degree above BezierPatch::kMaxDegree.
+std::optional<BezierPatch> polynomial_patch(const nurbs::SurfacePiece& piece, const nurbs::Surface& surface) {
+  const auto [p, q] = surface.degree;
+  if (surface.rational || p > BezierPatch::kMaxDegree || q > BezierPatch::kMaxDegree) return std::nullopt;
+  std::vector<Vec3> net;
+  for (const auto& h : piece.bezier) net.push_back({h[0], h[1], h[2]});
+  return BezierPatch(p, q, std::move(net));
+}
+
+// The sub-patches nearest_on_patch may bound for one point before the piece's `auto` is asked.
+constexpr int kPatchBoxes = 24;
+
 // The pieces' certified `auto` answers combined (solvers/piecewise_nearest.hpp). `to_local(k, t,
 // s)` maps options.initial's global parameters to piece k's local ones (false: not on piece k);
 // `finish(k, r)` locates piece k's answer on the whole geometry and maps its parameters back.
-template <class Pieces, class ToLocal, class Finish>
+// `direct(k, o, cutoff)` may answer piece k without its `auto` (an empty optional: it does not).
+template <class Pieces, class ToLocal, class Finish, class Direct>
 ProjectionResult nearest_piece(const Pieces& pieces, const PieceTree& tree, const Vec3& p,
-                               const Options& options, ToLocal to_local, Finish finish) {
+                               const Options& options, ToLocal to_local, Finish finish, Direct direct) {
   return nearest_over_pieces(tree, p, options,
-                             [&](std::size_t k, const Options& o) {
-                               Options piece_options = o;
-                               std::array<double, 3> local{};
-                               if (o.initial && to_local(k, *o.initial, local))
-                                 piece_options.initial = local;
-                               else
-                                 piece_options.initial.reset();
-                               const double point[3] = {p.x, p.y, p.z};
-                               ProjectionResult r = pieces[k]->project(point, "auto", piece_options).value();
+                             [&](std::size_t k, const Options& o, double cutoff) {
+                               std::optional<ProjectionResult> answer = direct(k, o, cutoff);
+                               if (!answer) {
+                                 Options piece_options = o;
+                                 std::array<double, 3> local{};
+                                 if (o.initial && to_local(k, *o.initial, local))
+                                   piece_options.initial = local;
+                                 else
+                                   piece_options.initial.reset();
+                                 const double point[3] = {p.x, p.y, p.z};
+                                 answer = pieces[k]->project(point, "auto", piece_options).value();
+                               }
+                               ProjectionResult& r = *answer;
                                // The normal is the whole geometry's (foot_normal), not the piece's: none on a
                                // kink.
                                r.normal.fill(std::numeric_limits<double>::quiet_NaN());
                                r.signed_distance = std::numeric_limits<double>::quiet_NaN();
                                finish(k, r);
-                               return r;
+                               return std::move(r);
                              })
       .result;
 }
@@ -264,6 +284,7 @@ BSplineSurface::BSplineSurface(GeometryDefinition def, nurbs::Surface surface,
         std::move(piece.program), ParamBox{0.0, 1.0, 0.0, 1.0}, seeding));
     spans_.push_back(piece.span);
     hulls.push_back(piece.hull);
+    patches_.push_back(polynomial_patch(piece, surface_));
     CompileBudget::check();
   }
   tree_ = PieceTree(std::move(hulls));
@@ -317,10 +338,16 @@ ProjectionResult BSplineSurface::project_local(std::string_view name, const Vec3
   return r;
 }
 
+SurfaceJet BSplineSurface::piece_jet(std::size_t k, double s, double t) const {
+  return patches_[k] ? patches_[k]->power_jet(s, t) : pieces_[k]->formulas().jet(s, t);
+}
+
 std::size_t BSplineSurface::memory_bytes() const {
   std::size_t bytes =
       sizeof(*this) + surface_.weighted.capacity() * sizeof(surface_.weighted[0]) + tree_.memory_bytes();
   for (const auto& piece : pieces_) bytes += piece->memory_bytes();
+  for (const auto& patch : patches_)
+    if (patch) bytes += patch->memory_bytes();
   return bytes;
 }
 
@@ -355,8 +382,8 @@ bool BSplineSurface::foot_normal(const ProjectionResult& r, std::array<double, 3
   const std::size_t k =
       span_of(breaks_u_, r.params[0]) * (breaks_v_.size() - 1) + span_of(breaks_v_, r.params[1]);
   const ParamBox& b = spans_[k];
-  const SurfaceJet j = pieces_[k]->formulas().jet((r.params[0] - b.umin) / (b.umax - b.umin),
-                                                  (r.params[1] - b.vmin) / (b.vmax - b.vmin));
+  const SurfaceJet j =
+      piece_jet(k, (r.params[0] - b.umin) / (b.umax - b.umin), (r.params[1] - b.vmin) / (b.vmax - b.vmin));
   const Evaluation e = evaluation_of(j);
   if (!e.normal_defined) return false;
   n = {e.normal.x, e.normal.y, e.normal.z};
@@ -375,7 +402,7 @@ Location BSplineSurface::locate(std::size_t k, Location piece_location, double s
   if (on_u || on_v) return Location::edge;
   // On a knot line inside: a kink where the normals of the pieces on its two sides differ.
   auto normal = [&](std::size_t piece, double ps, double pt) {
-    const SurfaceJet j = pieces_[piece]->formulas().jet(ps, pt);
+    const SurfaceJet j = piece_jet(piece, ps, pt);
     return cross(j.su, j.sv);
   };
   const Vec3 here = normal(k, s, t);
@@ -447,7 +474,34 @@ ProjectionResult BSplineSurface::project_auto(const Vec3& p, const Options& opti
       step[1] *= b.vmax - b.vmin;
     }
   };
-  return nearest_piece(pieces_, tree_, p, options, to_local, finish);
+  const auto direct = [&](std::size_t k, const Options& o, double cutoff) -> std::optional<ProjectionResult> {
+    // The patch's own branch and bound, where it applies: a polynomial piece, the default
+    // options of a certified answer.
+    if (!patches_[k] || o.all_minima || o.trace || o.tolerance != 0.0 || o.max_iterations != 0 ||
+        (o.certify && !*o.certify))
+      return std::nullopt;
+    const PatchNearest n = nearest_on_patch(*patches_[k], p, kPatchBoxes, cutoff);
+    if (!n.proved || n.distance > o.max_distance) return std::nullopt;
+    ProjectionResult r = surface::surface_result("auto", p, n.s, n.t, n.jet.s, n.jet.su, n.jet.sv,
+                                                 ParamBox{0.0, 1.0, 0.0, 1.0}, &pieces_[k]->closure());
+    Summary& summary = r.summary;
+    summary.status = Status::converged;
+    summary.iterations = n.iterations;
+    summary.starts = n.starts;
+    summary.step_norm = n.step_norm;
+    Certificate& c = summary.certificate;
+    c.computed = true;
+    c.lower_bound = n.lower_bound;
+    c.absolute_gap = Certificate::absolute_gap_at(p, n.jet.s);
+    c.certified = Certificate::meets_gap(n.distance, c.lower_bound, c.absolute_gap);
+    c.reason = c.certified ? CertificateReason::gap_met : CertificateReason::budget_exhausted;
+    c.boxes = n.boxes;
+    summary.multiplicity.computed = true;
+    summary.multiplicity.kind = Multiplicity::unique;
+    summary.multiplicity.count = 1;
+    return r;
+  };
+  return nearest_piece(pieces_, tree_, p, options, to_local, finish, direct);
 }
 
 // ---- curves --------------------------------------------------------------------------------------
@@ -565,7 +619,8 @@ ProjectionResult BSplineCurve::project_auto(const Vec3& p, const Options& option
     }
     for (auto& step : r.trace) step[0] *= b.tmax - b.tmin;
   };
-  return nearest_piece(pieces_, tree_, p, options, to_local, finish);
+  const auto direct = [](std::size_t, const Options&, double) { return std::optional<ProjectionResult>{}; };
+  return nearest_piece(pieces_, tree_, p, options, to_local, finish, direct);
 }
 
 // ---- compiling -----------------------------------------------------------------------------------

@@ -23,6 +23,7 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -31,6 +32,7 @@
 #include "compiled/parametric_surface_geometry.hpp"
 #include "geometry/box3.hpp"
 #include "parametric/geometry/nurbs.hpp"
+#include "parametric/solvers/bezier_patch_nearest.hpp"
 #include "solvers/piecewise_nearest.hpp"
 
 namespace footpoint {
@@ -60,6 +62,8 @@ class BSplineSurface final : public CompiledGeometry {
   // A foot piece k answered at one of its poles (its closure): located there, its parameters on
   // the edge, and one foot rather than the edge's continuum of parameters.
   void at_pole(std::size_t k, const Vec3& p, ProjectionResult& r) const;
+  // Piece k's jet at its local (s, t): its Bézier patch's where it has one, else its formula's.
+  SurfaceJet piece_jet(std::size_t k, double s, double t) const;
   // The location on the whole surface of a foot piece k answered at its local (s, t).
   Location locate(std::size_t k, Location piece_location, double s, double t) const;
 
@@ -67,6 +71,8 @@ class BSplineSurface final : public CompiledGeometry {
   // Piece k: a parametric surface in its local (s, t) in [0, 1]^2 over the knot spans spans_[k].
   std::vector<std::unique_ptr<ParametricSurface>> pieces_;
   std::vector<ParamBox> spans_;
+  // Piece k's Bézier patch where it is polynomial: its nearest point by nearest_on_patch first.
+  std::vector<std::optional<BezierPatch>> patches_;
   PieceTree tree_;                           // the pieces' boxes
   std::vector<MethodInfo> methods_;          // auto, then the pieces' local methods
   std::vector<double> breaks_u_, breaks_v_;  // the distinct knots of the domain, ends included

@@ -67,7 +67,7 @@ double foot_scale(const std::array<double, 3>& f) {
 
 PiecewiseNearest nearest_over_pieces(
     const PieceTree& pieces, const Vec3& p, const Options& options,
-    const std::function<ProjectionResult(std::size_t, const Options&)>& solve) {
+    const std::function<ProjectionResult(std::size_t, const Options&, double)>& solve) {
   // Best first over the tree: entries are nodes (id >= 0) and pieces (id = -1 - piece), keyed by
   // the lower bound of their box; a node popped pushes its children (a leaf its pieces).
   struct Entry {
@@ -77,7 +77,9 @@ PiecewiseNearest nearest_over_pieces(
   const auto farther = [](const Entry& a, const Entry& b) {
     return a.lower > b.lower || (a.lower == b.lower && a.id < b.id);
   };
-  std::vector<Entry> heap;
+  // The walk's storage is kept by each thread from one point to the next (no allocation a point).
+  thread_local std::vector<Entry> heap;
+  heap.clear();
   if (pieces.size() > 0) heap.push_back({distance_lower_bound(pieces.nodes()[0].box, p), 0});
 
   struct Solved {
@@ -85,7 +87,8 @@ PiecewiseNearest nearest_over_pieces(
     double lower;
     ProjectionResult r;
   };
-  std::vector<Solved> solved;
+  thread_local std::vector<Solved> solved;
+  solved.clear();
   const Solved* best = nullptr;
   double unsolved_bound = std::numeric_limits<double>::infinity();  // the nearest box left out
   while (!heap.empty()) {
@@ -114,7 +117,9 @@ PiecewiseNearest nearest_over_pieces(
       continue;
     }
     const auto k = static_cast<std::size_t>(-1 - e.id);
-    solved.push_back({k, e.lower, solve(k, options)});
+    const double cutoff =
+        best ? best->r.distance + tie_gap(best->r, p) : std::numeric_limits<double>::infinity();
+    solved.push_back({k, e.lower, solve(k, options, cutoff)});
     if (solved.back().r.summary.status == Status::deadline_exceeded) break;
     best = nullptr;
     for (const Solved& s : solved)

@@ -57,10 +57,13 @@ struct PiecewiseNearest {
   int pieces_solved = 0;
 };
 
-// `solve(k, options)` projects p onto piece k with its global method (the options passed on; the
-// caller decides what options.initial means for piece k).
+// `solve(k, options, cutoff)` projects p onto piece k with its global method (the options passed
+// on; the caller decides what options.initial means for piece k). cutoff is the best distance
+// found so far plus the gap (infinite at first): a piece none of whose points is within it can be
+// neither the answer nor tied with it, so its answer may then be any point of it with a rigorous
+// lower bound above cutoff, not its nearest point.
 PiecewiseNearest nearest_over_pieces(
     const PieceTree& pieces, const Vec3& p, const Options& options,
-    const std::function<ProjectionResult(std::size_t, const Options&)>& solve);
+    const std::function<ProjectionResult(std::size_t, const Options&, double)>& solve);
 
 }  // namespace footpoint

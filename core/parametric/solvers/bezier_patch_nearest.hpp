@@ -1,0 +1,119 @@
+// The nearest point of one polynomial Bézier patch, proved from its control net alone: a branch
+// and bound over sub-patches (the dyadic quarters, by de Casteljau), each bounded below two ways,
+// the larger kept:
+//  - the convex hull property: a sub-patch lies in the box of its control points, so the distance
+//    from p to that box bounds it ([PieglTiller] L. Piegl, W. Tiller, The NURBS Book, 2nd ed.,
+//    Springer 1997, the properties of Bézier surfaces in ch. 3);
+//  - a second-order bound of f = ½|S - p|²: by Taylor's theorem f(c + δ) >= f(c) + ∇f(c)·δ +
+//    ½ δᵀ H δ for any H enclosing f's Hessian over the sub-patch; f_ss = |S_s|² + (S - p)·S_ss
+//    and its kin are enclosed from the boxes of the nets of differences (S_s, S_t, S_ss, S_st,
+//    S_tt are Bézier patches of the differences of the net), and on each quadrant of the box
+//    about c (δ's signs fixed) the form's least value is found exactly (a corner, an edge's
+//    one-dimensional minimum, or the interior stationary point). c is the candidate foot x* on
+//    the sub-patches that hold it (∇f(x*) ~ 0: the bound is f(x*) to the rounding, which the
+//    hull alone reaches only after ~15 levels), else the corner nearest x*.
+// The candidate is projected Newton's on the box [0, 1]² from the parameters of the control point
+// nearest p, restarted in a sub-patch that may hold a nearer point. A sub-patch is settled when
+// it cannot hold a foot within the certificate's gap (geometry/certificate.hpp) of the candidate,
+// or when it holds the candidate and f has a single local minimum there: f strictly convex (the
+// least eigenvalue of every matrix in H positive), or along a direction where x* is on the patch's
+// edge, f's derivative of one sign over the whole sub-patch (enclosed in the centred form
+// ∇f(x*) + H δ) pushing towards that edge, and f convex along the other. Then x*, which meets
+// the first-order conditions, is the sub-patch's only minimum and the foot is unique. The lower
+// bound returned is the least of the settled sub-patches' bounds, rigorous for the polynomial of
+// the net as stored: every subdivision's rounding is carried as an absolute error of the nets'
+// points, the candidate's jet is enclosed with the Bernstein sums' rounding, and every bound is
+// rounded outwards. The first kCellLevels levels of quarters and their enclosures, which do not
+// depend on p, are computed once per patch.
+//
+// It gives up (proved = false, the caller solves the patch another way) when that cannot be shown
+// within the budget of sub-patches: two feet at the same distance, a continuum, a degenerate
+// (pole) edge, a saddle of the distance.
+#pragma once
+#include <array>
+#include <limits>
+#include <vector>
+
+#include "geometry/vec.hpp"
+#include "parametric/geometry/parametric_surface.hpp"
+
+namespace footpoint {
+
+namespace bezier_detail {
+struct Interval {
+  double lo, hi;
+};
+using IntervalVec = std::array<Interval, 3>;
+// A sub-patch [s0, s1] x [t0, t1] (a cell of the dyadic quarters) and what bounds it independently
+// of the point: the box of its net (widened by err, the net's distance to the exact sub-patch's),
+// enclosures of S_s, S_t, S_ss, S_tt, S_st over it in its own local parameters (the nets of
+// differences), of |S_s|², |S_t|², S_s·S_t, and at each corner the point and the inward first
+// derivatives.
+struct Cell {
+  double s0 = 0.0, s1 = 1.0, t0 = 0.0, t1 = 1.0;
+  double err = 0.0;
+  Vec3 lo{}, hi{};
+  IntervalVec su{}, sv{}, suu{}, svv{}, suv{};
+  Interval su2{}, sv2{}, susv{};
+  double size_s = 0.0, size_t = 0.0;  // the largest |S_s|, |S_t| over it
+  struct Corner {
+    IntervalVec point{}, es{}, et{};
+  };
+  std::array<Corner, 4> corners{};  // (cs, ct) at cs * 2 + ct, cs = 1 at s1
+  int net = -1;                     // its net's offset in its owner's nets
+  int child = -1;                   // the first of its four quarters, -1: none kept
+};
+}  // namespace bezier_detail
+
+class BezierPatch {
+ public:
+  static constexpr int kMaxDegree = 7;
+  // net[k * (q + 1) + l] is the control point b_kl, k along s; p, q in [1, kMaxDegree].
+  BezierPatch(int p, int q, std::vector<Vec3> net);
+  int degree_s() const { return p_; }
+  int degree_t() const { return q_; }
+  const std::vector<Vec3>& net() const { return net_; }
+  double magnitude() const { return magnitude_; }  // the largest |coordinate| of the net
+  // S and its derivatives to second order at (s, t), by the Bernstein basis and its derivatives.
+  SurfaceJet jet(double s, double t) const;
+  // The same by Horner's scheme in the power basis (the net converted once): faster, less
+  // accurate (the conversion's rounding grows like 3^(p + q)); what Newton's iterations use.
+  SurfaceJet power_jet(double s, double t) const;
+  // The quarters of the first kCellLevels levels, kept: the branch and bound's first boxes.
+  static constexpr int kCellLevels = 2;
+  const std::vector<bezier_detail::Cell>& cells() const { return cells_; }
+  const std::vector<Vec3>& cell_nets() const { return cell_nets_; }
+  std::size_t memory_bytes() const {
+    return sizeof(*this) + (net_.capacity() + power_.capacity() + cell_nets_.capacity()) * sizeof(Vec3) +
+           cells_.capacity() * sizeof(bezier_detail::Cell);
+  }
+
+ private:
+  int p_, q_;
+  std::vector<Vec3> net_;
+  std::vector<Vec3> power_;                 // the coefficient of s^k t^l at k * (q + 1) + l
+  std::vector<bezier_detail::Cell> cells_;  // the root, then each level's quarters
+  std::vector<Vec3> cell_nets_;
+  double magnitude_ = 0.0;
+};
+
+struct PatchNearest {
+  bool proved = false;  // false: no claim; the fields below are meaningless
+  double s = 0.0, t = 0.0;
+  SurfaceJet jet;            // at (s, t)
+  double distance = 0.0;     // |S(s, t) - p|
+  double lower_bound = 0.0;  // no point of the patch is nearer (rigorous)
+  int boxes = 0;             // sub-patches bounded
+  int iterations = 0;        // Newton's iterations, all starts
+  int starts = 0;            // Newton's starts
+  double step_norm = 0.0;    // the last Newton step
+};
+
+// The patch's nearest point to p, proved as above, within max_boxes sub-patches. With a finite
+// cutoff, a sub-patch whose bound is beyond it is settled too: when the patch has no point within
+// cutoff, the answer is the candidate found (a point of the patch, not necessarily its nearest)
+// and lower_bound is above cutoff.
+PatchNearest nearest_on_patch(const BezierPatch& patch, const Vec3& p, int max_boxes = 48,
+                              double cutoff = std::numeric_limits<double>::infinity());
+
+}  // namespace footpoint
