@@ -76,6 +76,18 @@ bool run_stream(const ProjectStream& stream, const std::function<bool(std::strin
     }
     return true;
   };
+  // A window's answer that could not be written: where the client has closed its connection (it
+  // left while the answer was on its way rather than between grains), the points after the window
+  // are cancelled as when its leaving is seen between grains.
+  auto window_unsent = [&](std::size_t done) {
+    if (stream.client_gone && stream.client_gone()) {
+      const std::size_t dropped = request.count - done;
+      if (stream.metrics) stream.metrics->add_cancelled(dropped);
+      log_event(spdlog::level::info, "stream cancelled: the client closed the connection",
+                {{"points", request.count}, {"done", done}, {"dropped", dropped}});
+    }
+    return false;
+  };
   std::vector<double> window_points;
   std::string raw;
   BatchStats stats;
@@ -127,7 +139,7 @@ bool run_stream(const ProjectStream& stream, const std::function<bool(std::strin
                 {{"points", request.count}, {"done", begin + cancelled.done()}, {"dropped", dropped}});
       return false;
     }
-    if (!out.empty() && !send(out)) return false;
+    if (!out.empty() && !send(out)) return window_unsent(begin + count);
     if (bad) {
       if (bad->code == "body_incomplete") return false;
       // NDJSON has a line for the error, binary records none: cut. The rest of the body is read
