@@ -22,20 +22,14 @@ using BzInterval = bezier_detail::Interval;
 using BzVec = bezier_detail::IntervalVec;
 using BzCell = bezier_detail::Cell;
 
-BzInterval bz_add(BzInterval a, BzInterval b) { return {bz_down(a.lo + b.lo), bz_up(a.hi + b.hi)}; }
-BzInterval bz_mul(BzInterval a, BzInterval b) {
-  const double x1 = a.lo * b.lo, x2 = a.lo * b.hi, x3 = a.hi * b.lo, x4 = a.hi * b.hi;
-  return {bz_down(std::min({x1, x2, x3, x4})), bz_up(std::max({x1, x2, x3, x4}))};
-}
-BzInterval bz_sqr(BzInterval a) {
-  const double l = std::fabs(a.lo), h = std::fabs(a.hi);
-  const double small = a.lo <= 0.0 && a.hi >= 0.0 ? 0.0 : std::min(l, h);
-  return {small == 0.0 ? 0.0 : bz_down(small * small), bz_up(std::max(l, h) * std::max(l, h))};
-}
+// Interval sums, products and squares, rounded outwards (formula/interval.hpp).
+using formula::interval::add;
+using formula::interval::mul;
+using formula::interval::sqr;
 BzInterval bz_dot(const BzVec& a, const BzVec& b) {
-  return bz_add(bz_add(bz_mul(a[0], b[0]), bz_mul(a[1], b[1])), bz_mul(a[2], b[2]));
+  return add(add(mul(a[0], b[0]), mul(a[1], b[1])), mul(a[2], b[2]));
 }
-BzInterval bz_norm2(const BzVec& a) { return bz_add(bz_add(bz_sqr(a[0]), bz_sqr(a[1])), bz_sqr(a[2])); }
+BzInterval bz_norm2(const BzVec& a) { return add(add(sqr(a[0]), sqr(a[1])), sqr(a[2])); }
 
 // The box of computed values v (each within w of its exact value, plus its own rounding) less
 // `origin`, as intervals.
@@ -441,8 +435,8 @@ class BzSearch {
     BzVec r;
     const double lower = hull_bound(c, r);
     if (lower > f_cut_) return lower;
-    const BzInterval fss = bz_add(c.su2, bz_dot(r, c.suu)), ftt = bz_add(c.sv2, bz_dot(r, c.svv));
-    const BzInterval fst = bz_add(c.susv, bz_dot(r, c.suv));
+    const BzInterval fss = add(c.su2, bz_dot(r, c.suu)), ftt = add(c.sv2, bz_dot(r, c.svv));
+    const BzInterval fst = add(c.susv, bz_dot(r, c.suv));
     int best = 0;
     double least = std::numeric_limits<double>::infinity();
     for (int i = 0; i < 4; ++i) {
@@ -572,8 +566,8 @@ class BzSearch {
     if ((!b.contains(s_, t_) && b.lower > f_tie_) || b.lower > f_cut_) return;  // settled by the hull alone
     // f's Hessian over the box and its smallest eigenvalue, bounded below: λ_min of [a b; b c] is
     // (a + c)/2 - sqrt(((a - c)/2)² + b²), increasing in a and c, decreasing in |b|.
-    const BzInterval fss = bz_add(c.su2, bz_dot(r, c.suu)), ftt = bz_add(c.sv2, bz_dot(r, c.svv));
-    const BzInterval fst = bz_add(c.susv, bz_dot(r, c.suv));
+    const BzInterval fss = add(c.su2, bz_dot(r, c.suu)), ftt = add(c.sv2, bz_dot(r, c.svv));
+    const BzInterval fst = add(c.susv, bz_dot(r, c.suv));
     const double ha = fss.lo, hc = ftt.lo, hb = std::max(std::fabs(fst.lo), std::fabs(fst.hi));
     double lambda = 0.5 * (ha + hc) - std::sqrt(0.25 * (ha - hc) * (ha - hc) + hb * hb);
     lambda -= (std::fabs(ha) + std::fabs(hc) + hb) * 0x1p-48;
@@ -603,8 +597,8 @@ class BzSearch {
       lower = std::max(lower, taylor);
       b.lower = std::isfinite(lower) ? lower : 0.0;
       const BzInterval ds{ls, hs}, dt{lt, ht};
-      const BzInterval cs = bz_add(as, bz_add(bz_mul(fss, ds), bz_mul(fst, dt)));
-      const BzInterval ct = bz_add(at, bz_add(bz_mul(fst, ds), bz_mul(ftt, dt)));
+      const BzInterval cs = add(as, add(mul(fss, ds), mul(fst, dt)));
+      const BzInterval ct = add(at, add(mul(fst, ds), mul(ftt, dt)));
       b.fs = {std::max(b.fs.lo, cs.lo), std::min(b.fs.hi, cs.hi)};
       b.ft = {std::max(b.ft.lo, ct.lo), std::min(b.ft.hi, ct.hi)};
       return;

@@ -34,15 +34,14 @@
 #include <limits>
 #include <vector>
 
+#include "formula/interval.hpp"
 #include "geometry/vec.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 
 namespace footpoint {
 
 namespace bezier_detail {
-struct Interval {
-  double lo, hi;
-};
+using Interval = formula::Interval;
 using IntervalVec = std::array<Interval, 3>;
 // A sub-patch [s0, s1] x [t0, t1] (a cell of the dyadic quarters) and what bounds it independently
 // of the point: the box of its net (widened by err, the net's distance to the exact sub-patch's),
