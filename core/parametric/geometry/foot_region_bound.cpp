@@ -92,7 +92,7 @@ double least_curvature_by_direction(const double (&L)[2][2], const double (&m)[2
         auto least_product = [](double p_lo, double p_hi, double v_lo, double v_hi) {
           return std::min({p_lo * v_lo, p_lo * v_hi, p_hi * v_lo, p_hi * v_hi});
         };
-        const double t_aa = c * c * (n_lo[a][a] >= 0.0 ? n_lo[a][a] : n_lo[a][a]);
+        const double t_aa = c * c * n_lo[a][a];
         const double t_ab = least_product(2.0 * c * x0, 2.0 * c * x1, n_lo[a][b], n_hi[a][b]);
         const double t_bb =
             n_lo[b][b] >= 0.0 ? x_abs_lo * x_abs_lo * n_lo[b][b] : x_abs_hi * x_abs_hi * n_lo[b][b];
