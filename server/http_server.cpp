@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -39,7 +40,7 @@ struct RequestContext {
   bool active = false;  // false when httplib answered before pre-routing (malformed request)
   Clock::time_point start;
   std::string request_id;
-  Route route = Route::none;
+  RouteMatch match;  // matched once, by admission ({id} views the request's path)
   std::size_t points = 0;
   std::string error_code;       // the code of the error answered, for the log line
   bool admitted = false;        // already checked when the client asked "Expect: 100-continue"
@@ -155,12 +156,12 @@ void set_response(httplib::Response& res, ApiResponse&& r, int socket = -1, int 
   }
 }
 
-// Answers from pre-routing. When the request carries a body that will now not be read, the
-// connection must close: its unread bytes cannot be taken for the next request.
-httplib::Server::HandlerResponse reject(httplib::Response& res, const ApiError& error, bool close) {
+// Answers from admission (false: not admitted). When the request carries a body that will now
+// not be read, the connection must close: its unread bytes cannot be taken for the next request.
+bool reject(httplib::Response& res, const ApiError& error, bool close) {
   set_response(res, Api::error_response(error));
   if (close) res.set_header("Connection", "close");
-  return httplib::Server::HandlerResponse::Handled;
+  return false;
 }
 
 // How long, and how many bytes, a connection refused before its body was read goes on reading
@@ -315,29 +316,43 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
       custom_handler_(static_cast<bool>(handler_)),
       http_(make_listener(tls_.get())),
       busy_ports_(std::make_unique<std::atomic<int>[]>(config_.connection_threads)) {
-  if (config_.read_timeout_s > 0) {
-    const std::chrono::milliseconds timeout(1000 * config_.read_timeout_s);
-    read_deadline_ = std::make_unique<ReadDeadline>(
-        timeout, std::min<std::chrono::milliseconds>(timeout / 4, std::chrono::seconds(1)),
-        [this](const std::string& host, int port) {
-          metrics_.add_read_timeout();
-          log_event(spdlog::level::warn,
-                    "connection closed: its request did not arrive within --read-timeout-s",
-                    {{"remote", host}, {"port", port}, {"read_timeout_s", config_.read_timeout_s}});
-        });
-  }
+  start_read_deadline();
   init_logging(config_.log_level);
+  log_exposure();
+  if (!handler_)
+    handler_ = [this](const RouteMatch& m, std::string_view method, std::string_view body,
+                      std::string_view query,
+                      const Caller& caller) { return api_.handle(m, method, body, query, caller); };
+  configure_listener();
+  install_admission();
+  install_routes();
+  install_error_answers();
+  install_request_log();
+}
+
+void HttpServer::start_read_deadline() {
+  if (config_.read_timeout_s <= 0) return;
+  const std::chrono::milliseconds timeout(1000 * config_.read_timeout_s);
+  read_deadline_ = std::make_unique<ReadDeadline>(
+      timeout, std::min<std::chrono::milliseconds>(timeout / 4, std::chrono::seconds(1)),
+      [this](const std::string& host, int port) {
+        metrics_.add_read_timeout();
+        log_event(spdlog::level::warn,
+                  "connection closed: its request did not arrive within --read-timeout-s",
+                  {{"remote", host}, {"port", port}, {"read_timeout_s", config_.read_timeout_s}});
+      });
+}
+
+void HttpServer::log_exposure() const {
   if (keys_)
     log_event(spdlog::level::info, "API keys loaded", {{"file", config_.api_keys}, {"keys", keys_->size()}});
   else
     log_event(spdlog::level::warn, "no authentication: every client may call every route (see --api-keys)");
   if (tls_) log_event(spdlog::level::info, "TLS certificate loaded", {{"certificate", tls_->describe()}});
-  if (!handler_)
-    handler_ = [this](const RouteMatch& m, std::string_view method, std::string_view body,
-                      std::string_view query,
-                      const Caller& caller) { return api_.handle(m, method, body, query, caller); };
-  httplib::Server& http = *http_;
+}
 
+void HttpServer::configure_listener() {
+  httplib::Server& http = *http_;
   const unsigned connection_threads = config_.connection_threads;
   http.new_task_queue = [connection_threads] { return new httplib::ThreadPool(connection_threads); };
   http.set_tcp_nodelay(true);
@@ -355,253 +370,273 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
   http.set_read_timeout(config_.io_timeout_s);
   http.set_write_timeout(config_.io_timeout_s);
   http.set_payload_max_length(config_.max_body_bytes);
+}
 
-  // The checks every request passes before its body is read (see http_server.hpp).
-  auto admit = [this](const httplib::Request& req, httplib::Response& res) {
-    RequestContext& ctx = t_request;
-    ctx = RequestContext{};
-    ctx.active = true;
-    ctx.start = Clock::now();
-    mark_busy(req.remote_port);
-    if (read_deadline_) read_deadline_->admitted(req.remote_addr, req.remote_port);
-    // httplib would compress the response by the client's Accept-Encoding (brotli at quality 11
-    // costs far more than the projection) and cut it by Range: the service sends plain, whole
-    // bodies. The request object is httplib's own mutable one, handed over as const.
-    auto& mutable_req = const_cast<httplib::Request&>(req);
-    mutable_req.headers.erase("Accept-Encoding");
-    mutable_req.headers.erase("Range");
-    mutable_req.ranges.clear();
-
-    const std::string given_id = req.get_header_value("X-Request-Id");
-    ctx.request_id = acceptable_request_id(given_id) ? given_id : make_request_id();
-    res.set_header("X-Request-Id", ctx.request_id);
-
-    const bool has_length = req.has_header("Content-Length");
-    const bool chunked = req.has_header("Transfer-Encoding");
-    std::size_t length = 0;
-    if (has_length && !parse_length(req.get_header_value("Content-Length"), length))
-      return reject(res, ApiError(400, "bad_request", "invalid Content-Length"), true);
-    // Several Content-Length headers that disagree make the body's end ambiguous (request smuggling).
-    for (std::size_t i = 1; has_length && i < req.get_header_value_count("Content-Length"); ++i) {
-      std::size_t other = 0;
-      if (!parse_length(req.get_header_value("Content-Length", i), other) || other != length)
-        return reject(res, ApiError(400, "bad_request", "conflicting Content-Length headers"), true);
-    }
-    const bool has_body = chunked || length > 0;
-
-    const RouteMatch match = match_route(req.method, req.path);
-    ctx.route = match.route;
-    // A streamed projection is counted from here until its answer starts (shutdown() waits for
-    // them: see there). Counted before the shutting-down check, which shutdown() makes visible
-    // before it reads the count: one of the two sees the other.
-    if (req.method == "POST" && (match.route == Route::geometry_project || match.route == Route::project) &&
-        answer_format(req.get_header_value("Accept")) != AnswerFormat::json) {
-      ctx.stream_pending = true;
-      streams_starting_.fetch_add(1);
-    }
-    if (api_.shutting_down())
-      return reject(
-          res, ApiError(503, "shutting_down", "the server is shutting down; retry on another replica"), true);
-    if (match.route == Route::none)
-      return reject(res,
-                    ApiError(404, "route_not_found", "no route " + req.path + " (see GET /openapi.yaml)"),
-                    has_body);
-    if (!config_.cors_origins.empty() && req.has_header("Origin")) {
-      // Cross-origin calls from the configured origins' pages: their responses (errors too)
-      // may be read by the page, and a preflight OPTIONS is answered here.
-      const std::string origin = req.get_header_value("Origin");
-      bool any = false, allowed = false;
-      for (const auto& o : config_.cors_origins) {
-        any = any || o == "*";
-        allowed = allowed || o == "*" || o == origin;
-      }
-      res.set_header("Vary", "Origin");
-      if (allowed) {
-        res.set_header("Access-Control-Allow-Origin", any ? "*" : origin);
-        res.set_header("Access-Control-Expose-Headers",
-                       "X-Request-Id, Location, Retry-After, Content-Disposition, X-Footpoint-Record, "
-                       "X-Footpoint-Record-Bytes");
-      }
-      if (req.method == "OPTIONS") {
-        if (!allowed)
-          return reject(
-              res,
-              ApiError(403, "origin_not_allowed",
-                       "origin " + origin + " may not call this API (--cors-origins lists the origins)"),
-              has_body);
-        res.status = 204;
-        res.set_header("Access-Control-Allow-Methods", match.allow);
-        res.set_header("Access-Control-Allow-Headers", "Authorization, Content-Type, X-Request-Id");
-        res.set_header("Access-Control-Max-Age", "600");
-        return httplib::Server::HandlerResponse::Handled;
-      }
-    }
-    if (!match.method_allowed) {
-      res.set_header("Allow", match.allow);
-      return reject(res,
-                    ApiError(405, "method_not_allowed",
-                             req.method + " is not allowed on " + route_template(match.route) +
-                                 " (allowed: " + match.allow + ")"),
-                    has_body);
-    }
-    // Who calls, and may they: the key's scope for the route (RFC 6750 section 3 for the
-    // WWW-Authenticate values), then their rate limit's bucket.
-    const Scope scope = required_scope(match.route, req.method, config_.metrics_key_free);
-    if (const auto keys = this->keys(); keys && scope != kScopeNone) {
-      const std::string authorization = req.get_header_value("Authorization");
-      const std::string_view secret = bearer_token(authorization);
-      const ApiKey* key = keys->authenticate(secret);
-      if (!key) {
-        res.set_header("WWW-Authenticate", secret.empty()
-                                               ? R"(Bearer realm="footpoint")"
-                                               : R"(Bearer realm="footpoint", error="invalid_token")");
-        return reject(res,
-                      secret.empty()
-                          ? ApiError(401, "missing_api_key",
-                                     "this route needs an API key: send Authorization: Bearer SECRET")
-                          : ApiError(401, "invalid_api_key", "the API key is not known to this server"),
-                      has_body);
-      }
-      ctx.key = key->name;
-      if (!key->allows(scope)) {
-        res.set_header("WWW-Authenticate",
-                       std::string(R"(Bearer realm="footpoint", error="insufficient_scope", scope=")") +
-                           scope_name(scope) + "\"");
-        return reject(
-            res,
-            ApiError(403, "insufficient_scope",
-                     "the API key " + key->name + " lacks the scope " + scope_name(scope) +
-                         " (or admin) that " + req.method + " " + route_template(match.route) + " needs"),
-            has_body);
-      }
-    }
-    if (limiter_ && required_scope(match.route, req.method, false) != kScopeNone &&
-        match.route != Route::metrics) {
-      // Point-counting requests take their points once the body is read (Caller::charge); the
-      // others take one point now.
-      const auto decision =
-          counts_points(match.route) ? limiter_->check(ctx.key) : limiter_->take(ctx.key, 1.0);
-      if (!decision.allowed) {
-        return reject(res, rate_limited(ctx.key, 1, config_.rate_limit, decision), has_body);
-      }
-    }
-    if (chunked)
-      return reject(res,
-                    ApiError(411, "length_required",
-                             "send the body with a Content-Length (Transfer-Encoding is not accepted)"),
-                    true);
-    if (req.method != "POST") {
-      if (has_body)
-        return reject(res, ApiError(400, "body_not_allowed", req.method + " takes no body"), true);
-      return httplib::Server::HandlerResponse::Unhandled;
-    }
-    if (!has_length)
-      return reject(res, ApiError(411, "length_required", "a Content-Length header is required"), true);
-    if (length > config_.max_body_bytes)
-      return reject(res,
-                    ApiError(413, "body_too_large",
-                             "the body has " + std::to_string(length) + " bytes, over the limit of " +
-                                 std::to_string(config_.max_body_bytes) +
-                                 " (--max-body-bytes): split the batch into smaller requests, or have the "
-                                 "operator raise --max-body-bytes",
-                             "body"),
-                    true);
-    const std::string encoding = lower(req.get_header_value("Content-Encoding"));
-    if (!encoding.empty() && encoding != "identity")
-      return reject(res,
-                    ApiError(415, "unsupported_content_encoding",
-                             "Content-Encoding " + encoding + " is not accepted; send the JSON uncompressed"),
-                    true);
-    // Points may also come as binary (application/octet-stream) to the projection routes.
-    const std::string media = media_type(req.get_header_value("Content-Type"));
-    const bool projection = match.route == Route::geometry_project || match.route == Route::project;
-    if (media != "application/json" && !(projection && media == "application/octet-stream"))
-      return reject(
-          res,
-          ApiError(415, "unsupported_media_type",
-                   projection ? "the body must be JSON (Content-Type: application/json) or points in "
-                                "binary (Content-Type: application/octet-stream)"
-                              : "the body must be JSON (Content-Type: application/json)"),
-          true);
-    if (is_compute_route(match.route) && api_.in_flight() >= config_.effective_max_inflight())
-      return reject(res, ApiError(503, "overloaded", "too many requests in progress; retry shortly"), true);
-    return httplib::Server::HandlerResponse::Unhandled;
-  };
+void HttpServer::install_admission() {
+  httplib::Server& http = *http_;
   // A client that waits for "100 Continue" before sending its body (curl does for large
   // bodies) gets the final answer instead when the request would be refused anyway.
-  http.set_expect_100_continue_handler([admit](const httplib::Request& req, httplib::Response& res) {
-    if (admit(req, res) == httplib::Server::HandlerResponse::Handled) return res.status;
+  http.set_expect_100_continue_handler([this](const httplib::Request& req, httplib::Response& res) {
+    if (!admit(req, res)) return res.status;
     t_request.admitted = true;
     return 100;
   });
-  http.set_pre_routing_handler([this, admit](const httplib::Request& req, httplib::Response& res) {
+  http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
     if (t_request.admitted) {
       t_request.admitted = false;
       return httplib::Server::HandlerResponse::Unhandled;
     }
-    const auto handled = admit(req, res);
+    if (admit(req, res)) return httplib::Server::HandlerResponse::Unhandled;
     // Refused with its body unread (reject's close): the connection ends after the answer. Over
     // TLS the raw socket is not ours to half-close; the connection stays as httplib keeps it.
-    if (handled == httplib::Server::HandlerResponse::Handled && !tls_ &&
-        res.get_header_value("Connection") == "close")
-      end_after_answer(req, res);
-    return handled;
+    if (!tls_ && res.get_header_value("Connection") == "close") end_after_answer(req, res);
+    return httplib::Server::HandlerResponse::Handled;
   });
+}
 
-  // `source`: the body, when it is read as it is answered (req.body is empty then), and `socket`
-  // the connection's, on which the answer is then written.
-  auto answer = [this](const httplib::Request& req, httplib::Response& res, const BodySource* source,
-                       int socket) {
-    if (read_deadline_) read_deadline_->handling(req.remote_addr, req.remote_port);
-    const RouteMatch match = match_route(req.method, req.path);
-    const auto question = req.target.find('?');
-    const std::string_view query = question == std::string::npos
-                                       ? std::string_view()
-                                       : std::string_view(req.target).substr(question + 1);
-    Caller caller;
-    caller.key = t_request.key;
-    if (req.method == "POST") {
-      auto watch = std::make_shared<ConnectionWatch>(port_, req.remote_addr, req.remote_port);
-      caller.client_gone = [watch] { return watch->closed(); };
-    }
-    if (limiter_ && counts_points(match.route))
-      caller.charge = [this](std::size_t points) {
-        const std::string& key = t_request.key;
-        if (static_cast<double>(points) > limiter_->burst())
-          throw ApiError(413, "points_over_burst",
-                         "the request has " + std::to_string(points) +
-                             " points, more than the rate limit's burst of " +
-                             std::to_string(config_.effective_rate_burst()) +
-                             " (--rate-burst): split it into smaller requests",
-                         "points");
-        const auto decision = limiter_->take(key, static_cast<double>(points));
-        if (decision.allowed) return;
-        throw rate_limited(key, points, config_.rate_limit, decision);
-      };
-    ApiResponse r = custom_handler_
-                        ? handler_(match, req.method, req.body, query, caller)
-                        : api_.handle(match, req.method, req.body, query, caller,
-                                      RequestFormat{media_type(req.get_header_value("Content-Type")),
-                                                    req.get_header_value("Accept"), source});
-    t_request.points = r.points;
-    t_request.release = std::move(r.release);
-    // an answer that left part of the body unread is the connection's last: the rest cannot be
-    // taken for the next request
-    const bool unread = source && !r.stream && t_request.body_read->load() < source->length;
-    if (r.stream)
-      r.stream = [this, stream = std::move(r.stream)](const ApiResponse::Write& write) {
-        stream_started();
-        return stream(write);
-      };
-    set_response(res, std::move(r), socket, config_.io_timeout_s);
-    if (unread) {
-      res.set_header("Connection", "close");
-      end_after_answer(req, res);
-    }
-    // A request answered while the server shuts down is the connection's last.
-    if (api_.shutting_down()) res.set_header("Connection", "close");
-  };
-  auto handle = [answer](const httplib::Request& req, httplib::Response& res) {
+bool HttpServer::admit(const httplib::Request& req, httplib::Response& res) {
+  RequestContext& ctx = t_request;
+  ctx = RequestContext{};
+  ctx.active = true;
+  ctx.start = Clock::now();
+  mark_busy(req.remote_port);
+  if (read_deadline_) read_deadline_->admitted(req.remote_addr, req.remote_port);
+  // httplib would compress the response by the client's Accept-Encoding (brotli at quality 11
+  // costs far more than the projection) and cut it by Range: the service sends plain, whole
+  // bodies. The request object is httplib's own mutable one, handed over as const.
+  auto& mutable_req = const_cast<httplib::Request&>(req);
+  mutable_req.headers.erase("Accept-Encoding");
+  mutable_req.headers.erase("Range");
+  mutable_req.ranges.clear();
+
+  const std::string given_id = req.get_header_value("X-Request-Id");
+  ctx.request_id = acceptable_request_id(given_id) ? given_id : make_request_id();
+  res.set_header("X-Request-Id", ctx.request_id);
+
+  Framing framing;
+  framing.has_length = req.has_header("Content-Length");
+  framing.chunked = req.has_header("Transfer-Encoding");
+  if (framing.has_length && !parse_length(req.get_header_value("Content-Length"), framing.length))
+    return reject(res, ApiError(400, "bad_request", "invalid Content-Length"), true);
+  // Several Content-Length headers that disagree make the body's end ambiguous (request smuggling).
+  for (std::size_t i = 1; framing.has_length && i < req.get_header_value_count("Content-Length"); ++i) {
+    std::size_t other = 0;
+    if (!parse_length(req.get_header_value("Content-Length", i), other) || other != framing.length)
+      return reject(res, ApiError(400, "bad_request", "conflicting Content-Length headers"), true);
+  }
+  const bool has_body = framing.chunked || framing.length > 0;
+
+  // The route is matched here once; the handlers read it from the request's context.
+  ctx.match = match_route(req.method, req.path);
+  const RouteMatch& match = ctx.match;
+  // A streamed projection is counted from here until its answer starts (shutdown() waits for
+  // them: see there). Counted before the shutting-down check, which shutdown() makes visible
+  // before it reads the count: one of the two sees the other.
+  if (req.method == "POST" && (match.route == Route::geometry_project || match.route == Route::project) &&
+      answer_format(req.get_header_value("Accept")) != AnswerFormat::json) {
+    ctx.stream_pending = true;
+    streams_starting_.fetch_add(1);
+  }
+  if (api_.shutting_down())
+    return reject(
+        res, ApiError(503, "shutting_down", "the server is shutting down; retry on another replica"), true);
+  if (match.route == Route::none)
+    return reject(res, ApiError(404, "route_not_found", "no route " + req.path + " (see GET /openapi.yaml)"),
+                  has_body);
+  if (const auto cors = cross_origin(req, res, has_body)) return *cors;
+  if (!match.method_allowed) {
+    res.set_header("Allow", match.allow);
+    return reject(res,
+                  ApiError(405, "method_not_allowed",
+                           req.method + " is not allowed on " + route_template(match.route) +
+                               " (allowed: " + match.allow + ")"),
+                  has_body);
+  }
+  if (!authorize(req, res, has_body)) return false;
+  if (!rate_limit(req, res, has_body)) return false;
+  if (!accept_body(req, res, framing)) return false;
+  return req.method != "POST" || shed_load(res);
+}
+
+std::optional<bool> HttpServer::cross_origin(const httplib::Request& req, httplib::Response& res,
+                                             bool has_body) const {
+  if (config_.cors_origins.empty() || !req.has_header("Origin")) return std::nullopt;
+  // Cross-origin calls from the configured origins' pages: their responses (errors too) may be
+  // read by the page, and a preflight OPTIONS is answered here.
+  const std::string origin = req.get_header_value("Origin");
+  bool any = false, allowed = false;
+  for (const auto& o : config_.cors_origins) {
+    any = any || o == "*";
+    allowed = allowed || o == "*" || o == origin;
+  }
+  res.set_header("Vary", "Origin");
+  if (allowed) {
+    res.set_header("Access-Control-Allow-Origin", any ? "*" : origin);
+    res.set_header("Access-Control-Expose-Headers",
+                   "X-Request-Id, Location, Retry-After, Content-Disposition, X-Footpoint-Record, "
+                   "X-Footpoint-Record-Bytes");
+  }
+  if (req.method != "OPTIONS") return std::nullopt;
+  if (!allowed)
+    return reject(res,
+                  ApiError(403, "origin_not_allowed",
+                           "origin " + origin + " may not call this API (--cors-origins lists the origins)"),
+                  has_body);
+  res.status = 204;
+  res.set_header("Access-Control-Allow-Methods", t_request.match.allow);
+  res.set_header("Access-Control-Allow-Headers", "Authorization, Content-Type, X-Request-Id");
+  res.set_header("Access-Control-Max-Age", "600");
+  return false;
+}
+
+bool HttpServer::authorize(const httplib::Request& req, httplib::Response& res, bool has_body) const {
+  // Who calls, and may they: the key's scope for the route (RFC 6750 section 3 for the
+  // WWW-Authenticate values).
+  RequestContext& ctx = t_request;
+  const Route route = ctx.match.route;
+  const Scope scope = required_scope(route, req.method, config_.metrics_key_free);
+  const auto keys = this->keys();
+  if (!keys || scope == kScopeNone) return true;
+  const std::string authorization = req.get_header_value("Authorization");
+  const std::string_view secret = bearer_token(authorization);
+  const ApiKey* key = keys->authenticate(secret);
+  if (!key) {
+    res.set_header("WWW-Authenticate", secret.empty() ? R"(Bearer realm="footpoint")"
+                                                      : R"(Bearer realm="footpoint", error="invalid_token")");
+    return reject(res,
+                  secret.empty()
+                      ? ApiError(401, "missing_api_key",
+                                 "this route needs an API key: send Authorization: Bearer SECRET")
+                      : ApiError(401, "invalid_api_key", "the API key is not known to this server"),
+                  has_body);
+  }
+  ctx.key = key->name;
+  if (key->allows(scope)) return true;
+  res.set_header("WWW-Authenticate",
+                 std::string(R"(Bearer realm="footpoint", error="insufficient_scope", scope=")") +
+                     scope_name(scope) + "\"");
+  return reject(res,
+                ApiError(403, "insufficient_scope",
+                         "the API key " + key->name + " lacks the scope " + scope_name(scope) +
+                             " (or admin) that " + req.method + " " + route_template(route) + " needs"),
+                has_body);
+}
+
+bool HttpServer::rate_limit(const httplib::Request& req, httplib::Response& res, bool has_body) const {
+  const RequestContext& ctx = t_request;
+  const Route route = ctx.match.route;
+  if (!limiter_ || route == Route::metrics || required_scope(route, req.method, false) == kScopeNone)
+    return true;
+  // Point-counting requests take their points once the body is read (Caller::charge); the others
+  // take one point now.
+  const auto decision = counts_points(route) ? limiter_->check(ctx.key) : limiter_->take(ctx.key, 1.0);
+  if (decision.allowed) return true;
+  return reject(res, rate_limited(ctx.key, 1, config_.rate_limit, decision), has_body);
+}
+
+bool HttpServer::accept_body(const httplib::Request& req, httplib::Response& res,
+                             const Framing& framing) const {
+  if (framing.chunked)
+    return reject(res,
+                  ApiError(411, "length_required",
+                           "send the body with a Content-Length (Transfer-Encoding is not accepted)"),
+                  true);
+  if (req.method != "POST") {
+    if (framing.length > 0)
+      return reject(res, ApiError(400, "body_not_allowed", req.method + " takes no body"), true);
+    return true;
+  }
+  if (!framing.has_length)
+    return reject(res, ApiError(411, "length_required", "a Content-Length header is required"), true);
+  if (framing.length > config_.max_body_bytes)
+    return reject(res,
+                  ApiError(413, "body_too_large",
+                           "the body has " + std::to_string(framing.length) + " bytes, over the limit of " +
+                               std::to_string(config_.max_body_bytes) +
+                               " (--max-body-bytes): split the batch into smaller requests, or have the "
+                               "operator raise --max-body-bytes",
+                           "body"),
+                  true);
+  const std::string encoding = lower(req.get_header_value("Content-Encoding"));
+  if (!encoding.empty() && encoding != "identity")
+    return reject(res,
+                  ApiError(415, "unsupported_content_encoding",
+                           "Content-Encoding " + encoding + " is not accepted; send the JSON uncompressed"),
+                  true);
+  // Points may also come as binary (application/octet-stream) to the projection routes.
+  const std::string media = media_type(req.get_header_value("Content-Type"));
+  const Route route = t_request.match.route;
+  const bool projection = route == Route::geometry_project || route == Route::project;
+  if (media != "application/json" && !(projection && media == "application/octet-stream"))
+    return reject(res,
+                  ApiError(415, "unsupported_media_type",
+                           projection ? "the body must be JSON (Content-Type: application/json) or points in "
+                                        "binary (Content-Type: application/octet-stream)"
+                                      : "the body must be JSON (Content-Type: application/json)"),
+                  true);
+  return true;
+}
+
+bool HttpServer::shed_load(httplib::Response& res) {
+  if (is_compute_route(t_request.match.route) && api_.in_flight() >= config_.effective_max_inflight())
+    return reject(res, ApiError(503, "overloaded", "too many requests in progress; retry shortly"), true);
+  return true;
+}
+
+void HttpServer::answer(const httplib::Request& req, httplib::Response& res, const BodySource* source,
+                        int socket) {
+  if (read_deadline_) read_deadline_->handling(req.remote_addr, req.remote_port);
+  const RouteMatch& match = t_request.match;
+  const auto question = req.target.find('?');
+  const std::string_view query =
+      question == std::string::npos ? std::string_view() : std::string_view(req.target).substr(question + 1);
+  Caller caller;
+  caller.key = t_request.key;
+  if (req.method == "POST") {
+    auto watch = std::make_shared<ConnectionWatch>(port_, req.remote_addr, req.remote_port);
+    caller.client_gone = [watch] { return watch->closed(); };
+  }
+  if (limiter_ && counts_points(match.route))
+    caller.charge = [this](std::size_t points) {
+      const std::string& key = t_request.key;
+      if (static_cast<double>(points) > limiter_->burst())
+        throw ApiError(413, "points_over_burst",
+                       "the request has " + std::to_string(points) +
+                           " points, more than the rate limit's burst of " +
+                           std::to_string(config_.effective_rate_burst()) +
+                           " (--rate-burst): split it into smaller requests",
+                       "points");
+      const auto decision = limiter_->take(key, static_cast<double>(points));
+      if (decision.allowed) return;
+      throw rate_limited(key, points, config_.rate_limit, decision);
+    };
+  ApiResponse r = custom_handler_
+                      ? handler_(match, req.method, req.body, query, caller)
+                      : api_.handle(match, req.method, req.body, query, caller,
+                                    RequestFormat{media_type(req.get_header_value("Content-Type")),
+                                                  req.get_header_value("Accept"), source});
+  t_request.points = r.points;
+  t_request.release = std::move(r.release);
+  // an answer that left part of the body unread is the connection's last: the rest cannot be
+  // taken for the next request
+  const bool unread = source && !r.stream && t_request.body_read->load() < source->length;
+  if (r.stream)
+    r.stream = [this, stream = std::move(r.stream)](const ApiResponse::Write& write) {
+      stream_started();
+      return stream(write);
+    };
+  set_response(res, std::move(r), socket, config_.io_timeout_s);
+  if (unread) {
+    res.set_header("Connection", "close");
+    end_after_answer(req, res);
+  }
+  // A request answered while the server shuts down is the connection's last.
+  if (api_.shutting_down()) res.set_header("Connection", "close");
+}
+
+void HttpServer::install_routes() {
+  httplib::Server& http = *http_;
+  auto handle = [this](const httplib::Request& req, httplib::Response& res) {
     answer(req, res, nullptr, -1);
   };
   http.Get(".*", handle);
@@ -614,15 +649,15 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
   // write that the peer is alive by peeking at the socket when it is readable, a peek that blocks
   // when the reading thread took the bytes in between. Over TLS the points are read whole: an
   // OpenSSL connection cannot be read by one thread while another writes it.
-  http.Post(".*", [this, answer](const httplib::Request& req, httplib::Response& res,
-                                 const httplib::ContentReader& content_reader) {
-    const RouteMatch match = match_route(req.method, req.path);
+  http.Post(".*", [this](const httplib::Request& req, httplib::Response& res,
+                         const httplib::ContentReader& content_reader) {
+    const Route route = t_request.match.route;
     const bool as_sent = !custom_handler_ && !tls_ &&
-                         (match.route == Route::geometry_project || match.route == Route::project) &&
+                         (route == Route::geometry_project || route == Route::project) &&
                          media_type(req.get_header_value("Content-Type")) == "application/octet-stream" &&
                          answer_format(req.get_header_value("Accept")) != AnswerFormat::json;
     std::size_t length = 0;
-    parse_length(req.get_header_value("Content-Length"), length);  // checked by pre-routing
+    parse_length(req.get_header_value("Content-Length"), length);  // checked by admit
     const int socket = as_sent ? connection_socket(req) : -1;
     if (socket < 0) {
       auto& mutable_req = const_cast<httplib::Request&>(req);
@@ -650,7 +685,10 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
     };
     answer(req, res, &source, socket);
   });
+}
 
+void HttpServer::install_error_answers() {
+  httplib::Server& http = *http_;
   // Called for every status >= 400. Errors httplib answers itself (malformed request line or
   // headers, URI too long, a body that could not be read) get the same JSON error shape.
   http.set_error_handler(
@@ -668,21 +706,22 @@ HttpServer::HttpServer(ServerConfig config, Handler handler)
         }
         return httplib::Server::HandlerResponse::Handled;
       }));
-
   // Without this, httplib would put the exception text in a response header.
   http.set_exception_handler([](const httplib::Request&, httplib::Response& res, const std::exception_ptr&) {
     set_response(res, Api::error_response(ApiError(500, "internal_error", "internal error")));
   });
+}
 
+void HttpServer::install_request_log() {
   // Called once per request after its response is written; an exception here would abort the
   // process, hence the catch-all.
-  http.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
+  http_->set_logger([this](const httplib::Request& req, const httplib::Response& res) {
     try {
       RequestContext& ctx = t_request;
       if (ctx.release) std::exchange(ctx.release, nullptr)();
       const double seconds =
           ctx.active ? std::chrono::duration<double>(Clock::now() - ctx.start).count() : 0.0;
-      const Route route = ctx.active ? ctx.route : Route::none;
+      const Route route = ctx.active ? ctx.match.route : Route::none;
       metrics_.observe_request(route, res.status, seconds);
       if (ctx.active && !ctx.key.empty()) metrics_.observe_key(ctx.key, res.status);
       RequestRecord record;

@@ -26,6 +26,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string_view>
 #include <thread>
 
@@ -41,7 +42,9 @@
 
 namespace httplib {
 class Server;
-}
+struct Request;
+struct Response;
+}  // namespace httplib
 
 namespace footpoint::server {
 
@@ -78,6 +81,39 @@ class HttpServer {
   bool tls() const { return tls_ != nullptr; }
 
  private:
+  // The constructor's stages, in order.
+  void start_read_deadline();    // --read-timeout-s's watcher (ReadDeadline)
+  void log_exposure() const;     // whether keys and TLS are in use
+  void configure_listener();     // connection threads, socket options, timeouts, body limit
+  void install_admission();      // admit() before every request's body (and for Expect: 100-continue)
+  void install_routes();         // every admitted request to answer()
+  void install_error_answers();  // httplib's own errors and exceptions as the API's JSON errors
+  void install_request_log();    // one log line and the metrics per request
+
+  // How the request's body is framed, from its headers.
+  struct Framing {
+    bool has_length = false;
+    bool chunked = false;  // Transfer-Encoding (refused)
+    std::size_t length = 0;
+  };
+  // Admission: the checks every request passes before its body is read, in this order (each
+  // false when it answered the request itself, res holding the answer): the request's context
+  // and id, framing errors (400), shutting down (503), route (404), cross-origin (preflights
+  // answered), method (405), authorize (401, 403), rate_limit (429), accept_body (411, 413, 415,
+  // a GET with a body 400) and shed_load (503 beyond --max-inflight, POST only).
+  bool admit(const httplib::Request& req, httplib::Response& res);
+  // CORS headers for a configured origin; a preflight OPTIONS answered (false) or refused
+  // (false, 403); nullopt when the request goes on.
+  std::optional<bool> cross_origin(const httplib::Request& req, httplib::Response& res, bool has_body) const;
+  bool authorize(const httplib::Request& req, httplib::Response& res, bool has_body) const;
+  bool rate_limit(const httplib::Request& req, httplib::Response& res, bool has_body) const;
+  bool accept_body(const httplib::Request& req, httplib::Response& res, const Framing& framing) const;
+  bool shed_load(httplib::Response& res);
+  // Answers an admitted request (the route admit() matched). `source`: the body when it is read
+  // as it is answered (req.body is empty then), and `socket` the connection's, on which the answer
+  // is then written.
+  void answer(const httplib::Request& req, httplib::Response& res, const BodySource* source, int socket);
+
   // The keys in use (nullptr: no authentication).
   std::shared_ptr<const KeyRing> keys() const;
   // Which connections are answering a request: one slot per connection thread holding the remote
