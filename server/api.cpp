@@ -364,11 +364,7 @@ ApiResponse Api::create_geometry(std::string_view body, const Caller& caller) {
   try {
     JsonReader reader(body);
     def = read_geometry(reader, "");
-    try {
-      reader.finish();
-    } catch (const JsonReadError& e) {
-      throw request_error(e, "body");
-    }
+    at_field("body", [&] { reader.finish(); });
   } catch (const ApiError& e) {
     throw unless_malformed(body, e);
   }

@@ -34,6 +34,17 @@ struct ApiError : std::runtime_error {
 // number_out_of_range (naming the field).
 ApiError request_error(const JsonReadError& error, const std::string& field);
 
+// read() with the reader's errors named at `field`: its value, or request_error(e, field) thrown
+// for the JsonReadError e it throws. Every request parser reads its values through this.
+template <class Read>
+auto at_field(const std::string& field, Read&& read) -> decltype(read()) {
+  try {
+    return read();
+  } catch (const JsonReadError& e) {
+    throw request_error(e, field);
+  }
+}
+
 // A body that is not acceptable JSON (syntax, nesting deeper than the reader's limit) gets
 // malformed_json whatever else is wrong with it: the request parsers stop at the first problem
 // in document order, so before reporting a shape problem, `error`, they let this check the

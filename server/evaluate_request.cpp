@@ -17,7 +17,7 @@ EvaluateRequest read_request(std::string_view body, std::size_t max_rows) {
   JsonReader r(body);
   bool has_one = false, has_many = false;
   read_object(r, "body", "body", "", [&](const std::string& key, const std::string&) {
-    try {
+    at_field(key, [&] {
       if (key == "parameter" || key == "point") {
         if (has_one || has_many)
           throw ApiError(400, "conflicting_fields", "give one of parameter, parameters, point, points", key);
@@ -43,15 +43,9 @@ EvaluateRequest read_request(std::string_view body, std::size_t max_rows) {
             400, "unknown_field",
             "unknown field " + key + " (parameter, parameters, point, points, derivatives, normals)", key);
       }
-    } catch (const JsonReadError& e) {
-      throw request_error(e, key);
-    }
+    });
   });
-  try {
-    r.finish();
-  } catch (const JsonReadError& e) {
-    throw request_error(e, "body");
-  }
+  at_field("body", [&] { r.finish(); });
   if (!has_one && !has_many)
     throw ApiError(400, "missing_field",
                    "parameter or parameters (a parametric geometry), point or points (an implicit one) is "

@@ -50,23 +50,19 @@ struct RawDefinition {
 // A number, or an array of number trees: what the B-spline members are made of.
 NumberTree read_number_tree(JsonReader& r, const std::string& field) {
   NumberTree t;
-  try {
+  const bool number = at_field(field, [&] {
     if (r.peek() == JsonReader::Type::number) {
       t.number = r.number();
-      return t;
+      return true;
     }
     r.begin_array();
-  } catch (const JsonReadError& e) {
-    throw request_error(e, field);
-  }
+    return false;
+  });
+  if (number) return t;
   t.is_array = true;
   for (;;) {
     const std::string item = field + "[" + std::to_string(t.items.size()) + "]";
-    try {
-      if (!r.next_element()) break;
-    } catch (const JsonReadError& e) {
-      throw request_error(e, item);
-    }
+    if (!at_field(item, [&] { return r.next_element(); })) break;
     t.items.push_back(read_number_tree(r, item));
   }
   return t;
@@ -108,15 +104,11 @@ int tree_degree(const NumberTree& t, const std::string& field) {
 Interval read_interval(JsonReader& r, const std::string& field) {
   Interval v{};
   int n = 0;
-  try {
-    r.begin_array();
-  } catch (const JsonReadError& e) {
-    throw request_error(e, field);
-  }
+  at_field(field, [&] { r.begin_array(); });
   for (;;) {
     const std::string item = field + "[" + std::to_string(n) + "]";
-    try {
-      if (!r.next_element()) break;
+    if (!at_field(item, [&] { return r.next_element(); })) break;
+    at_field(item, [&] {
       if (n == 2) throw ApiError(400, "wrong_shape", field + " must be [lo, hi]", field);
       const JsonReader::Type type = r.peek();
       if (type == JsonReader::Type::string)
@@ -129,9 +121,7 @@ Interval read_interval(JsonReader& r, const std::string& field) {
                            JsonReader::name(type),
                        item);
       ++n;
-    } catch (const JsonReadError& e) {
-      throw request_error(e, item);
-    }
+    });
   }
   if (n != 2) throw ApiError(400, "wrong_shape", field + " must be [lo, hi]", field);
   return v;
@@ -139,28 +129,14 @@ Interval read_interval(JsonReader& r, const std::string& field) {
 
 RawDefinition read_members(JsonReader& r, const std::string& prefix) {
   RawDefinition raw;
-  auto read_string = [&](const std::string& field) {
-    try {
-      return r.string();
-    } catch (const JsonReadError& e) {
-      throw request_error(e, field);
-    }
-  };
+  auto read_string = [&](const std::string& field) { return at_field(field, [&] { return r.string(); }); };
   // An array of at most `most` strings.
   auto read_strings = [&](const std::string& field, std::size_t most, const char* too_many) {
     std::vector<std::string> items;
-    try {
-      r.begin_array();
-    } catch (const JsonReadError& e) {
-      throw request_error(e, field);
-    }
+    at_field(field, [&] { r.begin_array(); });
     for (;;) {
       const std::string item = field + "[" + std::to_string(items.size()) + "]";
-      try {
-        if (!r.next_element()) break;
-      } catch (const JsonReadError& e) {
-        throw request_error(e, item);
-      }
+      if (!at_field(item, [&] { return r.next_element(); })) break;
       if (items.size() == most) throw ApiError(400, "wrong_shape", field + too_many, field);
       items.push_back(read_string(item));
     }
@@ -191,12 +167,7 @@ RawDefinition read_members(JsonReader& r, const std::string& prefix) {
     } else if (key == "degree") {
       raw.degree = read_number_tree(r, field);
     } else if (key == "knots") {
-      JsonReader::Type type{};
-      try {
-        type = r.peek();
-      } catch (const JsonReadError& e) {
-        throw request_error(e, field);
-      }
+      const JsonReader::Type type = at_field(field, [&] { return r.peek(); });
       if (type == JsonReader::Type::object) {
         std::optional<NumberTree> u, v;
         read_object(r, field, field, field + ".", [&](const std::string& name, const std::string& item) {
@@ -219,11 +190,7 @@ RawDefinition read_members(JsonReader& r, const std::string& prefix) {
       raw.weights = read_number_tree(r, field);
     } else if (key == "constants") {
       read_object(r, field, field, field + ".", [&](const std::string& name, const std::string& item) {
-        try {
-          raw.constants[name] = r.number();
-        } catch (const JsonReadError& e) {
-          throw request_error(e, item);
-        }
+        raw.constants[name] = at_field(item, [&] { return r.number(); });
       });
     } else if (prefix.empty() && (key == "geometry" || key == "point" || key == "points")) {
       // a projection request sent to POST /v1/geometries

@@ -25,22 +25,20 @@ std::string indexed(const char* name, std::size_t i) {
 // A start: [a(,b(,c))] (1 to 3 numbers).
 int read_start(JsonReader& r, std::array<double, 3>& start, const std::string& field) {
   int n = 0;
-  try {
+  at_field(field, [&] {
     r.begin_array();
     while (r.next_element()) {
       if (n == 3) throw ApiError(400, "wrong_dimension", field + " has more than 3 numbers", field);
       start[n++] = r.number();
     }
-  } catch (const JsonReadError& e) {
-    throw request_error(e, field);
-  }
+  });
   if (n == 0) throw ApiError(400, "wrong_dimension", field + " is empty", field);
   return n;
 }
 
 void read_initial(JsonReader& r, ProjectRequest& request) {
   const std::string field = "options.initial";
-  try {
+  at_field(field, [&] {
     r.begin_array();
     const bool per_point = r.peek() == JsonReader::Type::array;
     if (!per_point) {
@@ -69,9 +67,7 @@ void read_initial(JsonReader& r, ProjectRequest& request) {
                        item);
       request.initials.push_back(start);
     }
-  } catch (const JsonReadError& e) {
-    throw request_error(e, field);
-  }
+  });
 }
 
 // Sets the option `key` (named `field` in messages) from `value`, which reads it: number(),
@@ -142,16 +138,14 @@ struct JsonOptionValue {
 
 void read_options(JsonReader& r, ProjectRequest& request) {
   read_object(r, "options", "options", "options.", [&](const std::string& key, const std::string& field) {
-    try {
+    at_field(field, [&] {
       JsonOptionValue value{r, field};
       if (key == "initial") {
         read_initial(r, request);
       } else if (!set_option(request, key, field, value)) {
         throw ApiError(400, "unknown_field", "unknown option " + field + " (" + kOptionNames + ")", field);
       }
-    } catch (const JsonReadError& e) {
-      throw request_error(e, field);
-    }
+    });
   });
 }
 
@@ -172,12 +166,7 @@ ResultFields read_fields(JsonReader& r) {
     r.begin_array();
     for (; r.next_element(); ++i) {
       const std::string item = indexed("fields", i);
-      std::string name;
-      try {
-        name = r.string();
-      } catch (const JsonReadError& e) {
-        throw request_error(e, item);
-      }
+      const std::string name = at_field(item, [&] { return r.string(); });
       fields.members |= field_members(name, item);
     }
   } catch (const JsonReadError& e) {
@@ -207,11 +196,7 @@ ProjectRequest read_request(std::string_view body, bool inline_geometry, std::si
       request.count = read_rows(r, "points", max_points, request.coords, request.point_length);
       has_points = true;
     } else if (key == "method") {
-      try {
-        request.method = r.string();
-      } catch (const JsonReadError& e) {
-        throw request_error(e, "method");
-      }
+      request.method = at_field("method", [&] { return r.string(); });
     } else if (key == "options") {
       read_options(r, request);
     } else if (key == "fields") {
@@ -239,11 +224,7 @@ ProjectRequest read_request(std::string_view body, bool inline_geometry, std::si
     if (has_point && has_points)
       throw ApiError(400, "conflicting_fields", "give either point or points, not both", "points");
   });
-  try {
-    r.finish();
-  } catch (const JsonReadError& e) {
-    throw request_error(e, "body");
-  }
+  at_field("body", [&] { r.finish(); });
   if (!has_point && !has_points)
     throw ApiError(400, "missing_field", "point (one point) or points (a batch) is required", "point");
   if (inline_geometry && !request.geometry)

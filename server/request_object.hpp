@@ -14,19 +14,11 @@ namespace footpoint::server {
 template <class ReadValue>
 void read_object(JsonReader& r, const std::string& object_field, const std::string& member_field,
                  const std::string& prefix, ReadValue&& read_value) {
-  try {
-    r.begin_object();
-  } catch (const JsonReadError& e) {
-    throw request_error(e, object_field);
-  }
+  at_field(object_field, [&] { r.begin_object(); });
   std::vector<std::string> seen;
   std::string name;
   for (;;) {
-    try {
-      if (!r.next_member(name)) break;
-    } catch (const JsonReadError& e) {
-      throw request_error(e, member_field);
-    }
+    if (!at_field(member_field, [&] { return r.next_member(name); })) break;
     const std::string field = prefix + name;
     for (const auto& s : seen)
       if (s == name) throw ApiError(400, "duplicate_field", field + " appears twice", field);
