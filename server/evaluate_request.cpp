@@ -55,39 +55,41 @@ EvaluateRequest read_request(std::string_view body, std::size_t max_rows) {
   return request;
 }
 
-void vector(JsonAppender& o, const Vec3& v, int dim) {
+void vector(JsonWriter& o, const Vec3& v, int dim) {
   const double x[3] = {v.x, v.y, v.z};
   o.numbers(x, dim);
 }
 
 // {"geometry_id": ..., "result": or "results": [
-void begin(JsonAppender& o, const CompiledGeometry& geometry, const EvaluateRequest& request) {
-  o.literal("{\"geometry_id\":");
+void begin(JsonWriter& o, const CompiledGeometry& geometry, const EvaluateRequest& request) {
+  o.begin_object();
+  o.key("geometry_id");
   o.string(geometry.id());
-  o.literal(request.single ? ",\"result\":" : ",\"results\":[");
+  o.key(request.single ? "result" : "results");
+  if (!request.single) o.begin_array();
 }
 
-// ,"normal": [...] or null
-void normal(JsonAppender& o, bool defined, const Vec3& n, int dim) {
-  o.literal(",\"normal\":");
+// "normal": [...] or null
+void normal(JsonWriter& o, bool defined, const Vec3& n, int dim) {
+  o.key("normal");
   if (defined)
     vector(o, n, dim);
   else
-    o.literal("null");
+    o.null();
 }
 
 // The end of the results and the counts: {"<rows>": n, "<inside>": k}.
-void stats(JsonAppender& o, const EvaluateRequest& request, std::string_view rows,
-           std::string_view inside_name, std::size_t inside) {
-  o.literal(request.single ? ",\"stats\":{\"" : "],\"stats\":{\"");
-  o.literal(rows);
-  o.literal("\":");
+void stats(JsonWriter& o, const EvaluateRequest& request, std::string_view rows, std::string_view inside_name,
+           std::size_t inside) {
+  if (!request.single) o.end_array();
+  o.key("stats");
+  o.begin_object();
+  o.key(rows);
   o.integer(static_cast<long long>(request.count));
-  o.literal(",\"");
-  o.literal(inside_name);
-  o.literal("\":");
+  o.key(inside_name);
   o.integer(static_cast<long long>(inside));
-  o.literal("}}");
+  o.end_object();
+  o.end_object();
   o.flush();
 }
 
@@ -115,7 +117,7 @@ std::string equations_response(const CompiledGeometry& geometry, const EvaluateR
                    request.single ? "point" : "points[0]");
   std::string out;
   out.reserve(128 + request.count * (96 + 64 * request.derivatives * dim + (request.normals ? 64 : 0)));
-  JsonAppender o(out);
+  JsonWriter o(out);
   begin(o, geometry, request);
   std::size_t inside = 0;
   for (std::size_t i = 0; i < request.count; ++i) {
@@ -124,38 +126,37 @@ std::string equations_response(const CompiledGeometry& geometry, const EvaluateR
     geometry.evaluate_equations(x, e);
     inside += e.inside_box;
     const bool two = e.equations == 2;  // a space curve: f1, f2
-    o.literal(i ? ",{\"point\":" : "{\"point\":");
+    o.begin_object();
+    o.key("point");
     o.numbers(x, dim);
-    o.literal(e.inside_box ? ",\"inside_box\":true" : ",\"inside_box\":false");
+    o.key("inside_box");
+    o.boolean(e.inside_box);
     if (two) {
-      o.literal(",\"values\":");
+      o.key("values");
       o.numbers(e.value.data(), 2);
     } else {
-      o.literal(",\"value\":");
+      o.key("value");
       o.number(e.value[0]);
     }
     if (request.derivatives >= 1) {
-      o.literal(two ? ",\"gradients\":[" : ",\"gradient\":");
-      for (int k = 0; k < e.equations; ++k) {
-        if (k) o.literal(",");
-        vector(o, e.gradient[static_cast<std::size_t>(k)], dim);
-      }
-      if (two) o.literal("]");
+      o.key(two ? "gradients" : "gradient");
+      if (two) o.begin_array();
+      for (int k = 0; k < e.equations; ++k) vector(o, e.gradient[static_cast<std::size_t>(k)], dim);
+      if (two) o.end_array();
     }
     if (request.derivatives >= 2) {
-      o.literal(two ? ",\"hessians\":[" : ",\"hessian\":");
+      o.key(two ? "hessians" : "hessian");
+      if (two) o.begin_array();
       for (int k = 0; k < e.equations; ++k) {
-        o.literal(k ? ",[" : "[");
-        for (int row = 0; row < dim; ++row) {
-          if (row) o.literal(",");
+        o.begin_array();
+        for (int row = 0; row < dim; ++row)
           vector(o, e.hessian[static_cast<std::size_t>(k)][static_cast<std::size_t>(row)], dim);
-        }
-        o.literal("]");
+        o.end_array();
       }
-      if (two) o.literal("]");
+      if (two) o.end_array();
     }
     if (request.normals) normal(o, e.normal_defined, e.normal, dim);
-    o.literal("}");
+    o.end_object();
   }
   stats(o, request, "points", "inside_box", inside);
   return out;
@@ -190,12 +191,12 @@ std::string evaluate_response(const CompiledGeometry& geometry, const EvaluateRe
                        (params == 2 ? "[u, v]" : "[t]") + "), got " + std::to_string(request.length),
                    request.single ? "parameter" : "parameters[0]");
   const int dim = geometry.point_dim();
-  static const char* const first_names[2][2] = {{",\"t\":", ""}, {",\"u\":", ",\"v\":"}};
-  static const char* const second_names[2][3] = {{",\"tt\":", "", ""}, {",\"uu\":", ",\"uv\":", ",\"vv\":"}};
+  static const char* const first_names[2][2] = {{"t", ""}, {"u", "v"}};
+  static const char* const second_names[2][3] = {{"tt", "", ""}, {"uu", "uv", "vv"}};
   const int kind = params - 1;
   std::string out;
   out.reserve(128 + request.count * (64 + 64 * request.derivatives * params + (request.normals ? 64 : 0)));
-  JsonAppender o(out);
+  JsonWriter o(out);
   begin(o, geometry, request);
   std::size_t inside = 0;
   for (std::size_t i = 0; i < request.count; ++i) {
@@ -203,29 +204,33 @@ std::string evaluate_response(const CompiledGeometry& geometry, const EvaluateRe
     Evaluation e;
     geometry.evaluate(t, e);
     inside += e.inside_domain;
-    o.literal(i ? ",{\"parameters\":" : "{\"parameters\":");
+    o.begin_object();
+    o.key("parameters");
     o.numbers(t, params);
-    o.literal(",\"point\":");
+    o.key("point");
     vector(o, e.point, dim);
-    o.literal(e.inside_domain ? ",\"inside_domain\":true" : ",\"inside_domain\":false");
+    o.key("inside_domain");
+    o.boolean(e.inside_domain);
     if (request.derivatives >= 1) {
-      o.literal(",\"derivatives\":{");
+      o.key("derivatives");
+      o.begin_object();
       for (int k = 0; k < params; ++k) {
-        o.literal(std::string_view(first_names[kind][k]).substr(k == 0 ? 1 : 0));
+        o.key(first_names[kind][k]);
         vector(o, e.first[k], dim);
       }
-      o.literal("}");
+      o.end_object();
     }
     if (request.derivatives >= 2) {
-      o.literal(",\"second_derivatives\":{");
+      o.key("second_derivatives");
+      o.begin_object();
       for (int k = 0; k < 2 * params - 1; ++k) {
-        o.literal(std::string_view(second_names[kind][k]).substr(k == 0 ? 1 : 0));
+        o.key(second_names[kind][k]);
         vector(o, e.second[k], dim);
       }
-      o.literal("}");
+      o.end_object();
     }
     if (request.normals) normal(o, e.normal_defined, e.normal, dim);
-    o.literal("}");
+    o.end_object();
   }
   stats(o, request, "parameters", "inside_domain", inside);
   return out;

@@ -98,55 +98,27 @@ void append_shortest(std::string& out, double x) {
   out.append(buf, r.ptr);
 }
 
-void JsonWriter::key(std::string_view name) {
-  if (!first_) out_ += ',';
-  first_ = false;
-  append_json_string(out_, name);
-  out_ += ':';
-  after_key_ = true;
-}
-
-void JsonWriter::string(std::string_view s) {
-  before_value();
-  append_json_string(out_, s);
+void JsonWriter::quoted(std::string_view s) {
+  // Whether any byte needs an escape or a UTF-8 check (no early exit: the loop vectorises).
+  bool special = s.size() + 2 > sizeof buf_;
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    special |= (c < 0x20) | (c >= 0x80) | (c == '"') | (c == '\\');
+  }
+  if (special) {
+    flush();
+    append_json_string(*out_, s);
+    return;
+  }
+  room(s.size() + 2);
+  *p_++ = '"';
+  std::memcpy(p_, s.data(), s.size());
+  p_ += s.size();
+  *p_++ = '"';
 }
 
 void JsonWriter::number(double x) {
   before_value();
-  if (std::isfinite(x))
-    append_shortest(out_, x);
-  else
-    out_ += "null";
-}
-
-void JsonWriter::integer(long long x) {
-  before_value();
-  char buf[24];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  out_.append(buf, r.ptr);
-}
-
-void JsonWriter::boolean(bool b) {
-  before_value();
-  out_ += b ? "true" : "false";
-}
-
-void JsonWriter::null() {
-  before_value();
-  out_ += "null";
-}
-
-void JsonWriter::raw(std::string_view json) {
-  before_value();
-  out_ += json;
-}
-
-void JsonAppender::literal_large(std::string_view text) {
-  flush();
-  out_.append(text);
-}
-
-void JsonAppender::number(double x) {
   room(32);
   if (std::isfinite(x)) {
     p_ = std::to_chars(p_, p_ + 32, x).ptr;
@@ -156,28 +128,16 @@ void JsonAppender::number(double x) {
   }
 }
 
-void JsonAppender::integer(long long x) {
+void JsonWriter::integer(long long x) {
+  before_value();
   room(24);
   p_ = std::to_chars(p_, p_ + 24, x).ptr;
 }
 
-void JsonAppender::string(std::string_view s) {
-  flush();
-  append_json_string(out_, s);
-}
-
-void JsonAppender::numbers(const double* x, int n) {
-  room(1);
-  *p_++ = '[';
-  for (int k = 0; k < n; ++k) {
-    if (k) {
-      room(1);
-      *p_++ = ',';
-    }
-    number(x[k]);
-  }
-  room(1);
-  *p_++ = ']';
+void JsonWriter::numbers(const double* x, int n) {
+  begin_array();
+  for (int k = 0; k < n; ++k) number(x[k]);
+  end_array();
 }
 
 }  // namespace footpoint::server

@@ -11,35 +11,25 @@ namespace footpoint::server {
 namespace {
 
 // [x0,y0,z0,x1,...]
-void flat(JsonAppender& o, const std::vector<Vec3>& points) {
-  o.literal("[");
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    o.literal(i ? "," : "");
-    o.number(points[i].x);
-    o.literal(",");
-    o.number(points[i].y);
-    o.literal(",");
-    o.number(points[i].z);
+void flat(JsonWriter& o, const std::vector<Vec3>& points) {
+  o.begin_array();
+  for (const Vec3& p : points) {
+    o.number(p.x);
+    o.number(p.y);
+    o.number(p.z);
   }
-  o.literal("]");
+  o.end_array();
 }
 
-void flat(JsonAppender& o, const std::vector<double>& values) {
-  o.literal("[");
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    o.literal(i ? "," : "");
-    o.number(values[i]);
-  }
-  o.literal("]");
+void flat(JsonWriter& o, const std::vector<double>& values) {
+  o.numbers(values.data(), static_cast<int>(values.size()));
 }
 
-void indices(JsonAppender& o, const std::vector<std::int32_t>& list) {
-  o.literal("[");
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    o.literal(i ? "," : "");
-    o.integer(list[i]);
-  }
-  o.literal("]");
+template <class Integers>
+void indices(JsonWriter& o, const Integers& list) {
+  o.begin_array();
+  for (const auto i : list) o.integer(i);
+  o.end_array();
 }
 
 void append_integer(std::string& out, long long n) {
@@ -63,48 +53,49 @@ std::string mesh_json(const CompiledGeometry& geometry, const Mesh& mesh, int re
   std::string out;
   out.reserve(256 + mesh.vertices.size() * (mesh.num_params + 6) * 20 + mesh.triangles.size() * 24);
   {
-    JsonAppender o(out);
-    o.literal("{\"geometry_id\":");
+    JsonWriter o(out);
+    o.begin_object();
+    o.key("geometry_id");
     o.string(geometry.id());
-    o.literal(",\"type\":");
+    o.key("type");
     o.string(to_string(geometry.definition().type));
-    o.literal(",\"point_dim\":");
+    o.key("point_dim");
     o.integer(geometry.point_dim());
-    o.literal(",\"resolution\":");
+    o.key("resolution");
     o.integer(resolution);
-    o.literal(",\"vertices\":");
+    o.key("vertices");
     flat(o, mesh.vertices);
     if (!mesh.normals.empty()) {
-      o.literal(",\"normals\":");
+      o.key("normals");
       flat(o, mesh.normals);
     }
     if (!mesh.tangents.empty()) {
-      o.literal(",\"tangents\":");
+      o.key("tangents");
       flat(o, mesh.tangents);
     }
     if (mesh.num_params > 0) {
-      o.literal(",\"parameters\":");
+      o.key("parameters");
       flat(o, mesh.parameters);
     }
-    o.literal(",\"triangles\":[");
-    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-      const auto& t = mesh.triangles[i];
-      o.literal(i ? "," : "");
-      o.integer(t[0]);
-      o.literal(",");
-      o.integer(t[1]);
-      o.literal(",");
-      o.integer(t[2]);
+    o.key("triangles");
+    o.begin_array();
+    for (const auto& t : mesh.triangles)
+      for (const std::int32_t v : t) o.integer(v);
+    o.end_array();
+    o.key("polylines");
+    o.begin_array();
+    for (const Polyline& line : mesh.polylines) {
+      o.begin_object();
+      o.key("vertices");
+      indices(o, line.vertices);
+      o.key("closed");
+      o.boolean(line.closed);
+      o.end_object();
     }
-    o.literal("],\"polylines\":[");
-    for (std::size_t i = 0; i < mesh.polylines.size(); ++i) {
-      o.literal(i ? ",{\"vertices\":" : "{\"vertices\":");
-      indices(o, mesh.polylines[i].vertices);
-      o.literal(mesh.polylines[i].closed ? ",\"closed\":true}" : ",\"closed\":false}");
-    }
-    o.literal("],\"singular_points\":");
+    o.end_array();
+    o.key("singular_points");
     indices(o, mesh.singular_points);
-    o.literal("}");
+    o.end_object();
   }
   return out;
 }

@@ -20,199 +20,158 @@ bool has_finite_answer(const ProjectionResult& r) {
 
 namespace {
 
-// Method, status and location names are plain identifiers; anything else is escaped.
-void name(JsonAppender& o, std::string_view s) {
-  for (char c : s)
-    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_')) return o.string(s);
-  o.literal("\"");
-  o.literal(s);
-  o.literal("\"");
-}
-
-// The members of an object in their order: each key is written with the comma before it, which
-// the first member of the object leaves out.
-class Members {
- public:
-  explicit Members(JsonAppender& o) : o_(o) {}
-  // `key` is the comma, the quoted name and the colon: ",\"distance\":".
-  void key(std::string_view key) {
-    o_.literal(first_ ? key.substr(1) : key);
-    first_ = false;
-  }
-
- private:
-  JsonAppender& o_;
-  bool first_ = true;
-};
-
-void write_certificate(JsonAppender& o, const Certificate& c, const ProjectionResult& r, bool answer) {
-  if (!c.computed) return o.literal("null");
-  o.literal(c.certified ? "{\"certified\":true,\"lower_bound\":" : "{\"certified\":false,\"lower_bound\":");
+void write_certificate(JsonWriter& o, const Certificate& c, const ProjectionResult& r, bool answer) {
+  if (!c.computed) return o.null();
+  o.begin_object();
+  o.key("certified");
+  o.boolean(c.certified);
+  o.key("lower_bound");
   o.number(c.lower_bound);
-  o.literal(",\"gap\":");
+  o.key("gap");
   if (answer)
     o.number(std::fmax(r.distance - c.lower_bound, 0.0));
   else
-    o.literal("null");
-  o.literal(",\"reason\":");
-  name(o, to_string(c.reason));
-  o.literal(",\"boxes\":");
+    o.null();
+  o.key("reason");
+  o.string(to_string(c.reason));
+  o.key("boxes");
   o.integer(c.boxes);
-  o.literal("}");
+  o.end_object();
 }
 
 // How many feet are nearest (null without an answer, or from a method that does not say).
-void write_multiplicity(JsonAppender& o, const AnswerMultiplicity& m, const ProjectionResult& r,
-                        bool answer) {
-  if (!m.computed || !answer) {
-    o.literal("null");
-    return;
-  }
-  o.literal("{\"kind\":");
-  name(o, to_string(m.kind));
+void write_multiplicity(JsonWriter& o, const AnswerMultiplicity& m, const ProjectionResult& r, bool answer) {
+  if (!m.computed || !answer) return o.null();
+  o.begin_object();
+  o.key("kind");
+  o.string(to_string(m.kind));
   if (m.kind == Multiplicity::tied) {
-    o.literal(",\"count\":");
+    o.key("count");
     o.integer(m.count);
-    o.literal(",\"feet\":[");
-    for (std::size_t i = 0; i < m.feet.size(); ++i) {
-      if (i) o.literal(",");
-      o.numbers(m.feet[i].data(), r.dim);
-    }
-    o.literal("]");
+    o.key("feet");
+    o.begin_array();
+    for (const auto& foot : m.feet) o.numbers(foot.data(), r.dim);
+    o.end_array();
   }
-  o.literal("}");
+  o.end_object();
+}
+
+// The member `name` with the numbers x[0..n) when `present`, else null.
+void numbers_or_null(JsonWriter& o, JsonName name, bool present, const double* x, int n) {
+  o.key(name);
+  if (present)
+    o.numbers(x, n);
+  else
+    o.null();
+}
+
+// The member `name` with the number x when `present`, else null.
+void number_or_null(JsonWriter& o, JsonName name, bool present, double x) {
+  o.key(name);
+  if (present)
+    o.number(x);
+  else
+    o.null();
+}
+
+void write_diagnostics(JsonWriter& o, const ProjectionResult& r, ResultFields f, bool answer, Status status) {
+  const Summary& s = r.summary;
+  o.begin_object();
+  if (f.has(ResultFields::method)) {
+    o.key("method");
+    o.string(s.method);
+  }
+  if (f.has(ResultFields::status)) {
+    o.key("status");
+    o.string(to_string(status));
+  }
+  if (f.has(ResultFields::converged)) {
+    o.key("converged");
+    o.boolean(status == Status::converged);
+  }
+  if (f.has(ResultFields::iterations)) {
+    o.key("iterations");
+    o.integer(s.iterations);
+  }
+  // The residuals and the last step describe the foot point: null without one.
+  if (f.has(ResultFields::residual)) number_or_null(o, "residual", answer, s.residual());
+  if (f.has(ResultFields::step_norm)) number_or_null(o, "step_norm", answer, s.step_norm);
+  if (f.has(ResultFields::starts)) {
+    o.key("starts");
+    o.integer(s.starts);
+  }
+  if (f.has(ResultFields::location)) {
+    o.key("location");
+    o.string(to_string(answer ? s.location : Location::unknown));
+  }
+  if (f.has(ResultFields::certificate)) {
+    o.key("certificate");
+    write_certificate(o, s.certificate, r, answer);
+  }
+  if (f.has(ResultFields::multiplicity)) {
+    o.key("multiplicity");
+    write_multiplicity(o, s.multiplicity, r, answer);
+  }
+  o.end_object();
+}
+
+void write_minima(JsonWriter& o, const ProjectionResult& r) {
+  o.begin_array();
+  for (const Minimum& mn : r.minima) {
+    o.begin_object();
+    o.key("foot_point");
+    o.numbers(mn.foot.data(), r.dim);
+    if (r.num_params > 0) {
+      o.key("parameters");
+      o.numbers(mn.params.data(), r.num_params);
+    }
+    o.key("distance");
+    o.number(mn.distance);
+    o.key("location");
+    o.string(to_string(mn.location));
+    if (!mn.copies.empty()) {
+      o.key("parameter_copies");
+      o.begin_array();
+      for (const auto& copy : mn.copies) o.numbers(copy.data(), 2);
+      o.end_array();
+      o.key("copies_truncated");
+      o.boolean(mn.copies_truncated);
+    }
+    o.end_object();
+  }
+  o.end_array();
 }
 
 // Writes one result with the members `f` selects; returns its reported status.
-Status write_result(JsonAppender& o, const ProjectionResult& r, ResultFields f) {
+Status write_result(JsonWriter& o, const ProjectionResult& r, ResultFields f) {
   const bool answer = has_finite_answer(r);
   const Status status = reported_status(r);
-  o.literal("{");
-  Members m(o);
-  if (f.has(ResultFields::foot_point)) {
-    m.key(",\"foot_point\":");
-    if (answer)
-      o.numbers(r.foot.data(), r.dim);
-    else
-      o.literal("null");
-  }
-  if (r.num_params > 0 && f.has(ResultFields::parameters)) {
-    m.key(",\"parameters\":");
-    if (answer)
-      o.numbers(r.params.data(), r.num_params);
-    else
-      o.literal("null");
-  }
-  if (f.has(ResultFields::distance)) {
-    m.key(",\"distance\":");
-    if (answer)
-      o.number(r.distance);
-    else
-      o.literal("null");
-  }
-  if (f.has(ResultFields::normal)) {
-    m.key(",\"normal\":");
-    if (answer && r.has_normal())
-      o.numbers(r.normal.data(), r.dim);
-    else
-      o.literal("null");
-  }
-  if (f.has(ResultFields::signed_distance)) {
-    m.key(",\"signed_distance\":");
-    if (answer && r.has_normal())
-      o.number(r.signed_distance);
-    else
-      o.literal("null");
-  }
-  const Summary& s = r.summary;
+  o.begin_object();
+  if (f.has(ResultFields::foot_point)) numbers_or_null(o, "foot_point", answer, r.foot.data(), r.dim);
+  if (r.num_params > 0 && f.has(ResultFields::parameters))
+    numbers_or_null(o, "parameters", answer, r.params.data(), r.num_params);
+  if (f.has(ResultFields::distance)) number_or_null(o, "distance", answer, r.distance);
+  if (f.has(ResultFields::normal))
+    numbers_or_null(o, "normal", answer && r.has_normal(), r.normal.data(), r.dim);
+  if (f.has(ResultFields::signed_distance))
+    number_or_null(o, "signed_distance", answer && r.has_normal(), r.signed_distance);
   if (f.has(ResultFields::kDiagnostics)) {
-    m.key(",\"diagnostics\":{");
-    Members d(o);
-    if (f.has(ResultFields::method)) {
-      d.key(",\"method\":");
-      name(o, s.method);
-    }
-    if (f.has(ResultFields::status)) {
-      d.key(",\"status\":");
-      name(o, to_string(status));
-    }
-    if (f.has(ResultFields::converged)) {
-      d.key(",\"converged\":");
-      o.literal(status == Status::converged ? "true" : "false");
-    }
-    if (f.has(ResultFields::iterations)) {
-      d.key(",\"iterations\":");
-      o.integer(s.iterations);
-    }
-    // The residuals and the last step describe the foot point: null without one.
-    if (f.has(ResultFields::residual)) {
-      d.key(",\"residual\":");
-      if (answer)
-        o.number(s.residual());
-      else
-        o.literal("null");
-    }
-    if (f.has(ResultFields::step_norm)) {
-      d.key(",\"step_norm\":");
-      if (answer)
-        o.number(s.step_norm);
-      else
-        o.literal("null");
-    }
-    if (f.has(ResultFields::starts)) {
-      d.key(",\"starts\":");
-      o.integer(s.starts);
-    }
-    if (f.has(ResultFields::location)) {
-      d.key(",\"location\":");
-      name(o, to_string(answer ? s.location : Location::unknown));
-    }
-    if (f.has(ResultFields::certificate)) {
-      d.key(",\"certificate\":");
-      write_certificate(o, s.certificate, r, answer);
-    }
-    if (f.has(ResultFields::multiplicity)) {
-      d.key(",\"multiplicity\":");
-      write_multiplicity(o, s.multiplicity, r, answer);
-    }
-    o.literal("}");
+    o.key("diagnostics");
+    write_diagnostics(o, r, f, answer, status);
   }
-
   if (f.has(ResultFields::minima)) {
-    m.key(",\"minima\":[");
-    for (std::size_t i = 0; i < r.minima.size(); ++i) {
-      const Minimum& mn = r.minima[i];
-      o.literal(i ? ",{\"foot_point\":" : "{\"foot_point\":");
-      o.numbers(mn.foot.data(), r.dim);
-      if (r.num_params > 0) {
-        o.literal(",\"parameters\":");
-        o.numbers(mn.params.data(), r.num_params);
-      }
-      o.literal(",\"distance\":");
-      o.number(mn.distance);
-      o.literal(",\"location\":");
-      name(o, to_string(mn.location));
-      if (!mn.copies.empty()) {
-        o.literal(",\"parameter_copies\":[");
-        for (std::size_t k = 0; k < mn.copies.size(); ++k) {
-          if (k) o.literal(",");
-          o.numbers(mn.copies[k].data(), 2);
-        }
-        o.literal(mn.copies_truncated ? "],\"copies_truncated\":true" : "],\"copies_truncated\":false");
-      }
-      o.literal("}");
-    }
-    o.literal(r.minima_truncated ? "],\"minima_truncated\":true" : "],\"minima_truncated\":false");
+    o.key("minima");
+    write_minima(o, r);
+    o.key("minima_truncated");
+    o.boolean(r.minima_truncated);
   }
   if (f.has(ResultFields::trace)) {
-    m.key(",\"trace\":[");
-    for (std::size_t i = 0; i < r.trace.size(); ++i) {
-      if (i) o.literal(",");
-      o.numbers(r.trace[i].data(), 3);
-    }
-    o.literal("]");
+    o.key("trace");
+    o.begin_array();
+    for (const auto& step : r.trace) o.numbers(step.data(), 3);
+    o.end_array();
   }
-  o.literal("}");
+  o.end_object();
   return status;
 }
 
@@ -265,72 +224,77 @@ const char* ResultFields::names() {
 }
 
 Status append_result(std::string& out, const ProjectionResult& r, ResultFields fields) {
-  JsonAppender o(out);
+  JsonWriter o(out);
   return write_result(o, r, fields);
 }
 
-void append_stats(std::string& out, const BatchStats& stats, const DeviationOptions& options) {
-  JsonAppender o(out);
-  o.literal("{\"points\":");
+namespace {
+
+void write_stats(JsonWriter& o, const BatchStats& stats, const DeviationOptions& options) {
+  o.begin_object();
+  o.key("points");
   o.integer(static_cast<long long>(stats.points));
-  o.literal(",\"converged\":");
+  o.key("converged");
   o.integer(static_cast<long long>(stats.by_status[static_cast<std::size_t>(Status::converged)]));
-  o.literal(",\"statuses\":{");
-  bool first = true;
+  o.key("statuses");
+  o.begin_object();
   for (std::size_t k = 0; k < stats.by_status.size(); ++k) {
     if (stats.by_status[k] == 0) continue;
-    o.literal(first ? "\"" : ",\"");
-    first = false;
-    o.literal(to_string(static_cast<Status>(k)));
-    o.literal("\":");
+    o.key(to_string(static_cast<Status>(k)));
     o.integer(static_cast<long long>(stats.by_status[k]));
   }
-  o.literal("},\"elapsed_ms\":");
+  o.end_object();
+  o.key("elapsed_ms");
   o.number(stats.elapsed_ms);
   const DeviationStats& d = stats.deviation;
-  o.literal(",\"deviation\":{\"count\":");
+  o.key("deviation");
+  o.begin_object();
+  o.key("count");
   o.integer(static_cast<long long>(d.count));
-  o.literal(",\"signed\":");
+  o.key("signed");
   o.integer(static_cast<long long>(d.signed_count));
   const bool any = d.count > 0;
-  for (const auto& [key, value] : {std::pair{",\"min\":", d.min}, std::pair{",\"max\":", d.max},
-                                   std::pair{",\"mean\":", d.mean}, std::pair{",\"rms\":", d.rms}}) {
-    o.literal(key);
-    if (any)
-      o.number(value);
-    else
-      o.literal("null");
-  }
-  o.literal(",\"histogram\":");
+  number_or_null(o, "min", any, d.min);
+  number_or_null(o, "max", any, d.max);
+  number_or_null(o, "mean", any, d.mean);
+  number_or_null(o, "rms", any, d.rms);
+  o.key("histogram");
   if (any) {
-    o.literal("{\"edges\":");
+    o.begin_object();
+    o.key("edges");
     o.numbers(d.edges.data(), static_cast<int>(d.edges.size()));
-    o.literal(",\"counts\":[");
-    for (std::size_t k = 0; k < d.counts.size(); ++k) {
-      if (k) o.literal(",");
-      o.integer(static_cast<long long>(d.counts[k]));
-    }
-    o.literal("],\"resolution\":");
+    o.key("counts");
+    o.begin_array();
+    for (const std::size_t count : d.counts) o.integer(static_cast<long long>(count));
+    o.end_array();
+    o.key("resolution");
     o.number(d.histogram_resolution);
-    o.literal("}");
+    o.end_object();
   } else {
-    o.literal("null");
+    o.null();
   }
   if (options.tolerance_band) {
-    o.literal(",\"tolerance_band\":{\"lo\":");
+    o.key("tolerance_band");
+    o.begin_object();
+    o.key("lo");
     o.number((*options.tolerance_band)[0]);
-    o.literal(",\"hi\":");
+    o.key("hi");
     o.number((*options.tolerance_band)[1]);
-    o.literal(",\"within\":");
+    o.key("within");
     o.integer(static_cast<long long>(d.within_band));
-    o.literal(",\"share\":");
-    if (any)
-      o.number(static_cast<double>(d.within_band) / static_cast<double>(d.count));
-    else
-      o.literal("null");
-    o.literal("}");
+    number_or_null(o, "share", any,
+                   any ? static_cast<double>(d.within_band) / static_cast<double>(d.count) : 0.0);
+    o.end_object();
   }
-  o.literal("}}");
+  o.end_object();
+  o.end_object();
+}
+
+}  // namespace
+
+void append_stats(std::string& out, const BatchStats& stats, const DeviationOptions& options) {
+  JsonWriter o(out);
+  write_stats(o, stats, options);
 }
 
 std::string project_response(const std::string& geometry_id, const std::vector<ProjectionResult>& results,
@@ -342,20 +306,21 @@ std::string project_response(const std::string& geometry_id, const std::vector<P
   BatchStats stats;
   stats.points = results.size();
   stats.elapsed_ms = elapsed_ms;
-  {
-    JsonAppender o(out);
-    o.literal("{\"geometry_id\":");
-    o.string(geometry_id);
-    o.literal(single ? ",\"result\":" : ",\"results\":[");
-    for (std::size_t i = 0; i < results.size(); ++i) {
-      if (i) o.literal(",");
-      ++stats.by_status[static_cast<std::size_t>(write_result(o, results[i], fields))];
-    }
-    o.literal(single ? ",\"stats\":" : "],\"stats\":");
-  }
   stats.deviation = deviation_stats(results, deviation);
-  append_stats(out, stats, deviation);
-  out += '}';
+  {
+    JsonWriter o(out);
+    o.begin_object();
+    o.key("geometry_id");
+    o.string(geometry_id);
+    o.key(single ? "result" : "results");
+    if (!single) o.begin_array();
+    for (const ProjectionResult& r : results)
+      ++stats.by_status[static_cast<std::size_t>(write_result(o, r, fields))];
+    if (!single) o.end_array();
+    o.key("stats");
+    write_stats(o, stats, deviation);
+    o.end_object();
+  }
   return out;
 }
 
