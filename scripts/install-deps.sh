@@ -26,6 +26,7 @@ test_packages=(
   openssl                                    # the TLS tests make their certificate at test time
   wrk                                        # bench/http_bench.sh
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev  # bench/occt/
+  libocct-data-exchange-dev                  # tools/step_import/ (footpoint-import reads STEP)
   clang-format clang-tidy shellcheck         # scripts/check_format.sh, scripts/check_tidy.sh, deploy_shellcheck
   chromium python3-websocket                 # the browser pages in headless chromium (tests/ui_playground_browser.py)
   python3-matplotlib                         # examples/inspection/: the deviation colour map and histogram

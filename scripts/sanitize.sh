@@ -9,14 +9,16 @@
 # The deploy_* tests are left out: they check the Release image's layout and manifests (an
 # instrumented binary links the sanitizer runtimes, which the runtime image rightly lacks); so are
 # the reference_generator_* tests: Python recomputing the reference data, no instrumented code runs
-# (the Release suite runs them).
+# (the Release suite runs them). So is footpoint-import (tools/step_import/): glue over Open
+# CASCADE's uninstrumented STEP reader, tested in the Release suite.
 # Usage: bash scripts/sanitize.sh [build-dir]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh --test clang-14 libclang-rt-14-dev
 build="${1:-build-asan}"
 cmake -S . -B "$build" -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
-  -DFOOTPOINT_SANITIZE=ON -DFOOTPOINT_WERROR=OFF -DFOOTPOINT_BUILD_BENCH=OFF
+  -DFOOTPOINT_SANITIZE=ON -DFOOTPOINT_WERROR=OFF -DFOOTPOINT_BUILD_BENCH=OFF \
+  -DFOOTPOINT_BUILD_IMPORT=OFF
 cmake --build "$build" -j"$(nproc)"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
