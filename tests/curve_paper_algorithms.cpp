@@ -15,6 +15,7 @@
 #include <string>
 
 #include "compiled/implicit_curve_geometry.hpp"
+#include "sweep_length.hpp"
 
 using namespace footpoint;
 using nlohmann::json;
@@ -49,12 +50,16 @@ void check_records(const std::string& id) {
   const json records = read(std::string(FOOTPOINT_TESTS_DIR) + "/data/curve_paper_algorithms.json");
   const json& c = public_case(cases, id);
   const auto g = compile(c);
-  int pinned = 0;  // records whose destination is checked
+  int pinned = 0, checked = 0;  // records whose destination is checked, records run
+  // Under AddressSanitizer every third point (sweep_length.hpp: the runs that wander take their
+  // whole iteration budget, 5-10x slower instrumented); the Release suite runs them all.
+  const std::size_t stride = test::kSweepDivisor > 1 ? 3 : 1;
   for (const char* method :
        {"steepest_descent", "foot_point_march", "accelerated", "complete", "simplified"}) {
     const json& rows = records[id][method];
     REQUIRE(rows.size() == c["points"].size());
-    for (std::size_t k = 0; k < rows.size(); ++k) {
+    for (std::size_t k = 0; k < rows.size(); k += stride) {
+      ++checked;
       const std::string method_name = method;
       CAPTURE(method_name);
       CAPTURE(k + 1);
@@ -111,9 +116,9 @@ void check_records(const std::string& id) {
         CHECK(r.distance > global * (1.0 + 1e-9));  // a stationary point that is not the nearest
     }
   }
-  // Most runs have a destination (5 methods x 16 points = 80 records).
-  CHECK(pinned >= 50);
-  MESSAGE(id << ": " << pinned << " of 80 recorded destinations reproducible and checked");
+  // Most runs have a destination (5 methods x 16 points = 80 records: at least 50 of them).
+  CHECK(8 * pinned >= 5 * checked);
+  MESSAGE(id << ": " << pinned << " of " << checked << " recorded destinations reproducible and checked");
 }
 
 }  // namespace
