@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
+#include "sweep_length.hpp"
 
 using namespace footpoint;
 
@@ -113,7 +114,8 @@ TEST_CASE("every status a method reports is one its row lists; an option it does
     const auto geometry = compile_geometry(subject.def);
     const int dim = geometry->point_dim();
     std::uniform_real_distribution<double> coordinate(-subject.radius, subject.radius);
-    std::vector<std::array<double, 3>> points(60);
+    // (a sixth of them under AddressSanitizer: sweep_length.hpp)
+    std::vector<std::array<double, 3>> points(static_cast<std::size_t>(test::sweep_length(60)));
     for (auto& p : points) p = {coordinate(rng), coordinate(rng), dim == 3 ? coordinate(rng) : 0.0};
     points.push_back({0.0, 0.0, 0.0});  // on an axis of symmetry: degenerate for some methods
     for (const MethodInfo& info : geometry->methods()) {
