@@ -126,7 +126,7 @@ void print_row(const char* label, const Timed& t) {
               t.batch_ns / 1e3, percentile(t.ns, 0.9) / 1e3, percentile(t.ns, 0.99) / 1e3);
 }
 
-// The share of the answers whose certificate meets the gap (geometry/certificate.hpp).
+// The share of the answers whose certificate meets the gap (projection/certificate.hpp).
 void print_certified(const Timed& t) {
   const auto certified = std::count_if(t.results.begin(), t.results.end(), [](const ProjectionResult& r) {
     return r.summary.certificate.certified;

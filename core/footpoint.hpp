@@ -19,10 +19,10 @@
 // (UnknownMethod), never an exception. GeometryMethod::project(p, options) answers one point;
 // project_batch(pool, request) (batch/batch.hpp) answers many on a ThreadPool, in order.
 //
-// Results (geometry/projection_result.hpp): ProjectionResult holds the foot point, the distance,
+// Results (projection/projection_result.hpp): ProjectionResult holds the foot point, the distance,
 // the parameters, and a Summary: the status (converged, or why not), iterations, residuals,
 // location (interior, edge, corner, ...), multiplicity, and the Certificate
-// (geometry/certificate.hpp): a rigorous lower bound L of the distance over the whole domain and
+// (projection/certificate.hpp): a rigorous lower bound L of the distance over the whole domain and
 // whether it meets the answer (d - L <= max(1e-9 d, 512 ulps)).
 //
 // Keep compiled geometries (cache/geometry_cache.hpp): GeometryCache holds them by id within a

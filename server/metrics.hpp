@@ -30,7 +30,7 @@
 #include <utility>
 
 #include "cache/geometry_cache.hpp"
-#include "geometry/projection_result.hpp"
+#include "projection/projection_result.hpp"
 #include "prometheus_text.hpp"
 #include "registry_metrics.hpp"
 #include "route.hpp"

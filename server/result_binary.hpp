@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/projection_result.hpp"
+#include "projection/projection_result.hpp"
 #include "result_json.hpp"
 
 namespace footpoint::server {

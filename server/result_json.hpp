@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "batch/deviation.hpp"
-#include "geometry/projection_result.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::server {
 

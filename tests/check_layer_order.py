@@ -26,7 +26,7 @@ import tempfile
 # Bottom to top: a layer and the folders (relative to the source directory) it is made of.
 LAYERS = [
     ("formula", ["core/formula"]),
-    ("geometry", ["core/geometry", "core/parametric/geometry", "core/implicit/geometry"]),
+    ("geometry", ["core/projection", "core/geometry", "core/parametric/geometry", "core/implicit/geometry"]),
     ("seeding", ["core/seeding", "core/parametric/seeding", "core/implicit/seeding"]),
     ("solvers", ["core/solvers", "core/parametric/solvers", "core/implicit/solvers"]),
     ("compiled", ["core/compiled"]),

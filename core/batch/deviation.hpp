@@ -18,7 +18,7 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/projection_result.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint {
 

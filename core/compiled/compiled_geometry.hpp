@@ -14,10 +14,10 @@
 #include "compiled/method_table.hpp"
 #include "formula/program.hpp"
 #include "geometry/geometry_error.hpp"
-#include "geometry/projection_result.hpp"
 #include "geometry/vec.hpp"
 #include "parametric/geometry/parametric_curve.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint {
 

@@ -13,12 +13,12 @@
 #include <string_view>
 #include <vector>
 
-#include "geometry/projection_result.hpp"
 #include "geometry/vec.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint {
 
-// The options of a projection (geometry/projection_result.hpp, Options), as bits.
+// The options of a projection (projection/projection_result.hpp, Options), as bits.
 enum MethodOption : std::uint32_t {
   option_tolerance = 1u << 0,
   option_max_iterations = 1u << 1,

@@ -2,7 +2,7 @@
 // value and gradient at one point, at a few times the cost of the point jet (Program::ball_jets1).
 // Where interval arithmetic (interval.hpp) encloses a function over a box, a ball jet encloses
 // the exact values at a point whose evaluation in floating point rounds: the certificate of an
-// answer (geometry/certificate.hpp) needs f(q) and ∇f(q) at the foot point q to the last few ulps,
+// answer (projection/certificate.hpp) needs f(q) and ∇f(q) at the foot point q to the last few ulps,
 // with a proof, for every point projected.
 //
 // The rounding model is that of interval.hpp (IEEE 754 binary64, round to nearest, no extended

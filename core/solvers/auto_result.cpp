@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/certificate.hpp"
+#include "projection/certificate.hpp"
 
 namespace footpoint::curve {
 

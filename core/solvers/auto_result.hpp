@@ -5,8 +5,8 @@
 #include <array>
 #include <vector>
 
-#include "geometry/projection_result.hpp"
 #include "geometry/vec.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::curve {
 

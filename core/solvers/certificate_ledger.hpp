@@ -1,15 +1,15 @@
 // What a branch-and-bound certificate keeps while it closes boxes (parametric/solvers/
 // surface_certificate.hpp, parametric/solvers/parametric_curve_certificate.hpp): the target the boxes' lower
 // bounds must reach for the answer's distance d (d - gap/2, gap = max(1e-9 d, the absolute gap of
-// geometry/certificate.hpp)), the least bound of the boxes closed or left open, and why it
+// projection/certificate.hpp)), the least bound of the boxes closed or left open, and why it
 // stopped; at the end, the Certificate.
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "geometry/certificate.hpp"
 #include "geometry/vec.hpp"
+#include "projection/certificate.hpp"
 
 namespace footpoint {
 

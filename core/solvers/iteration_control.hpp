@@ -6,7 +6,7 @@
 #include <limits>
 #include <vector>
 
-#include "geometry/projection_result.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::curve {
 

@@ -3,7 +3,7 @@
 // the pieces. The distance from p to a piece's box is a lower bound of the distance to the piece;
 // the pieces are visited nearest box first, each solved by its own global method, and a piece is
 // left out once its box is farther than the best distance found plus the certificate's gap
-// (geometry/certificate.hpp): no point of it can be nearer, nor tie. The answer's certificate is
+// (projection/certificate.hpp): no point of it can be nearer, nor tie. The answer's certificate is
 // the pieces': its lower bound is the smallest of the solved pieces' lower bounds and the boxes
 // of the pieces left out, so it is as rigorous as theirs; a foot on two pieces (their shared edge)
 // or on several at the same distance is one answer with the multiplicity of the distinct feet.
@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "geometry/box3.hpp"
-#include "geometry/projection_result.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint {
 

@@ -8,9 +8,9 @@
 // are taken at Z_n and DV = U_n - Z_n. (Eq. (17) prints 0 on the right of its first two rows; eq.
 // (18) has -err1, -err2, which is what makes dV a correction; we follow eq. (18).)
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
 #include "implicit/solvers/paper_iteration.hpp"
+#include "projection/projection_result.hpp"
 #include "solvers/iteration_control.hpp"
 
 namespace footpoint::curve {

@@ -2,8 +2,8 @@
 // (X0 = P - (0.1, 0.1, 0.1)), five rounds of Algorithm 2 (foot point Q) followed by Algorithm 1
 // (Q back onto the curve), then Algorithm 3 (eq. (19)) until the iterates stop moving.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::curve {
 

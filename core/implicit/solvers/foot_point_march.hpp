@@ -2,10 +2,10 @@
 // foot point with Algorithm 1 back onto the curve, and the method `foot_point_march`: Algorithms 2
 // and 1 alternately, as in the for-loop of Algorithm 4 but until the curve point stops moving.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
 #include "implicit/solvers/paper_iteration.hpp"
 #include "implicit/solvers/steepest_descent.hpp"
+#include "projection/projection_result.hpp"
 #include "solvers/iteration_control.hpp"
 
 namespace footpoint::curve {

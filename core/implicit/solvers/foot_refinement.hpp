@@ -4,7 +4,7 @@
 // of f1 or f2 moves the curve by about δ / (|∇f_i| sin θ). A foot point x solved in double
 // precision has residuals f_i(x) as large as the rounding of their evaluation, u times the
 // magnitudes of the terms, so its position is off by that over sin θ: for two unit spheres
-// meeting at 0.01 rad, ~1e-13, more than the certificate's gap (geometry/certificate.hpp).
+// meeting at 0.01 rad, ~1e-13, more than the certificate's gap (projection/certificate.hpp).
 // Refinement (Wilkinson's iterative refinement: the residual in higher precision, the
 // correction in working precision; N. J. Higham, Accuracy and Stability of Numerical Algorithms,
 // 2nd ed., SIAM 2002, Chapter 12) takes Newton steps on G = (f1, f2, F), F = <T, p - x>

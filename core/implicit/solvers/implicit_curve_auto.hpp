@@ -19,9 +19,9 @@
 #pragma once
 #include <span>
 
-#include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
 #include "implicit/seeding/discovered_curve.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::curve {
 

@@ -22,7 +22,7 @@ using formula::Interval;
 // Sub-boxes bounded per point beyond the compiled cells, and bisections of one cell or box.
 constexpr int kBoxBudget = 600;
 constexpr int kMaxDepth = 48;
-// The absolute gap in ulps of the coordinates (geometry/certificate.hpp).
+// The absolute gap in ulps of the coordinates (projection/certificate.hpp).
 constexpr double kGapUlps = 256.0;
 
 IntervalVector<3> as_vector(const IVec3& v) { return {v[0], v[1], v[2]}; }

@@ -1,4 +1,4 @@
-// The certificate of an answer on an implicit curve (geometry/certificate.hpp): a rigorous lower
+// The certificate of an answer on an implicit curve (projection/certificate.hpp): a rigorous lower
 // bound L of the distance from p to the curve inside its box, from the certified subdivision that
 // discovery left (implicit/seeding/curve_discovery) and interval arithmetic at p.
 //
@@ -38,10 +38,10 @@
 #pragma once
 #include <span>
 
-#include "geometry/certificate.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
 #include "implicit/seeding/curve_discovery.hpp"
 #include "implicit/seeding/discovered_curve.hpp"
+#include "projection/certificate.hpp"
 
 namespace footpoint::curve {
 

@@ -1,4 +1,4 @@
-// How many points of an implicit curve are nearest to p (geometry/projection_result.hpp,
+// How many points of an implicit curve are nearest to p (projection/projection_result.hpp,
 // AnswerMultiplicity), for auto's answer:
 //  - a continuum where the distance along the curve is flat to second order at a regular foot X
 //    inside the box: with the arc length s, the unit tangent T and the curvature vector κ of
@@ -13,8 +13,8 @@
 #pragma once
 #include <vector>
 
-#include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
+#include "projection/projection_result.hpp"
 #include "solvers/auto_result.hpp"
 
 namespace footpoint::curve {

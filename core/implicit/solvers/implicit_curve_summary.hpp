@@ -4,8 +4,8 @@
 #pragma once
 #include <string>
 
-#include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
+#include "projection/projection_result.hpp"
 #include "solvers/iteration_control.hpp"
 
 namespace footpoint::curve {

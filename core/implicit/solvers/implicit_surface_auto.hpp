@@ -11,8 +11,8 @@
 // surface in the box (second-order conditions, the faces' multiplier signs) are listed with the
 // answer first.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "implicit/seeding/implicit_surface_cells.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::surface_implicit {
 

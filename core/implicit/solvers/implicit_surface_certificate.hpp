@@ -1,5 +1,5 @@
 // The certificate of an answer on an implicit surface S = {f = 0} clipped to the box B: a rigorous
-// lower bound L of the distance from p to S ∩ B (geometry/certificate.hpp), by branch and bound
+// lower bound L of the distance from p to S ∩ B (projection/certificate.hpp), by branch and bound
 // over the compiled octree (implicit/seeding/implicit_surface_cells.hpp):
 //  - a cell whose distance from p (geometry/interval_vec3.hpp, distance_lower_bound) is at least
 //    the answer's distance less half the gap holds nothing nearer;
@@ -25,8 +25,8 @@
 #pragma once
 #include <vector>
 
-#include "geometry/certificate.hpp"
 #include "implicit/seeding/implicit_surface_cells.hpp"
+#include "projection/certificate.hpp"
 
 namespace footpoint::surface_implicit {
 

@@ -11,8 +11,8 @@
 #include <array>
 #include <vector>
 
-#include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_surface.hpp"
+#include "projection/projection_result.hpp"
 #include "solvers/iteration_control.hpp"
 
 namespace footpoint::surface_implicit {

@@ -36,8 +36,8 @@
 // degenerate (grad f = 0 or a singular Newton system), outside_domain (a foot outside the box),
 // beyond_max_distance.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_surface.hpp"
+#include "projection/projection_result.hpp"
 #include "solvers/iteration_control.hpp"
 
 namespace footpoint::surface_implicit {

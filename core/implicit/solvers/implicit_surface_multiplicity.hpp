@@ -12,8 +12,8 @@
 #pragma once
 #include <vector>
 
-#include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_surface.hpp"
+#include "projection/projection_result.hpp"
 #include "solvers/auto_result.hpp"
 
 namespace footpoint::surface_implicit {

@@ -11,8 +11,8 @@
 #pragma once
 #include <span>
 
-#include "geometry/projection_result.hpp"
 #include "implicit/seeding/implicit_surface_cells.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::surface_implicit {
 

@@ -12,8 +12,8 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
+#include "projection/projection_result.hpp"
 #include "solvers/iteration_control.hpp"
 
 namespace footpoint::curve {

@@ -5,8 +5,8 @@
 //   X_{n+1} = Z_n - F(Z_n) / |grad F(Z_n)|^2 grad F(Z_n),      F = <T, P - X> (eq. (7)),
 // (eq. (19) without the correction vector) until the iterates stop moving.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::curve {
 

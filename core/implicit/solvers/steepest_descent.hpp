@@ -5,9 +5,9 @@
 // "/ grad f" is a typo for the product with grad f: a vector cannot divide.) It lands on the curve
 // near its start; it does not look for the foot point.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
 #include "implicit/solvers/paper_iteration.hpp"
+#include "projection/projection_result.hpp"
 #include "solvers/iteration_control.hpp"
 
 namespace footpoint::curve {

@@ -6,8 +6,8 @@
 // is the next start; repeated until the curve points Y stop moving. Start: P - (0.1, 0.1) (as the
 // paper's Algorithm 1) or options.initial.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::curve {
 

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "geometry/box3.hpp"
-#include "geometry/certificate.hpp"
+#include "projection/certificate.hpp"
 #include "solvers/piecewise_nearest.hpp"
 
 namespace footpoint {

@@ -14,7 +14,7 @@
 //    hull alone reaches only after ~15 levels), else the corner nearest x*.
 // The candidate is projected Newton's on the box [0, 1]² from the parameters of the control point
 // nearest p, restarted in a sub-patch that may hold a nearer point. A sub-patch is settled when
-// it cannot hold a foot within the certificate's gap (geometry/certificate.hpp) of the candidate,
+// it cannot hold a foot within the certificate's gap (projection/certificate.hpp) of the candidate,
 // or when it holds the candidate and f has a single local minimum there: f strictly convex (the
 // least eigenvalue of every matrix in H positive), or along a direction where x* is on the patch's
 // edge, f's derivative of one sign over the whole sub-patch (enclosed in the centred form

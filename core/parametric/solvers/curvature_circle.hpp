@@ -11,8 +11,8 @@
 // Where k = 0 (a straight piece) the circle is the tangent line and the step is the first-order
 // dt = <p - c, c'> / |c'|^2.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/parametric_curve.hpp"
+#include "projection/projection_result.hpp"
 #include "seeding/curve_sample_index.hpp"
 
 namespace footpoint::curve {

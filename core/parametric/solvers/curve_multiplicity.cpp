@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "geometry/certificate.hpp"
+#include "projection/certificate.hpp"
 
 namespace footpoint::curve {
 

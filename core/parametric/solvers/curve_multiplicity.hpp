@@ -1,4 +1,4 @@
-// How many points of a curve are nearest to p (geometry/projection_result.hpp, AnswerMultiplicity),
+// How many points of a curve are nearest to p (projection/projection_result.hpp, AnswerMultiplicity),
 // for auto's answer on a parametric curve:
 //  - a continuum where the distance along the curve is flat to second order at an interior foot:
 //    φ''(t) = |c'|^2 + <c - p, c''> = |c'|^2 (1 - κ <n, p - c>) vanishes to 1e-8 of |c'|^2, p at the
@@ -12,9 +12,9 @@
 #pragma once
 #include <vector>
 
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/parametric_curve.hpp"
 #include "parametric/solvers/parametric_curve_certificate.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::curve {
 

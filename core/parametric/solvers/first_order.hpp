@@ -4,9 +4,9 @@
 // ([GSA] eq. (2); [Hybrid] eqs. (4)-(5)). Linearly convergent where it converges;
 // [Hybrid]'s counterexamples C1-C5 are surfaces where it does not.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 #include "parametric/solvers/surface_paper_iteration.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::surface {
 

@@ -7,9 +7,9 @@
 // Q = sqrt(1 - 2 k_n <p - s, n> + k_n^2 |p - s|^2) (see gsa.cpp): the same map as printed, with
 // the terms that vanish identically (C1 = C2 = 0, the normal part of q - p0) not computed.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 #include "parametric/solvers/surface_paper_iteration.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::surface {
 

@@ -5,8 +5,8 @@
 #pragma once
 #include <array>
 
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::surface {
 

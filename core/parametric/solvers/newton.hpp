@@ -3,9 +3,9 @@
 // ([Hybrid] eqs. (22)-(24); [GSA] Table 9). Quadratic near a regular zero, but it finds
 // any stationary point of the distance, minimum or not.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 #include "parametric/solvers/surface_paper_iteration.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::surface {
 

@@ -6,10 +6,10 @@
 // (parametric_newton), an end sample by the first-order condition at tmin / tmax, while its
 // distance minus h/2 can still beat the best found.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/curve_closure.hpp"
 #include "parametric/geometry/parametric_curve.hpp"
 #include "parametric/seeding/parametric_curve_cells.hpp"
+#include "projection/projection_result.hpp"
 #include "seeding/curve_sample_index.hpp"
 
 namespace footpoint::curve {

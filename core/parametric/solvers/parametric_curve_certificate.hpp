@@ -1,4 +1,4 @@
-// The certificate of an answer on a parametric curve (geometry/certificate.hpp): a rigorous lower
+// The certificate of an answer on a parametric curve (projection/certificate.hpp): a rigorous lower
 // bound L on the distance from p to c over the closed interval [tmin, tmax], by branch and bound
 // over the precomputed cells (parametric/seeding/parametric_curve_cells.hpp), as for surfaces
 // (parametric/solvers/surface_certificate.hpp) in one parameter. A cell is closed when a lower bound
@@ -18,9 +18,9 @@
 #include <functional>
 #include <vector>
 
-#include "geometry/certificate.hpp"
 #include "parametric/geometry/parametric_curve.hpp"
 #include "parametric/seeding/parametric_curve_cells.hpp"
+#include "projection/certificate.hpp"
 
 namespace footpoint::curve {
 

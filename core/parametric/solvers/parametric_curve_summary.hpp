@@ -5,9 +5,9 @@
 #include <array>
 #include <vector>
 
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/curve_closure.hpp"
 #include "parametric/geometry/parametric_curve.hpp"
+#include "projection/projection_result.hpp"
 #include "seeding/curve_sample_index.hpp"
 #include "solvers/iteration_control.hpp"
 

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/parametric_curve.hpp"
 #include "parametric/solvers/parametric_curve_summary.hpp"
+#include "projection/projection_result.hpp"
 #include "seeding/curve_sample_index.hpp"
 #include "solvers/iteration_control.hpp"
 

@@ -3,8 +3,8 @@
 //   g(t) = phi'(t) = <c(t) - p, c'(t)> = 0,   g'(t) = |c'(t)|^2 + <c(t) - p, c''(t)>,
 // with exact derivatives: t <- t - g / g'.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/parametric_curve.hpp"
+#include "projection/projection_result.hpp"
 #include "seeding/curve_sample_index.hpp"
 #include "solvers/iteration_control.hpp"
 

@@ -17,10 +17,10 @@
 #include <limits>
 #include <vector>
 
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 #include "parametric/solvers/basin_early_stop.hpp"
 #include "parametric/solvers/surface_convergence.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::surface {
 

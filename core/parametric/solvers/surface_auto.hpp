@@ -16,10 +16,10 @@
 // nearer (parametric/solvers/basin_early_stop.hpp). The answer then gets its certificate
 // (parametric/solvers/surface_certificate.hpp), which proves no point nearer or finds one.
 #pragma once
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 #include "parametric/geometry/surface_closure.hpp"
 #include "parametric/seeding/surface_cells.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::surface {
 

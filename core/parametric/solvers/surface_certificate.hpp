@@ -1,4 +1,4 @@
-// The certificate of an answer on a parametric surface (geometry/certificate.hpp): a rigorous
+// The certificate of an answer on a parametric surface (projection/certificate.hpp): a rigorous
 // lower bound L on the distance from p to s over the whole closed domain, by branch and bound
 // over the compiled cells (parametric/seeding/surface_cells.hpp) and, where they are too coarse, sub-boxes
 // bounded at run time. Given the answer's distance d, a box is closed when a lower bound of the
@@ -33,10 +33,10 @@
 #include <functional>
 #include <vector>
 
-#include "geometry/certificate.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 #include "parametric/seeding/surface_cells.hpp"
 #include "parametric/solvers/projected_newton.hpp"
+#include "projection/certificate.hpp"
 
 namespace footpoint::surface {
 

@@ -10,10 +10,10 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 #include "parametric/solvers/surface_convergence.hpp"
 #include "parametric/solvers/surface_result.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::surface {
 

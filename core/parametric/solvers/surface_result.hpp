@@ -3,9 +3,9 @@
 #pragma once
 #include <array>
 
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 #include "parametric/geometry/surface_closure.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::surface {
 

@@ -10,13 +10,13 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/projection_result.hpp"
 #include "parametric/geometry/box_quadratic.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 #include "parametric/geometry/surface_closure.hpp"
 #include "parametric/seeding/surface_cells.hpp"
 #include "parametric/solvers/projected_newton.hpp"
 #include "parametric/solvers/surface_convergence.hpp"
+#include "projection/projection_result.hpp"
 
 namespace footpoint::surface {
 
@@ -111,7 +111,7 @@ class SurfaceSearch {
   // none is nearer than it (a lower bound of at least max_distance, to the gap) - or finds one.
   void certify(ProjectionResult& r, bool within);
 
-  // How many feet are nearest (geometry/projection_result.hpp): a continuum where the Hessian of
+  // How many feet are nearest (projection/projection_result.hpp): a continuum where the Hessian of
   // f = ½|s - p|^2 at the answer, over the parameters free there, is singular to rounding (a
   // direction along which the distance stays); else the distinct feet among the minima solved to
   // the end at the answer's distance within the certificate's gap.

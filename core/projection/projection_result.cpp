@@ -1,4 +1,4 @@
-#include "geometry/projection_result.hpp"
+#include "projection/projection_result.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/certificate.hpp"
+#include "projection/certificate.hpp"
 
 namespace footpoint {
 
@@ -82,7 +82,7 @@ struct Summary {
   int starts = 1;  // local solves started (auto: seeds tried)
   Location location = Location::unknown;
   bool on_boundary = false;  // foot point on the domain's edge/corner/endpoint/box face
-  Certificate certificate;   // the proof of global optimality (geometry/certificate.hpp)
+  Certificate certificate;   // the proof of global optimality (projection/certificate.hpp)
   AnswerMultiplicity multiplicity;
   double residual() const;  // the largest of orthogonality and equation residuals
   bool converged() const { return status == Status::converged; }
@@ -139,7 +139,7 @@ struct Options {
   static constexpr int kDefaultMaxMinima = 64;
   bool trace = false;
   double max_distance = std::numeric_limits<double>::infinity();
-  // Compute a certificate (geometry/certificate.hpp). Unset: the method's default - `auto`
+  // Compute a certificate (projection/certificate.hpp). Unset: the method's default - `auto`
   // certifies, the papers' local methods do not (asked, they get their answer certified or
   // refuted by the same bounds, without a search for a better one).
   std::optional<bool> certify;
