@@ -230,3 +230,24 @@ TEST_CASE("the patches' branch and bound agrees with the engine's certified auto
   }
   CHECK(points == 150);
 }
+
+TEST_CASE("an octant's pole: on the sphere's axis the pole is the proved nearest point") {
+  for (const double sz : {-1.0, 1.0})
+    for (const double z : {0.3, 0.5, 0.9, 1.2, 2.0, 5.0}) {
+      const Vec3 p{0.0, 0.0, sz * z};
+      CAPTURE(p.z);
+      for (const double sx : {-1.0, 1.0})
+        for (const double sy : {-1.0, 1.0}) {
+          const BezierPatch o = octant(sx, sy, sz);
+          CHECK(o.pole(3));  // t = 1: the meridian's end on the axis
+          CHECK_FALSE(o.pole(0));
+          const PatchNearest n = nearest_on_patch(o, p, 64);
+          REQUIRE(n.proved);
+          CHECK(n.pole);
+          const double want = std::abs(1.0 - z);
+          CHECK(std::abs(n.distance - want) <= 1e-15 * (1.0 + z));
+          CHECK(n.lower_bound <= want * (1.0 + 1e-15));
+          CHECK(want - n.lower_bound <= 1e-9 * want);
+        }
+    }
+}

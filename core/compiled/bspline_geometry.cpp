@@ -507,7 +507,9 @@ ProjectionResult BSplineSurface::project_auto(const Vec3& p, const Options& opti
     c.reason = c.certified ? CertificateReason::gap_met : CertificateReason::budget_exhausted;
     c.boxes = n.boxes;
     summary.multiplicity.computed = true;
-    summary.multiplicity.kind = Multiplicity::unique;
+    // At a pole the parameters along its edge are a continuum; at_pole (finish) makes it one foot
+    // where the distance grows across the edge, as for the engine's answers.
+    summary.multiplicity.kind = n.pole ? Multiplicity::continuum : Multiplicity::unique;
     summary.multiplicity.count = 1;
     return r;
   };

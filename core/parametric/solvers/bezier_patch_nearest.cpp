@@ -452,11 +452,20 @@ class BzSearch {
       f = nf;
       if (step_norm <= 1e-15) break;
     }
+    consider(s, t, step_norm, 1.0);
+  }
+
+  // (s, t) becomes the candidate where f is below `factor` times the candidate's.
+  void consider(double s, double t, double step_norm, double factor) {
     // The answer by the Bernstein form: its rounding is what the enclosures below assume.
-    j = patch_.jet(s, t);
-    f = 0.5 * norm2(j.s - p_);
-    if (!has_candidate_ || f < f_) {
+    const SurfaceJet j = patch_.jet(s, t);
+    const double f = 0.5 * norm2(j.s - p_);
+    if (!has_candidate_ || f < f_ * factor) {
       has_candidate_ = true;
+      pole_ = -1;
+      for (int e = 0; e < 4; ++e)
+        if (patch_.pole(e) && (e == 0 ? s <= 0.0 : e == 1 ? s >= 1.0 : e == 2 ? t <= 0.0 : t >= 1.0))
+          pole_ = e;
       s_ = s;
       t_ = t;
       jet_ = j;
@@ -500,6 +509,17 @@ class BzSearch {
     newton(static_cast<double>(best / (deg_[1] + 1)) / deg_[0],
            static_cast<double>(best % (deg_[1] + 1)) / deg_[1]);
     if (!std::isfinite(f_)) return out;
+    // Next to a pole the distance is flat along the pole's edge and Newton's steps towards it
+    // shrink: the pole itself, where it is as near.
+    for (int e = 0; e < 4; ++e)
+      if (patch_.pole(e) && pole_ < 0)
+        consider(e == 0   ? 0.0
+                 : e == 1 ? 1.0
+                          : s_,
+                 e == 2   ? 0.0
+                 : e == 3 ? 1.0
+                          : t_,
+                 step_norm_, 1.0 + 0x1p-45);
 
     pool_.clear();
     pool_w_.clear();
@@ -536,6 +556,7 @@ class BzSearch {
     double lower = f_;
     for (const int i : settled_) lower = std::min(lower, boxes_[static_cast<std::size_t>(i)].lower);
     out.proved = true;
+    out.pole = pole_ >= 0;
     out.s = s_;
     out.t = t_;
     out.jet = jet_;
@@ -824,6 +845,13 @@ class BzSearch {
   // f over it, which x* is (it meets the patch's first-order conditions, and so the box's).
   bool is_settled(const BzBox& b) const {
     if (b.lower > f_cut_) return true;  // beyond the cutoff: no answer, no tie there
+    // The candidate at a pole, which every box along the pole's edge holds: their bound suffices
+    // (the foot's multiplicity is then the caller's, PatchNearest::pole).
+    if (pole_ >= 0 && (pole_ == 0   ? b.s0 <= 0.0
+                       : pole_ == 1 ? b.s1 >= 1.0
+                       : pole_ == 2 ? b.t0 <= 0.0
+                                    : b.t1 >= 1.0))
+      return b.lower >= f_cert_;
     if (!b.contains(s_, t_)) return b.lower > f_tie_;
     const bool edge_s = (s_ <= 0.0 && b.fs.lo > 0.0) || (s_ >= 1.0 && b.fs.hi < 0.0);
     const bool edge_t = (t_ <= 0.0 && b.ft.lo > 0.0) || (t_ >= 1.0 && b.ft.hi < 0.0);
@@ -929,7 +957,9 @@ class BzSearch {
   BzInterval cand_gs_{0.0, 0.0}, cand_gt_{0.0, 0.0};  // its gradient (the patch's parameters)
   int iterations_ = 0, starts_ = 0, restarts_ = 0;
   double weight_magnitude_ = 0.0;
-  double level_ = 0.0;           // a rational patch: the candidate's |S - p|²
+  double level_ = 0.0;
+  int pole_ = -1;  // the candidate's degenerate edge (BezierPatch::pole), -1: none           // a rational
+                   // patch: the candidate's |S - p|²
   BzInterval cand_g_{0.0, 0.0};  // and g at the candidate (cand_gs_, cand_gt_: its gradient)
 
   std::vector<Vec3>& pool_;
@@ -1041,6 +1071,23 @@ BezierPatch::BezierPatch(int p, int q, std::vector<Vec3> net, std::vector<double
     magnitude_ = std::max({magnitude_, std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)});
   for (const double w : weights_) weight_magnitude_ = std::max(weight_magnitude_, std::fabs(w));
   power_ = bz_power_basis(net_, p_, q_);
+  for (int e = 0; e < 4; ++e) {
+    const int count = e < 2 ? q_ + 1 : p_ + 1;
+    const auto index = [&](int i) {
+      return static_cast<std::size_t>(e == 0   ? i
+                                      : e == 1 ? p_ * (q_ + 1) + i
+                                      : e == 2 ? i * (q_ + 1)
+                                               : i * (q_ + 1) + q_);
+    };
+    const Vec3 first = point(index(0));
+    bool same = true;
+    for (int i = 1; i < count; ++i) {
+      const Vec3 d = point(index(i)) - first;
+      same = same && std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)}) <=
+                         0x1p-48 * (magnitude_ + weight_magnitude_ + std::numeric_limits<double>::min());
+    }
+    poles_[static_cast<std::size_t>(e)] = same;
+  }
   if (rational()) power_w_ = bz_power_basis(weights_, p_, q_);
   // The cells of the first kCellLevels levels of quarters, each with its net.
   const double m = magnitude_ + std::numeric_limits<double>::min();

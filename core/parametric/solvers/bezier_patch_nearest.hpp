@@ -107,6 +107,9 @@ class BezierPatch {
   const std::vector<double>& weights() const { return weights_; }  // empty: polynomial
   Vec3 point(std::size_t i) const { return rational() ? (1.0 / weights_[i]) * net_[i] : net_[i]; }
   double magnitude() const { return magnitude_; }  // the largest |coordinate| of the net
+  // Whether the edge s = 0 (edge 0), s = 1 (1), t = 0 (2) or t = 1 (3) is one point (a pole): its
+  // control points' Euclidean points agree to a few units in the last place.
+  bool pole(int edge) const { return poles_[static_cast<std::size_t>(edge)]; }
   double weight_magnitude() const { return weight_magnitude_; }
   // S and its derivatives to second order at (s, t), by the Bernstein basis and its derivatives
   // (a rational patch's by the quotient rule, [PieglTiller] eq. (4.20)).
@@ -137,6 +140,7 @@ class BezierPatch {
   std::vector<Vec3> cell_nets_;
   std::vector<double> cell_weights_;
   double magnitude_ = 0.0, weight_magnitude_ = 0.0;
+  std::array<bool, 4> poles_{};
 };
 
 // The Bernstein coefficients (degree 2p x 2q, at k * (2q + 1) + l) of the polynomial
@@ -146,6 +150,9 @@ std::vector<double> distance_level_net(const BezierPatch& patch, const Vec3& p, 
 
 struct PatchNearest {
   bool proved = false;  // false: no claim; the fields below are meaningless
+  // The foot is a pole of the patch (BezierPatch::pole): the lower bound is proved, the foot's
+  // multiplicity is not (the distance is flat along the pole's edge in the parameters).
+  bool pole = false;
   double s = 0.0, t = 0.0;
   SurfaceJet jet;            // at (s, t)
   double distance = 0.0;     // |S(s, t) - p|
