@@ -1050,7 +1050,7 @@ std::array<T, 6> bz_bernstein(const T* b, int p, int q, double s, double t) {
 
 SurfaceJet bz_jet(const std::array<Vec3, 6>& a) { return {a[0], a[1], a[2], a[3], a[4], a[5]}; }
 
-// S = A / W and its derivatives from A's and W's: A = W S differentiated ([PieglTiller] eq. (4.20)).
+// S = A / W and its derivatives from A's and W's: A = W S differentiated ([PieglTiller] algorithm A4.4).
 SurfaceJet bz_quotient(const std::array<Vec3, 6>& a, const std::array<double, 6>& w) {
   SurfaceJet j{};
   const double iw = 1.0 / w[0];

@@ -112,7 +112,7 @@ class BezierPatch {
   bool pole(int edge) const { return poles_[static_cast<std::size_t>(edge)]; }
   double weight_magnitude() const { return weight_magnitude_; }
   // S and its derivatives to second order at (s, t), by the Bernstein basis and its derivatives
-  // (a rational patch's by the quotient rule, [PieglTiller] eq. (4.20)).
+  // (a rational patch's by the quotient rule, [PieglTiller] algorithm A4.4).
   SurfaceJet jet(double s, double t) const;
   // The same by Horner's scheme in the power basis (the net converted once): faster, less
   // accurate (the conversion's rounding grows like 3^(p + q)); what Newton's iterations use.
