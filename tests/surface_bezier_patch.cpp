@@ -95,7 +95,9 @@ BezierPatch octant(double sx, double sy, double sz) {
 TEST_CASE("g_L's Bernstein net (the product of Bernstein forms) is g_L = |A - pW|² - L W²") {
   std::mt19937 rng(3535);
   std::uniform_real_distribution<double> coord(-1.0, 1.0), weight(0.3, 3.0), unit(0.0, 1.0);
-  for (const auto& [p, q] : {std::pair{2, 2}, std::pair{3, 2}, std::pair{1, 3}, std::pair{3, 3}}) {
+  for (const std::pair<int, int>& degrees :
+       {std::pair{2, 2}, std::pair{3, 2}, std::pair{1, 3}, std::pair{3, 3}}) {
+    const int p = degrees.first, q = degrees.second;
     for (const bool rational : {false, true}) {
       std::vector<Vec3> net;
       std::vector<double> w, wx, wy, wz, ww;
