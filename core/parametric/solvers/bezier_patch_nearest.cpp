@@ -577,8 +577,11 @@ class BzSearch {
     SurfaceJet a;
     std::array<double, 6> w{};
     patch_.homogeneous_jet(s, t, a, w);
+    // A value's Bernstein sum: each basis value within 3n + 1 roundings (n levels of the triangle,
+    // each a product, a sum and 1 - x), the two sums' p + q + 2, of a sum of |b_kl| B_kl <= m:
+    // (4 (p + q) + 6) roundings of m, taken twice over.
     const double m = std::max(magnitude_, weight_magnitude_);
-    const double err0 = 16.0 * pq * 0x1p-53 * m;
+    const double err0 = 2.0 * (4.0 * (pq - 2) + 6.0) * 0x1p-53 * m;
     const double err1 = 32.0 * std::max(deg_[0], deg_[1]) * pq * 0x1p-53 * m;
     const auto widened = [](double x, double e) { return BzInterval{bz_down(x - e), bz_up(x + e)}; };
     const BzInterval W = widened(w[0], err0), Ws = widened(w[1], err1), Wt = widened(w[2], err1);
