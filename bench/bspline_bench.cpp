@@ -159,15 +159,20 @@ int main(int argc, char** argv) {
                   solved / static_cast<double>(set.points.size()),
                   static_cast<double>(g->memory_bytes()) / 1e6);
       {
-        // The polynomial pieces' own branch and bound alone (nearest_on_patch), on the piece whose
-        // box is nearest each point.
+        // The pieces' own branch and bound alone (nearest_on_patch), on the piece whose box is
+        // nearest each point.
         const auto& surface = dynamic_cast<const BSplineSurface&>(*g);
-        if (!surface.surface().rational) {
+        {
           std::vector<BezierPatch> patches;
           for (const nurbs::SurfacePiece& piece : nurbs::bezier_pieces(surface.surface(), 1 << 20)) {
             std::vector<Vec3> net;
-            for (const auto& h : piece.bezier) net.push_back({h[0], h[1], h[2]});
-            patches.emplace_back(surface.surface().degree[0], surface.surface().degree[1], std::move(net));
+            std::vector<double> weights;
+            for (const auto& h : piece.bezier) {
+              net.push_back({h[0], h[1], h[2]});
+              if (surface.surface().rational) weights.push_back(h[3]);
+            }
+            patches.emplace_back(surface.surface().degree[0], surface.surface().degree[1], std::move(net),
+                                 std::move(weights));
           }
           int proved = 0;
           double patch_boxes = 0.0;

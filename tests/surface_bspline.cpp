@@ -135,6 +135,25 @@ TEST_CASE("the rational sphere: every answer is | |p| - 1 | at p / |p|, certifie
   CHECK(certified == count);
 }
 
+TEST_CASE("the rational sphere's poles: p on the axis is certified at the pole, the centre a continuum") {
+  const auto g = compile_geometry(nurbs_sphere());
+  for (const double z : {-3.0, -1.5, -0.6, -0.2, 0.2, 0.7, 1.001, 2.0}) {
+    const double p[3] = {0.0, 0.0, z};
+    CAPTURE(z);
+    const ProjectionResult a = g->project(p, "auto", {}).value();
+    CHECK(std::abs(a.distance - std::abs(std::abs(z) - 1.0)) <= 1e-14);
+    CHECK(std::abs(a.foot[2] - (z > 0.0 ? 1.0 : -1.0)) <= 1e-14);
+    CHECK(a.summary.location == Location::pole);
+    CHECK(a.summary.certificate.certified);
+    CHECK(a.summary.multiplicity.kind == Multiplicity::unique);
+  }
+  // Every point is a foot of the centre: its distance is certified, its multiplicity a continuum.
+  const double centre[3] = {0.0, 0.0, 0.0};
+  const ProjectionResult c = g->project(centre, "auto", {}).value();
+  CHECK(std::abs(c.distance - 1.0) <= 1e-14);
+  CHECK(c.summary.multiplicity.kind == Multiplicity::continuum);
+}
+
 TEST_CASE("a bicubic B-spline on a plane is the plane: closed-form feet over 64 pieces") {
   const double a = 0.3, b = -0.2, c = 0.5;
   const auto g = compile_geometry(planar_bicubic(a, b, c));

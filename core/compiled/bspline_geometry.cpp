@@ -77,19 +77,28 @@ GeometryDefinition piece_definition(
 // The global parameter of the local s in [0, 1] on [a, b]: the ends exactly.
 double global_of(double s, double a, double b) { return s <= 0.0 ? a : s >= 1.0 ? b : a + (b - a) * s; }
 
-// A non-rational piece's Bézier patch (its formula's points: the net's w x, w y, w z with the
-// weights left out, as nurbs_patches does), for nearest_on_patch; none for a rational piece or a
-// degree above BezierPatch::kMaxDegree.
-std::optional<BezierPatch> polynomial_patch(const nurbs::SurfacePiece& piece, const nurbs::Surface& surface) {
+// A piece's Bézier patch (its formula's points, as nurbs_patches has them: the homogeneous
+// points w x, w y, w z and the weights w, left out where every weight is 1), for nearest_on_patch;
+// none for a degree above BezierPatch::kMaxDegree.
+std::optional<BezierPatch> bezier_patch(const nurbs::SurfacePiece& piece, const nurbs::Surface& surface) {
   const auto [p, q] = surface.degree;
-  if (surface.rational || p > BezierPatch::kMaxDegree || q > BezierPatch::kMaxDegree) return std::nullopt;
+  if (p > BezierPatch::kMaxDegree || q > BezierPatch::kMaxDegree) return std::nullopt;
   std::vector<Vec3> net;
-  for (const auto& h : piece.bezier) net.push_back({h[0], h[1], h[2]});
-  return BezierPatch(p, q, std::move(net));
+  std::vector<double> weights;
+  bool rational = false;
+  for (const auto& h : piece.bezier) {
+    net.push_back({h[0], h[1], h[2]});
+    weights.push_back(h[3]);
+    rational = rational || h[3] != 1.0;
+  }
+  if (!rational) weights.clear();
+  return BezierPatch(p, q, std::move(net), std::move(weights));
 }
 
-// The sub-patches nearest_on_patch may bound for one point before the piece's `auto` is asked.
-constexpr int kPatchBoxes = 24;
+// The sub-patches nearest_on_patch may bound for one point before the piece's `auto` is asked: a
+// rational piece's distance is convex in its parameters only away from a pole (the sphere's pieces
+// meet one), where the polynomial pieces' is on the whole piece or its first quarters.
+constexpr int kPatchBoxes = 24, kRationalPatchBoxes = 48;
 
 // The pieces' certified `auto` answers combined (solvers/piecewise_nearest.hpp). `to_local(k, t,
 // s)` maps options.initial's global parameters to piece k's local ones (false: not on piece k);
@@ -284,7 +293,7 @@ BSplineSurface::BSplineSurface(GeometryDefinition def, nurbs::Surface surface,
         std::move(piece.program), ParamBox{0.0, 1.0, 0.0, 1.0}, seeding));
     spans_.push_back(piece.span);
     hulls.push_back(piece.hull);
-    patches_.push_back(polynomial_patch(piece, surface_));
+    patches_.push_back(bezier_patch(piece, surface_));
     CompileBudget::check();
   }
   tree_ = PieceTree(std::move(hulls));
@@ -480,7 +489,8 @@ ProjectionResult BSplineSurface::project_auto(const Vec3& p, const Options& opti
     if (!patches_[k] || o.all_minima || o.trace || o.tolerance != 0.0 || o.max_iterations != 0 ||
         (o.certify && !*o.certify))
       return std::nullopt;
-    const PatchNearest n = nearest_on_patch(*patches_[k], p, kPatchBoxes, cutoff);
+    const PatchNearest n = nearest_on_patch(
+        *patches_[k], p, patches_[k]->rational() ? kRationalPatchBoxes : kPatchBoxes, cutoff);
     if (!n.proved || n.distance > o.max_distance) return std::nullopt;
     ProjectionResult r = surface::surface_result("auto", p, n.s, n.t, n.jet.s, n.jet.su, n.jet.sv,
                                                  ParamBox{0.0, 1.0, 0.0, 1.0}, &pieces_[k]->closure());
@@ -497,7 +507,9 @@ ProjectionResult BSplineSurface::project_auto(const Vec3& p, const Options& opti
     c.reason = c.certified ? CertificateReason::gap_met : CertificateReason::budget_exhausted;
     c.boxes = n.boxes;
     summary.multiplicity.computed = true;
-    summary.multiplicity.kind = Multiplicity::unique;
+    // At a pole the parameters along its edge are a continuum; at_pole (finish) makes it one foot
+    // where the distance grows across the edge, as for the engine's answers.
+    summary.multiplicity.kind = n.pole ? Multiplicity::continuum : Multiplicity::unique;
     summary.multiplicity.count = 1;
     return r;
   };

@@ -71,7 +71,8 @@ class BSplineSurface final : public CompiledGeometry {
   // Piece k: a parametric surface in its local (s, t) in [0, 1]^2 over the knot spans spans_[k].
   std::vector<std::unique_ptr<ParametricSurface>> pieces_;
   std::vector<ParamBox> spans_;
-  // Piece k's Bézier patch where it is polynomial: its nearest point by nearest_on_patch first.
+  // Piece k's Bézier patch (rational or not; none above its degree limit): its nearest point by
+  // nearest_on_patch first.
   std::vector<std::optional<BezierPatch>> patches_;
   PieceTree tree_;                           // the pieces' boxes
   std::vector<MethodInfo> methods_;          // auto, then the pieces' local methods

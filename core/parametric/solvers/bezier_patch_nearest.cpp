@@ -67,13 +67,15 @@ void bz_basis(int n, double x, double* b0, double* b1, double* b2) {
   }
 }
 
-// de Casteljau at a along s (dir 0: the index k of b_kl) or t (dir 1), net of (p + 1) x (q + 1).
-void bz_split(const Vec3* in, int p, int q, int dir, double a, Vec3* left, Vec3* right) {
+// de Casteljau at a along s (dir 0; T a point or a weight: the index k of b_kl) or t (dir 1), net of (p + 1)
+// x (q + 1).
+template <class T>
+void bz_split(const T* in, int p, int q, int dir, double a, T* left, T* right) {
   const int n = dir == 0 ? p : q, lines = dir == 0 ? q + 1 : p + 1;
   auto index = [&](int along, int line) {
     return dir == 0 ? along * (q + 1) + line : line * (q + 1) + along;
   };
-  Vec3 tmp[BezierPatch::kMaxDegree + 1];
+  T tmp[BezierPatch::kMaxDegree + 1];
   for (int line = 0; line < lines; ++line) {
     for (int k = 0; k <= n; ++k) tmp[k] = in[index(k, line)];
     left[index(0, line)] = tmp[0];
@@ -86,17 +88,23 @@ void bz_split(const Vec3* in, int p, int q, int dir, double a, Vec3* left, Vec3*
   }
 }
 
-// The enclosures of a sub-patch that do not depend on the point (bezier_detail::Cell), from its
-// net n, within err of the exact sub-patch's. Each computed difference is within its inputs'
-// errors plus a rounding of the net's magnitude m.
-BzCell bz_make_cell(const Vec3* n, int p, int q, double err, double m, double s0, double s1, double t0,
-                    double t1) {
+// A cell over [s0, s1] x [t0, t1] whose net is within err of the exact sub-patch's.
+BzCell bz_cell(double s0, double s1, double t0, double t1, double err) {
   BzCell c;
   c.s0 = s0;
   c.s1 = s1;
   c.t0 = t0;
   c.t1 = t1;
   c.err = err;
+  return c;
+}
+
+// The enclosures of a sub-patch that do not depend on the point (bezier_detail::Cell), from its
+// net n, within err of the exact sub-patch's. Each computed difference is within its inputs'
+// errors plus a rounding of the net's magnitude m.
+BzCell bz_make_cell(const Vec3* n, int p, int q, double err, double m, double s0, double s1, double t0,
+                    double t1) {
+  BzCell c = bz_cell(s0, s1, t0, t1, err);
   auto at = [&](int k, int l) -> const Vec3& { return n[k * (q + 1) + l]; };
   const Vec3 zero{0.0, 0.0, 0.0};
   const double w1s = p * (2.0 * err + 0x1p-50 * m), w1t = q * (2.0 * err + 0x1p-50 * m);
@@ -147,12 +155,144 @@ BzCell bz_make_cell(const Vec3* n, int p, int q, double err, double m, double s0
   return c;
 }
 
+// A rational sub-patch's cell: its nets of homogeneous points a (within err) and weights w (within
+// err_w), and the box of its Euclidean points a / w, which holds it (with positive weights a
+// rational Bézier patch lies in the convex hull of its control points, [PieglTiller] property
+// P4.9), widened by the quotients' error (|a/w - a'/w'| <= (err + |a/w| err_w) / (w - err_w)).
+BzCell bz_make_rational_cell(const Vec3* a, const double* w, int p, int q, double err, double err_w,
+                             double s0, double s1, double t0, double t1) {
+  BzCell c = bz_cell(s0, s1, t0, t1, err);
+  c.err_w = err_w;
+  BzHull h;
+  double widen = 0.0;
+  for (int k = 0; k < (p + 1) * (q + 1); ++k) {
+    const Vec3 x = (1.0 / w[k]) * a[k];
+    h.add(x);
+    const double size = std::max({std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)});
+    widen = std::max(widen, (err + size * err_w) / (w[k] - err_w) + 0x1p-51 * size);
+  }
+  if (!std::isfinite(widen) || !(widen >= 0.0)) widen = std::numeric_limits<double>::infinity();
+  const BzVec box = h.minus(Vec3{0.0, 0.0, 0.0}, widen);
+  for (int d = 0; d < 3; ++d) {
+    c.lo[d] = box[static_cast<std::size_t>(d)].lo;
+    c.hi[d] = box[static_cast<std::size_t>(d)].hi;
+  }
+  return c;
+}
+
+// The binomial coefficients C(n, k), n <= 2 kMaxDegree (exact in doubles).
+constexpr int kMaxProduct = 2 * BezierPatch::kMaxDegree;
+struct BzBinomials {
+  double c[kMaxProduct + 1][kMaxProduct + 1] = {};
+  constexpr BzBinomials() {
+    for (int n = 0; n <= kMaxProduct; ++n) {
+      c[n][0] = c[n][n] = 1.0;
+      for (int k = 1; k < n; ++k) c[n][k] = c[n - 1][k - 1] + c[n - 1][k];
+    }
+  }
+};
+constexpr BzBinomials kBinomials;
+
+// The product of two Bernstein forms of degree p x q (nets a, b; `times` multiplies two entries to a
+// double) as a Bernstein form of degree 2p x 2q into out, at k * (2q + 1) + l ([FaroukiRajan]
+// R. T. Farouki, V. T. Rajan, Algorithms for polynomials in Bernstein form, CAGD 5 (1988) 1-26,
+// the product: (a b)_kl = Σ_{i+i'=k, j+j'=l} C(p,i) C(p,i') C(q,j) C(q,j') / (C(2p,k) C(2q,l))
+// a_ij b_i'j'). The weights of each out_kl are nonnegative and sum to 1 (Vandermonde), so out_kl
+// is within (p + 1)(q + 1) + 8 roundings of max |a_ij b_i'j'| of the exact value.
+template <class T, class Times>
+void bz_product(const T* a, const T* b, int p, int q, double* out, Times times) {
+  const int Q = 2 * q;
+  std::fill(out, out + (2 * p + 1) * (Q + 1), 0.0);
+  for (int i = 0; i <= p; ++i)
+    for (int j = 0; j <= q; ++j)
+      for (int i2 = 0; i2 <= p; ++i2)
+        for (int j2 = 0; j2 <= q; ++j2)
+          out[(i + i2) * (Q + 1) + j + j2] += (kBinomials.c[p][i] * kBinomials.c[p][i2]) *
+                                              (kBinomials.c[q][j] * kBinomials.c[q][j2]) *
+                                              times(a[i * (q + 1) + j], b[i2 * (q + 1) + j2]);
+  for (int k = 0; k <= 2 * p; ++k)
+    for (int l = 0; l <= Q; ++l) out[k * (Q + 1) + l] /= kBinomials.c[2 * p][k] * kBinomials.c[Q][l];
+}
+
+// A rational cell's scalar nets for the point p (degree 2p x 2q): N = |A - p W|² and M = W², each
+// within its error bound of the exact sub-patch's, and M's range.
+struct BzLevelNets {
+  static constexpr int kSize = (kMaxProduct + 1) * (kMaxProduct + 1);
+  double n[kSize], m[kSize];
+  double err_n = 0.0, err_m = 0.0, m_lo = 0.0, m_hi = 0.0, n_max = 0.0;
+};
+
+// D = A - p W per point: within err + |p| err_w of the exact, plus two roundings of |A| + |p| W.
+// N's error: |D_i·D_j - D'_i·D'_j| <= 3 (|D| + |D'|) e <= 6 (m_D + e) e, then the product's
+// roundings of at most 3 m_D² (taken twice over); M's alike.
+void bz_level_nets(const Vec3* a, const double* w, int p, int q, double err, double err_w, const Vec3& point,
+                   BzLevelNets& out) {
+  const int count = (p + 1) * (q + 1);
+  Vec3 d[(BezierPatch::kMaxDegree + 1) * (BezierPatch::kMaxDegree + 1)];
+  const double pm = std::max({std::fabs(point.x), std::fabs(point.y), std::fabs(point.z)});
+  double ma = 0.0, mw = 0.0, md = 0.0;
+  for (int k = 0; k < count; ++k) {
+    d[k] = a[k] - w[k] * point;
+    ma = std::max({ma, std::fabs(a[k].x), std::fabs(a[k].y), std::fabs(a[k].z)});
+    mw = std::max(mw, std::fabs(w[k]));
+    md = std::max({md, std::fabs(d[k].x), std::fabs(d[k].y), std::fabs(d[k].z)});
+  }
+  const double e = err + pm * err_w + 0x1p-51 * (ma + pm * mw);
+  const double rounding = (count + 8) * 0x1p-51;
+  bz_product(d, d, p, q, out.n, [](const Vec3& x, const Vec3& y) { return dot(x, y); });
+  bz_product(w, w, p, q, out.m, [](double x, double y) { return x * y; });
+  out.err_n = bz_up(6.0 * (md + e) * e + rounding * 3.0 * md * md);
+  out.err_m = bz_up(2.0 * (mw + err_w) * err_w + rounding * mw * mw);
+  out.m_lo = std::numeric_limits<double>::infinity();
+  out.m_hi = out.n_max = 0.0;
+  for (int k = 0; k < (2 * p + 1) * (2 * q + 1); ++k) {
+    out.m_lo = std::min(out.m_lo, bz_down(out.m[k] - out.err_m));
+    out.m_hi = std::max(out.m_hi, bz_up(out.m[k] + out.err_m));
+    out.n_max = std::max(out.n_max, std::fabs(out.n[k]));
+  }
+}
+
+// The enclosures over a cell of the second derivatives (its local parameters) of the polynomial of
+// the scalar net g of degree P x Q (each entry within e), from the nets of its second differences.
+void bz_hessian_hull(const double* g, int P, int Q, double e, BzInterval& ss, BzInterval& st,
+                     BzInterval& tt) {
+  double m = 0.0;
+  for (int k = 0; k < (P + 1) * (Q + 1); ++k) m = std::max(m, std::fabs(g[k]));
+  const double inf = std::numeric_limits<double>::infinity();
+  ss = st = tt = {inf, -inf};
+  auto at = [&](int k, int l) { return g[k * (Q + 1) + l]; };
+  for (int k = 0; k <= P; ++k)
+    for (int l = 0; l <= Q; ++l) {
+      if (k + 2 <= P) {
+        const double x = (at(k + 2, l) - 2.0 * at(k + 1, l)) + at(k, l);
+        ss = {std::min(ss.lo, x), std::max(ss.hi, x)};
+      }
+      if (l + 2 <= Q) {
+        const double x = (at(k, l + 2) - 2.0 * at(k, l + 1)) + at(k, l);
+        tt = {std::min(tt.lo, x), std::max(tt.hi, x)};
+      }
+      if (k + 1 <= P && l + 1 <= Q) {
+        const double x = (at(k + 1, l + 1) - at(k + 1, l)) - (at(k, l + 1) - at(k, l));
+        st = {std::min(st.lo, x), std::max(st.hi, x)};
+      }
+    }
+  // Each difference: four entries' errors and three roundings of at most 4 m; then the factor.
+  const double w = 4.0 * e + 0x1p-49 * m;
+  const auto scaled = [&](BzInterval x, double f) {
+    return BzInterval{bz_down(f * (x.lo - w)), bz_up(f * (x.hi + w))};
+  };
+  ss = scaled(ss, P * (P - 1.0));
+  tt = scaled(tt, Q * (Q - 1.0));
+  st = scaled(st, static_cast<double>(P) * Q);
+}
+
 // The four halves-by-halves of net n (s, then t, at ½: exact halvings of sums) into out[0..3]
 // (s low t low, s low t high, s high t low, s high t high), each of `stride` points.
-void bz_quarters(const Vec3* n, int p, int q, Vec3* out) {
+template <class T>
+void bz_quarters(const T* n, int p, int q, T* out) {
   const int stride = (p + 1) * (q + 1);
-  Vec3 left[(BezierPatch::kMaxDegree + 1) * (BezierPatch::kMaxDegree + 1)];
-  Vec3 right[(BezierPatch::kMaxDegree + 1) * (BezierPatch::kMaxDegree + 1)];
+  T left[(BezierPatch::kMaxDegree + 1) * (BezierPatch::kMaxDegree + 1)];
+  T right[(BezierPatch::kMaxDegree + 1) * (BezierPatch::kMaxDegree + 1)];
   bz_split(n, p, q, 0, 0.5, left, right);
   bz_split(left, p, q, 1, 0.5, out, out + stride);
   bz_split(right, p, q, 1, 0.5, out + 2 * stride, out + 3 * stride);
@@ -213,7 +353,8 @@ struct BzBox {
 
 // The search's storage, kept by each thread from one point to the next.
 struct BzScratch {
-  std::vector<Vec3> pool;  // the nets of the cells below the patch's own
+  std::vector<Vec3> pool;      // the nets of the cells below the patch's own
+  std::vector<double> pool_w;  // their weights (a rational patch), beside them
   std::vector<BzCell> cells;
   std::vector<BzBox> boxes;
   std::vector<int> open, settled;
@@ -226,6 +367,7 @@ class BzSearch {
         p_(p),
         deg_{patch.degree_s(), patch.degree_t()},
         pool_(scratch.pool),
+        pool_w_(scratch.pool_w),
         cells_(scratch.cells),
         boxes_(scratch.boxes),
         open_(scratch.open),
@@ -234,6 +376,7 @@ class BzSearch {
                                                                 : std::numeric_limits<double>::infinity()) {
     stride_ = (deg_[0] + 1) * (deg_[1] + 1);
     magnitude_ = patch.magnitude() + std::numeric_limits<double>::min();
+    weight_magnitude_ = patch.weight_magnitude() + std::numeric_limits<double>::min();
   }
 
   // Newton from (s, t); the answer replaces the candidate when nearer.
@@ -290,6 +433,17 @@ class BzSearch {
           break;
         }
       }
+      if (!accepted && size < 1e-5) {
+        // So near the minimum f's decrease may be below its rounding: the full step is taken
+        // where it shrinks the gradient instead (resolved far above its rounding there).
+        ns = std::clamp(s + d0, 0.0, 1.0);
+        nt = std::clamp(t + d1, 0.0, 1.0);
+        nj = patch_.power_jet(ns, nt);
+        nf = 0.5 * norm2(nj.s - p_);
+        const Vec3 nr = nj.s - p_;
+        const double n0 = free0 ? dot(nr, nj.su) : 0.0, n1 = free1 ? dot(nr, nj.sv) : 0.0;
+        accepted = n0 * n0 + n1 * n1 < 0.25 * (g0 * g0 + g1 * g1);
+      }
       if (!accepted || !std::isfinite(nf)) break;
       step_norm = std::max(std::fabs(ns - s), std::fabs(nt - t));
       s = ns;
@@ -298,11 +452,20 @@ class BzSearch {
       f = nf;
       if (step_norm <= 1e-15) break;
     }
+    consider(s, t, step_norm, 1.0);
+  }
+
+  // (s, t) becomes the candidate where f is below `factor` times the candidate's.
+  void consider(double s, double t, double step_norm, double factor) {
     // The answer by the Bernstein form: its rounding is what the enclosures below assume.
-    j = patch_.jet(s, t);
-    f = 0.5 * norm2(j.s - p_);
-    if (!has_candidate_ || f < f_) {
+    const SurfaceJet j = patch_.jet(s, t);
+    const double f = 0.5 * norm2(j.s - p_);
+    if (!has_candidate_ || f < f_ * factor) {
       has_candidate_ = true;
+      pole_ = -1;
+      for (int e = 0; e < 4; ++e)
+        if (patch_.pole(e) && (e == 0 ? s <= 0.0 : e == 1 ? s >= 1.0 : e == 2 ? t <= 0.0 : t >= 1.0))
+          pole_ = e;
       s_ = s;
       t_ = t;
       jet_ = j;
@@ -330,6 +493,7 @@ class BzSearch {
       cand_gt_ = bz_dot(r, et);
       f_cert_ = 0.5 * std::pow(std::max(d - 0.5 * gap_, 0.0), 2);
       f_tie_ = 0.5 * (d + gap_) * (d + gap_);
+      if (patch_.rational()) rational_candidate(s, t, pq);
     }
   }
 
@@ -339,14 +503,26 @@ class BzSearch {
     // Newton from the parameters of the control point nearest p.
     int best = 0;
     for (int i = 1; i < stride_; ++i)
-      if (norm2(patch_.net()[static_cast<std::size_t>(i)] - p_) <
-          norm2(patch_.net()[static_cast<std::size_t>(best)] - p_))
+      if (norm2(patch_.point(static_cast<std::size_t>(i)) - p_) <
+          norm2(patch_.point(static_cast<std::size_t>(best)) - p_))
         best = i;
     newton(static_cast<double>(best / (deg_[1] + 1)) / deg_[0],
            static_cast<double>(best % (deg_[1] + 1)) / deg_[1]);
     if (!std::isfinite(f_)) return out;
+    // Next to a pole the distance is flat along the pole's edge and Newton's steps towards it
+    // shrink: the pole itself, where it is as near.
+    for (int e = 0; e < 4; ++e)
+      if (patch_.pole(e) && pole_ < 0)
+        consider(e == 0   ? 0.0
+                 : e == 1 ? 1.0
+                          : s_,
+                 e == 2   ? 0.0
+                 : e == 3 ? 1.0
+                          : t_,
+                 step_norm_, 1.0 + 0x1p-45);
 
     pool_.clear();
+    pool_w_.clear();
     cells_.clear();
     boxes_.clear();
     open_.clear();
@@ -359,7 +535,10 @@ class BzSearch {
       });
       const BzBox box = boxes_[static_cast<std::size_t>(*it)];
       open_.erase(it);
-      if (static_cast<int>(boxes_.size()) + 4 > max_boxes) return out;
+      if (static_cast<int>(boxes_.size()) + 4 > max_boxes) {
+        out.boxes = static_cast<int>(boxes_.size());
+        return out;
+      }
       if (!box.contains(s_, t_) && box.lower < f_ && restarts_ < 3) {
         // It may hold a nearer point: Newton from its centre.
         ++restarts_;
@@ -377,6 +556,7 @@ class BzSearch {
     double lower = f_;
     for (const int i : settled_) lower = std::min(lower, boxes_[static_cast<std::size_t>(i)].lower);
     out.proved = true;
+    out.pole = pole_ >= 0;
     out.s = s_;
     out.t = t_;
     out.jet = jet_;
@@ -390,6 +570,122 @@ class BzSearch {
   }
 
  private:
+  // A rational patch: the candidate's level L = |S(z) - p|² (as computed) and g_L = |A - pW|² - L W²
+  // with its gradient at z = (s, t), enclosed from the homogeneous jet (its Bernstein sums within
+  // err0, err1 of the net's magnitude as above): g_s = 2 (D·D_s - L W W_s), D = A - p W.
+  void rational_candidate(double s, double t, int pq) {
+    SurfaceJet a;
+    std::array<double, 6> w{};
+    patch_.homogeneous_jet(s, t, a, w);
+    // A value's Bernstein sum: each basis value within 3n + 1 roundings (n levels of the triangle,
+    // each a product, a sum and 1 - x), the two sums' p + q + 2, of a sum of |b_kl| B_kl <= m:
+    // (4 (p + q) + 6) roundings of m, taken twice over.
+    const double m = std::max(magnitude_, weight_magnitude_);
+    const double err0 = 2.0 * (4.0 * (pq - 2) + 6.0) * 0x1p-53 * m;
+    const double err1 = 32.0 * std::max(deg_[0], deg_[1]) * pq * 0x1p-53 * m;
+    const auto widened = [](double x, double e) { return BzInterval{bz_down(x - e), bz_up(x + e)}; };
+    const BzInterval W = widened(w[0], err0), Ws = widened(w[1], err1), Wt = widened(w[2], err1);
+    BzVec D, Ds, Dt;
+    for (int c = 0; c < 3; ++c) {
+      const auto k = static_cast<std::size_t>(c);
+      D[k] = formula::interval::sub(widened(a.s[c], err0), mul(p_[c], W));
+      Ds[k] = formula::interval::sub(widened(a.su[c], err1), mul(p_[c], Ws));
+      Dt[k] = formula::interval::sub(widened(a.sv[c], err1), mul(p_[c], Wt));
+    }
+    level_ = 2.0 * f_;
+    const BzInterval L{level_, level_};
+    cand_g_ = formula::interval::sub(bz_norm2(D), mul(L, sqr(W)));
+    const BzInterval hs = formula::interval::sub(bz_dot(D, Ds), mul(L, mul(W, Ws)));
+    const BzInterval ht = formula::interval::sub(bz_dot(D, Dt), mul(L, mul(W, Wt)));
+    cand_gs_ = {2.0 * hs.lo, 2.0 * hs.hi};
+    cand_gt_ = {2.0 * ht.lo, 2.0 * ht.hi};
+  }
+
+  // A rational cell's nets for this point.
+  void level_nets(int id, const BzCell& c, BzLevelNets& nets) const {
+    const Vec3* a = id >= 0 ? &patch_.cell_nets()[static_cast<std::size_t>(c.net)]
+                            : &pool_[static_cast<std::size_t>(c.net)];
+    const double* w = id >= 0 ? &patch_.cell_weights()[static_cast<std::size_t>(c.net)]
+                              : &pool_w_[static_cast<std::size_t>(c.net)];
+    bz_level_nets(a, w, deg_[0], deg_[1], c.err, c.err_w, p_, nets);
+  }
+
+  // F = |S - p|² >= min_k N_k / M_k over the cell (N = F M with every M_k > 0), in f = F / 2.
+  static double ratio_bound(const BzLevelNets& nets, int count) {
+    if (!(nets.m_lo > 0.0)) return 0.0;
+    double least = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < count && least > 0.0; ++k) {
+      const double n = bz_down(nets.n[k] - nets.err_n);
+      least = std::min(least, n > 0.0 ? bz_down(n / bz_up(nets.m[k] + nets.err_m)) : 0.0);
+    }
+    return std::isfinite(least) ? bz_down(0.5 * least) : 0.0;
+  }
+
+  // f >= ½ (L + g / M) over a cell where g_L >= g_low, M = W² in [m_lo, m_hi].
+  double level_bound(double g_low, const BzLevelNets& nets) const {
+    if (!std::isfinite(g_low) || !(nets.m_lo > 0.0)) return 0.0;
+    const double F = g_low >= 0.0 ? bz_down(level_ + bz_down(g_low / nets.m_hi))
+                                  : bz_down(level_ + bz_down(g_low / nets.m_lo));
+    return std::max(0.0, bz_down(0.5 * F));
+  }
+
+  // A rational cell bounded for this point: by its hull, by the ratio of N's and M's nets, and by
+  // g_L (L the candidate's level): its Taylor form from the candidate on a cell holding it, else
+  // from the corner nearest it, the Hessian enclosed from g_L's nets of second differences. On a
+  // cell holding the candidate, λ bounds below the least eigenvalue of g_L'’s Hessian for every
+  // level L' between the cell's lower bound and the tie's (see the header).
+  // Its hull's bound is b.lower already.
+  void rational_bound(BzBox& b, const BzCell& c) const {
+    double lower = b.lower;
+    const bool holds = b.contains(s_, t_);
+    BzLevelNets nets;
+    level_nets(b.cell, c, nets);
+    const int P = 2 * deg_[0], Q = 2 * deg_[1], count = (P + 1) * (Q + 1);
+    lower = std::max(lower, ratio_bound(nets, count));
+    b.lower = lower;
+    if ((!holds && lower > f_tie_) || lower > f_cut_ || !(nets.m_lo > 0.0)) return;
+    double g[BzLevelNets::kSize];
+    for (int k = 0; k < count; ++k) g[k] = nets.n[k] - level_ * nets.m[k];
+    const double err_g =
+        bz_up(nets.err_n + level_ * nets.err_m + 0x1p-51 * (nets.n_max + level_ * nets.m_hi));
+    BzInterval gss, gst, gtt;
+    bz_hessian_hull(g, P, Q, err_g, gss, gst, gtt);
+    if (holds) {
+      lower =
+          std::max(lower, level_bound(bz_down(cand_g_.lo + candidate_form(b, gss, gst, gtt).least), nets));
+      b.lower = lower;
+      // The levels L' of local minima within the tie: [2 lower, 2 f_tie]; Hess g_L' = Hess g_L -
+      // (L' - L) Hess M.
+      double mss[BzLevelNets::kSize];
+      std::copy(nets.m, nets.m + count, mss);
+      BzInterval mxx, mxy, myy;
+      bz_hessian_hull(mss, P, Q, nets.err_m, mxx, mxy, myy);
+      const BzInterval shift{std::min(0.0, bz_down(2.0 * lower - level_)),
+                             std::max(0.0, bz_up(2.0 * f_tie_ - level_))};
+      const BzInterval hxx = formula::interval::sub(gss, mul(shift, mxx));
+      const BzInterval hyy = formula::interval::sub(gtt, mul(shift, myy));
+      const BzInterval hxy = formula::interval::sub(gst, mul(shift, mxy));
+      const double ha = hxx.lo, hc = hyy.lo, hb = std::max(std::fabs(hxy.lo), std::fabs(hxy.hi));
+      double lambda = 0.5 * (ha + hc) - std::sqrt(0.25 * (ha - hc) * (ha - hc) + hb * hb);
+      lambda -= (std::fabs(ha) + std::fabs(hc) + hb) * 0x1p-48;
+      if (std::isfinite(lambda)) b.lambda = lambda;
+      return;
+    }
+    // Taylor from the corner (cs, ct) nearest the candidate, in the inward local parameters.
+    const int cs = s_ - b.s0 > b.s1 - s_ ? 1 : 0, ct = t_ - b.t0 > b.t1 - t_ ? 1 : 0;
+    const int K = cs ? P : 0, L = ct ? Q : 0, Ki = cs ? P - 1 : 1, Li = ct ? Q - 1 : 1;
+    const auto at = [&](int k, int l) { return g[k * (Q + 1) + l]; };
+    const double e1 =
+        2.0 * err_g + 0x1p-51 * (std::fabs(at(K, L)) + std::fabs(at(Ki, L)) + std::fabs(at(K, Li)));
+    const double gs = bz_down(P * bz_down(at(Ki, L) - at(K, L)) - P * e1);
+    const double gt = bz_down(Q * bz_down(at(K, Li) - at(K, L)) - Q * e1);
+    const int sign_s = cs ? -1 : 1, sign_t = ct ? -1 : 1;
+    const double E = sign_s * sign_t > 0 ? gst.lo : -gst.hi;
+    const double g_low =
+        bz_down(bz_down(at(K, L) - err_g) + bz_min_form(gs, gt, gss.lo, gtt.lo, E, 1.0, 1.0));
+    b.lower = std::max(lower, level_bound(g_low, nets));
+  }
+
   // Whether the kept cells of one level (the root, its quarters, theirs) are all beyond the
   // cutoff, by their hulls and a second-order form from their corner nearest p: then no point of
   // the patch is within it, and `out` is its corner nearest p (a point of it: a Bézier patch
@@ -401,7 +697,7 @@ class BzSearch {
     for (int level = 0; level <= BezierPatch::kCellLevels && begin + count <= cells.size(); ++level) {
       double least = std::numeric_limits<double>::infinity();
       for (std::size_t i = begin; i < begin + count && least > f_cut_; ++i)
-        least = std::min(least, beyond_bound(cells[i]));
+        least = std::min(least, beyond_bound(static_cast<int>(i), cells[i]));
       out.boxes += static_cast<int>(count);
       if (least > f_cut_) {
         const int corners[4][2] = {{0, 0}, {deg_[0], 0}, {0, deg_[1]}, {deg_[0], deg_[1]}};
@@ -409,7 +705,7 @@ class BzSearch {
         double d2 = std::numeric_limits<double>::infinity();
         for (int c = 0; c < 4; ++c) {
           const double e = norm2(
-              patch_.net()[static_cast<std::size_t>(corners[c][0] * (deg_[1] + 1) + corners[c][1])] - p_);
+              patch_.point(static_cast<std::size_t>(corners[c][0] * (deg_[1] + 1) + corners[c][1])) - p_);
           if (e < d2) {
             d2 = e;
             nearest = c;
@@ -431,10 +727,15 @@ class BzSearch {
 
   // A cell's lower bound of f without a candidate: its hull's, else the larger of that and the
   // second-order form from its corner nearest p.
-  double beyond_bound(const BzCell& c) const {
+  double beyond_bound(int id, const BzCell& c) const {
     BzVec r;
     const double lower = hull_bound(c, r);
     if (lower > f_cut_) return lower;
+    if (patch_.rational()) {
+      BzLevelNets nets;
+      level_nets(id, c, nets);
+      return std::max(lower, ratio_bound(nets, (2 * deg_[0] + 1) * (2 * deg_[1] + 1)));
+    }
     const BzInterval fss = add(c.su2, bz_dot(r, c.suu)), ftt = add(c.sv2, bz_dot(r, c.svv));
     const BzInterval fst = add(c.susv, bz_dot(r, c.suv));
     int best = 0;
@@ -495,10 +796,24 @@ class BzSearch {
     const auto first = static_cast<int>(pool_.size());
     pool_.resize(pool_.size() + 4 * static_cast<std::size_t>(stride_));
     bz_quarters(net, deg_[0], deg_[1], &pool_[static_cast<std::size_t>(first)]);
+    const bool rational = patch_.rational();
+    const double err_w = c.err_w + bz_quarter_error(deg_[0], deg_[1], weight_magnitude_);
+    if (rational) {
+      double w[(BezierPatch::kMaxDegree + 1) * (BezierPatch::kMaxDegree + 1)];
+      const double* wsource = box.cell >= 0 ? &patch_.cell_weights()[static_cast<std::size_t>(c.net)]
+                                            : &pool_w_[static_cast<std::size_t>(c.net)];
+      std::copy(wsource, wsource + stride_, w);
+      pool_w_.resize(pool_.size());
+      bz_quarters(w, deg_[0], deg_[1], &pool_w_[static_cast<std::size_t>(first)]);
+    }
     const double bounds[4][4] = {{s0, sm, t0, tm}, {s0, sm, tm, t1}, {sm, s1, t0, tm}, {sm, s1, tm, t1}};
     for (int i = 0; i < 4; ++i) {
       const int offset = first + i * stride_;
-      BzCell child = bz_make_cell(&pool_[static_cast<std::size_t>(offset)], deg_[0], deg_[1], err, magnitude_,
+      BzCell child =
+          rational ? bz_make_rational_cell(&pool_[static_cast<std::size_t>(offset)],
+                                           &pool_w_[static_cast<std::size_t>(offset)], deg_[0], deg_[1], err,
+                                           err_w, bounds[i][0], bounds[i][1], bounds[i][2], bounds[i][3])
+                   : bz_make_cell(&pool_[static_cast<std::size_t>(offset)], deg_[0], deg_[1], err, magnitude_,
                                   bounds[i][0], bounds[i][1], bounds[i][2], bounds[i][3]);
       child.net = offset;
       cells_.push_back(child);
@@ -533,6 +848,13 @@ class BzSearch {
   // f over it, which x* is (it meets the patch's first-order conditions, and so the box's).
   bool is_settled(const BzBox& b) const {
     if (b.lower > f_cut_) return true;  // beyond the cutoff: no answer, no tie there
+    // The candidate at a pole, which every box along the pole's edge holds: their bound suffices
+    // (the foot's multiplicity is then the caller's, PatchNearest::pole).
+    if (pole_ >= 0 && (pole_ == 0   ? b.s0 <= 0.0
+                       : pole_ == 1 ? b.s1 >= 1.0
+                       : pole_ == 2 ? b.t0 <= 0.0
+                                    : b.t1 >= 1.0))
+      return b.lower >= f_cert_;
     if (!b.contains(s_, t_)) return b.lower > f_tie_;
     const bool edge_s = (s_ <= 0.0 && b.fs.lo > 0.0) || (s_ >= 1.0 && b.fs.hi < 0.0);
     const bool edge_t = (t_ <= 0.0 && b.ft.lo > 0.0) || (t_ >= 1.0 && b.ft.hi < 0.0);
@@ -556,6 +878,29 @@ class BzSearch {
     return std::isfinite(lower) ? lower : 0.0;
   }
 
+  // Taylor's form from the candidate x* over a box holding it, in the box's local parameters: δ
+  // in [ds, dt] about x*, the gradient (cand_gs_, cand_gt_) scaled by the box's widths to as, at,
+  // and the least over the box of as δs + at δt + ½ δᵀ H δ for every H in (hss, hst, htt).
+  struct BzForm {
+    double least;
+    BzInterval ds, dt, as, at;
+  };
+  BzForm candidate_form(const BzBox& b, BzInterval hss, BzInterval hst, BzInterval htt) const {
+    const double ws = b.s1 - b.s0, wt = b.t1 - b.t0;
+    const double ls = std::min(bz_down((b.s0 - s_) / ws), 0.0), hs = std::max(bz_up((b.s1 - s_) / ws), 0.0);
+    const double lt = std::min(bz_down((b.t0 - t_) / wt), 0.0), ht = std::max(bz_up((b.t1 - t_) / wt), 0.0);
+    BzForm form{0.0, {ls, hs}, {lt, ht}, bz_scaled(cand_gs_, ws), bz_scaled(cand_gt_, wt)};
+    for (const int sign_s : {-1, 1})
+      for (const int sign_t : {-1, 1}) {
+        const double X = sign_s > 0 ? hs : -ls, Y = sign_t > 0 ? ht : -lt;
+        // A quadrant of no width lies in its neighbour across that side.
+        if (X > 0.0 && Y > 0.0)
+          form.least =
+              std::min(form.least, bz_quadrant(form.as, form.at, hss, hst, htt, sign_s, sign_t, X, Y));
+      }
+    return form;
+  }
+
   void bound(BzBox& b, const BzCell& c) const {
     BzVec r;
     double lower = hull_bound(c, r);
@@ -564,6 +909,10 @@ class BzSearch {
     b.fs = b.ft = {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
     b.fss = b.ftt = -std::numeric_limits<double>::infinity();
     if ((!b.contains(s_, t_) && b.lower > f_tie_) || b.lower > f_cut_) return;  // settled by the hull alone
+    if (patch_.rational()) {
+      rational_bound(b, c);
+      return;
+    }
     // f's Hessian over the box and its smallest eigenvalue, bounded below: λ_min of [a b; b c] is
     // (a + c)/2 - sqrt(((a - c)/2)² + b²), increasing in a and c, decreasing in |b|.
     const BzInterval fss = add(c.su2, bz_dot(r, c.suu)), ftt = add(c.sv2, bz_dot(r, c.svv));
@@ -578,27 +927,14 @@ class BzSearch {
     b.fss = fss.lo;
     b.ftt = ftt.lo;
     if (b.contains(s_, t_)) {
-      // Taylor from the candidate x*, in the box's local parameters: δ in [lo, hi] about x*, the
-      // gradient scaled by the box's widths. The gradient over the box in the centred form
-      // ∇f(x*) + H δ bounds its sign far tighter than the hulls' product near x*.
-      const double ws = b.s1 - b.s0, wt = b.t1 - b.t0;
-      const double ls = std::min(bz_down((b.s0 - s_) / ws), 0.0), hs = std::max(bz_up((b.s1 - s_) / ws), 0.0);
-      const double lt = std::min(bz_down((b.t0 - t_) / wt), 0.0), ht = std::max(bz_up((b.t1 - t_) / wt), 0.0);
-      const BzInterval as = bz_scaled(cand_gs_, ws), at = bz_scaled(cand_gt_, wt);
-      double least = 0.0;
-      for (const int sign_s : {-1, 1})
-        for (const int sign_t : {-1, 1}) {
-          const double X = sign_s > 0 ? hs : -ls, Y = sign_t > 0 ? ht : -lt;
-          // A quadrant of no width lies in its neighbour across that side.
-          if (X > 0.0 && Y > 0.0)
-            least = std::min(least, bz_quadrant(as, at, fss, fst, ftt, sign_s, sign_t, X, Y));
-        }
-      const double taylor = bz_down(cand_f_ + least);
+      // Taylor from the candidate x*. The gradient over the box in the centred form ∇f(x*) + H δ
+      // bounds its sign far tighter than the hulls' product near x*.
+      const BzForm form = candidate_form(b, fss, fst, ftt);
+      const double taylor = bz_down(cand_f_ + form.least);
       lower = std::max(lower, taylor);
       b.lower = std::isfinite(lower) ? lower : 0.0;
-      const BzInterval ds{ls, hs}, dt{lt, ht};
-      const BzInterval cs = add(as, add(mul(fss, ds), mul(fst, dt)));
-      const BzInterval ct = add(at, add(mul(fst, ds), mul(ftt, dt)));
+      const BzInterval cs = add(form.as, add(mul(fss, form.ds), mul(fst, form.dt)));
+      const BzInterval ct = add(form.at, add(mul(fst, form.ds), mul(ftt, form.dt)));
       b.fs = {std::max(b.fs.lo, cs.lo), std::min(b.fs.hi, cs.hi)};
       b.ft = {std::max(b.ft.lo, ct.lo), std::min(b.ft.hi, ct.hi)};
       return;
@@ -623,8 +959,14 @@ class BzSearch {
   double cand_f_ = 0.0;                               // f at the candidate, rounded down
   BzInterval cand_gs_{0.0, 0.0}, cand_gt_{0.0, 0.0};  // its gradient (the patch's parameters)
   int iterations_ = 0, starts_ = 0, restarts_ = 0;
+  double weight_magnitude_ = 0.0;
+  double level_ = 0.0;
+  int pole_ = -1;  // the candidate's degenerate edge (BezierPatch::pole), -1: none           // a rational
+                   // patch: the candidate's |S - p|²
+  BzInterval cand_g_{0.0, 0.0};  // and g at the candidate (cand_gs_, cand_gt_: its gradient)
 
   std::vector<Vec3>& pool_;
+  std::vector<double>& pool_w_;
   std::vector<BzCell>& cells_;
   std::vector<BzBox>& boxes_;
   std::vector<int>&open_, &settled_;
@@ -633,31 +975,126 @@ class BzSearch {
 
 }  // namespace
 
-BezierPatch::BezierPatch(int p, int q, std::vector<Vec3> net) : p_(p), q_(q), net_(std::move(net)) {
+namespace {
+
+// Σ_k b_k B_k^n(x) = Σ_j a_j x^j with a_j = binom(n, j) Σ_{k<=j} binom(j, k) (-1)^(j-k) b_k, along s
+// then t.
+template <class T>
+std::vector<T> bz_power_basis(const std::vector<T>& net, int p, int q) {
+  auto index = [&](int k, int l) { return static_cast<std::size_t>(k * (q + 1) + l); };
+  const auto sign = [](int n) { return n % 2 ? -1.0 : 1.0; };
+  std::vector<T> along_s(net.size(), T{});
+  for (int l = 0; l <= q; ++l)
+    for (int j = 0; j <= p; ++j)
+      for (int k = 0; k <= j; ++k)
+        along_s[index(j, l)] += (kBinomials.c[p][j] * kBinomials.c[j][k] * sign(j - k)) * net[index(k, l)];
+  std::vector<T> power(net.size(), T{});
+  for (int k = 0; k <= p; ++k)
+    for (int j = 0; j <= q; ++j)
+      for (int l = 0; l <= j; ++l)
+        power[index(k, j)] += (kBinomials.c[q][j] * kBinomials.c[j][l] * sign(j - l)) * along_s[index(k, l)];
+  return power;
+}
+
+// The value and derivatives (s, t, ss, st, tt) at (s, t) of the power-basis form a, by Horner's
+// scheme in t per row k (the row's value, first and half second derivative), then in s.
+template <class T>
+std::array<T, 6> bz_horner(const T* a, int p, int q, double s, double t) {
+  T v[BezierPatch::kMaxDegree + 1], d1[BezierPatch::kMaxDegree + 1], d2[BezierPatch::kMaxDegree + 1];
+  for (int k = 0; k <= p; ++k) {
+    const T* row = a + k * (q + 1);
+    T x = row[q], x1{}, x2{};
+    for (int l = q - 1; l >= 0; --l) {
+      x2 = x2 * t + x1;
+      x1 = x1 * t + x;
+      x = x * t + row[l];
+    }
+    v[k] = x;
+    d1[k] = x1;
+    d2[k] = 2.0 * x2;
+  }
+  T y = v[p], y1{}, y2{}, z = d1[p], z1{}, w = d2[p];
+  for (int k = p - 1; k >= 0; --k) {
+    y2 = y2 * s + y1;
+    y1 = y1 * s + y;
+    y = y * s + v[k];
+    z1 = z1 * s + z;
+    z = z * s + d1[k];
+    w = w * s + d2[k];
+  }
+  return {y, y1, z, 2.0 * y2, z1, w};
+}
+
+// The same from the Bernstein net b by the basis and its derivatives.
+template <class T>
+std::array<T, 6> bz_bernstein(const T* b, int p, int q, double s, double t) {
+  double bs[3][BezierPatch::kMaxDegree + 1], bt[3][BezierPatch::kMaxDegree + 1];
+  bz_basis(p, s, bs[0], bs[1], bs[2]);
+  bz_basis(q, t, bt[0], bt[1], bt[2]);
+  std::array<T, 6> out{};
+  for (int k = 0; k <= p; ++k) {
+    // The row's sums along t: value, d/dt, d²/dt².
+    T r0{}, r1{}, r2{};
+    for (int l = 0; l <= q; ++l) {
+      const T& x = b[k * (q + 1) + l];
+      r0 += bt[0][l] * x;
+      r1 += bt[1][l] * x;
+      r2 += bt[2][l] * x;
+    }
+    out[0] += bs[0][k] * r0;
+    out[1] += bs[1][k] * r0;
+    out[2] += bs[0][k] * r1;
+    out[3] += bs[2][k] * r0;
+    out[4] += bs[1][k] * r1;
+    out[5] += bs[0][k] * r2;
+  }
+  return out;
+}
+
+SurfaceJet bz_jet(const std::array<Vec3, 6>& a) { return {a[0], a[1], a[2], a[3], a[4], a[5]}; }
+
+// S = A / W and its derivatives from A's and W's: A = W S differentiated ([PieglTiller] algorithm A4.4).
+SurfaceJet bz_quotient(const std::array<Vec3, 6>& a, const std::array<double, 6>& w) {
+  SurfaceJet j{};
+  const double iw = 1.0 / w[0];
+  j.s = iw * a[0];
+  j.su = iw * (a[1] - w[1] * j.s);
+  j.sv = iw * (a[2] - w[2] * j.s);
+  j.suu = iw * (a[3] - 2.0 * w[1] * j.su - w[3] * j.s);
+  j.suv = iw * (a[4] - w[1] * j.sv - w[2] * j.su - w[4] * j.s);
+  j.svv = iw * (a[5] - 2.0 * w[2] * j.sv - w[5] * j.s);
+  return j;
+}
+
+}  // namespace
+
+BezierPatch::BezierPatch(int p, int q, std::vector<Vec3> net, std::vector<double> weights)
+    : p_(p), q_(q), net_(std::move(net)), weights_(std::move(weights)) {
   for (const Vec3& x : net_)
     magnitude_ = std::max({magnitude_, std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)});
-  // Σ_k b_k B_k^n(x) = Σ_j a_j x^j with a_j = binom(n, j) Σ_{k<=j} binom(j, k) (-1)^(j-k) b_k, along s
-  // then t.
-  auto binomial = [](int n, int k) {
-    double b = 1.0;
-    for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;
-    return b;
-  };
-  auto index = [&](int k, int l) { return static_cast<std::size_t>(k * (q_ + 1) + l); };
-  std::vector<Vec3> along_s(net_.size(), Vec3{0.0, 0.0, 0.0});
-  for (int l = 0; l <= q_; ++l)
-    for (int j = 0; j <= p_; ++j)
-      for (int k = 0; k <= j; ++k)
-        along_s[index(j, l)] +=
-            (binomial(p_, j) * binomial(j, k) * ((j - k) % 2 ? -1.0 : 1.0)) * net_[index(k, l)];
-  power_.assign(net_.size(), Vec3{0.0, 0.0, 0.0});
-  for (int k = 0; k <= p_; ++k)
-    for (int j = 0; j <= q_; ++j)
-      for (int l = 0; l <= j; ++l)
-        power_[index(k, j)] +=
-            (binomial(q_, j) * binomial(j, l) * ((j - l) % 2 ? -1.0 : 1.0)) * along_s[index(k, l)];
+  for (const double w : weights_) weight_magnitude_ = std::max(weight_magnitude_, std::fabs(w));
+  power_ = bz_power_basis(net_, p_, q_);
+  for (int e = 0; e < 4; ++e) {
+    const int count = e < 2 ? q_ + 1 : p_ + 1;
+    const auto index = [&](int i) {
+      return static_cast<std::size_t>(e == 0   ? i
+                                      : e == 1 ? p_ * (q_ + 1) + i
+                                      : e == 2 ? i * (q_ + 1)
+                                               : i * (q_ + 1) + q_);
+    };
+    const Vec3 first = point(index(0));
+    bool same = true;
+    for (int i = 1; i < count; ++i) {
+      const Vec3 d = point(index(i)) - first;
+      same = same && std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)}) <=
+                         0x1p-48 * (magnitude_ + weight_magnitude_ + std::numeric_limits<double>::min());
+    }
+    poles_[static_cast<std::size_t>(e)] = same;
+  }
+  if (rational()) power_w_ = bz_power_basis(weights_, p_, q_);
   // The cells of the first kCellLevels levels of quarters, each with its net.
   const double m = magnitude_ + std::numeric_limits<double>::min();
+  const double mw = weight_magnitude_ + std::numeric_limits<double>::min();
   const auto stride = static_cast<std::size_t>((p_ + 1) * (q_ + 1));
   std::size_t cells = 1;
   for (int level = 0, width = 1; level < kCellLevels; ++level, width *= 4)
@@ -665,27 +1102,43 @@ BezierPatch::BezierPatch(int p, int q, std::vector<Vec3> net) : p_(p), q_(q), ne
   cells_.reserve(cells);
   cell_nets_.reserve(cells * stride);
   cell_nets_ = net_;
-  cells_.push_back(bz_make_cell(net_.data(), p_, q_, 0.0, m, 0.0, 1.0, 0.0, 1.0));
+  if (rational()) {
+    cell_weights_.reserve(cells * stride);
+    cell_weights_ = weights_;
+  }
+  const auto make = [&](std::size_t first, double err, double err_w, double s0, double s1, double t0,
+                        double t1) {
+    return rational() ? bz_make_rational_cell(&cell_nets_[first], &cell_weights_[first], p_, q_, err, err_w,
+                                              s0, s1, t0, t1)
+                      : bz_make_cell(&cell_nets_[first], p_, q_, err, m, s0, s1, t0, t1);
+  };
+  cells_.push_back(make(0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0));
   cells_.back().net = 0;
   std::size_t level_begin = 0;
   for (int level = 0; level < kCellLevels; ++level) {
     const std::size_t level_end = cells_.size();
     for (std::size_t i = level_begin; i < level_end; ++i) {
       const std::size_t first = cell_nets_.size();
+      const auto parent = static_cast<std::size_t>(cells_[i].net);
       cell_nets_.resize(first + 4 * stride);
-      const Vec3* parent = &cell_nets_[static_cast<std::size_t>(cells_[i].net)];
       Vec3 copy[(kMaxDegree + 1) * (kMaxDegree + 1)];
-      std::copy(parent, parent + stride, copy);
+      std::copy(&cell_nets_[parent], &cell_nets_[parent] + stride, copy);
       bz_quarters(copy, p_, q_, &cell_nets_[first]);
+      if (rational()) {
+        cell_weights_.resize(first + 4 * stride);
+        double wcopy[(kMaxDegree + 1) * (kMaxDegree + 1)];
+        std::copy(&cell_weights_[parent], &cell_weights_[parent] + stride, wcopy);
+        bz_quarters(wcopy, p_, q_, &cell_weights_[first]);
+      }
       const BzCell c = cells_[i];
       const double sm = 0.5 * (c.s0 + c.s1), tm = 0.5 * (c.t0 + c.t1);
       const double bounds[4][4] = {
           {c.s0, sm, c.t0, tm}, {c.s0, sm, tm, c.t1}, {sm, c.s1, c.t0, tm}, {sm, c.s1, tm, c.t1}};
       cells_[i].child = static_cast<int>(cells_.size());
       for (std::size_t k = 0; k < 4; ++k) {
-        BzCell child =
-            bz_make_cell(&cell_nets_[first + k * stride], p_, q_, c.err + bz_quarter_error(p_, q_, m), m,
-                         bounds[k][0], bounds[k][1], bounds[k][2], bounds[k][3]);
+        BzCell child = make(first + k * stride, c.err + bz_quarter_error(p_, q_, m),
+                            c.err_w + bz_quarter_error(p_, q_, mw), bounds[k][0], bounds[k][1], bounds[k][2],
+                            bounds[k][3]);
         child.net = static_cast<int>(first + k * stride);
         cells_.push_back(child);
       }
@@ -695,61 +1148,29 @@ BezierPatch::BezierPatch(int p, int q, std::vector<Vec3> net) : p_(p), q_(q), ne
 }
 
 SurfaceJet BezierPatch::power_jet(double s, double t) const {
-  // Horner in t per row k (the row's value, first and half second derivative), then in s.
-  Vec3 v[kMaxDegree + 1], d1[kMaxDegree + 1], d2[kMaxDegree + 1];
-  for (int k = 0; k <= p_; ++k) {
-    const Vec3* a = &power_[static_cast<std::size_t>(k * (q_ + 1))];
-    Vec3 x = a[q_], x1{0.0, 0.0, 0.0}, x2{0.0, 0.0, 0.0};
-    for (int l = q_ - 1; l >= 0; --l) {
-      x2 = x2 * t + x1;
-      x1 = x1 * t + x;
-      x = x * t + a[l];
-    }
-    v[k] = x;
-    d1[k] = x1;
-    d2[k] = 2.0 * x2;
-  }
-  SurfaceJet j{};
-  Vec3 y = v[p_], y1{0.0, 0.0, 0.0}, y2{0.0, 0.0, 0.0}, z = d1[p_], z1{0.0, 0.0, 0.0}, w = d2[p_];
-  for (int k = p_ - 1; k >= 0; --k) {
-    y2 = y2 * s + y1;
-    y1 = y1 * s + y;
-    y = y * s + v[k];
-    z1 = z1 * s + z;
-    z = z * s + d1[k];
-    w = w * s + d2[k];
-  }
-  j.s = y;
-  j.su = y1;
-  j.suu = 2.0 * y2;
-  j.sv = z;
-  j.suv = z1;
-  j.svv = w;
-  return j;
+  const std::array<Vec3, 6> a = bz_horner(power_.data(), p_, q_, s, t);
+  return rational() ? bz_quotient(a, bz_horner(power_w_.data(), p_, q_, s, t)) : bz_jet(a);
 }
 
 SurfaceJet BezierPatch::jet(double s, double t) const {
-  double bs[3][kMaxDegree + 1], bt[3][kMaxDegree + 1];
-  bz_basis(p_, s, bs[0], bs[1], bs[2]);
-  bz_basis(q_, t, bt[0], bt[1], bt[2]);
-  SurfaceJet j{};
-  for (int k = 0; k <= p_; ++k) {
-    // The row's sums along t: value, d/dt, d²/dt².
-    Vec3 r0{}, r1{}, r2{};
-    for (int l = 0; l <= q_; ++l) {
-      const Vec3& b = net_[static_cast<std::size_t>(k * (q_ + 1) + l)];
-      r0 += bt[0][l] * b;
-      r1 += bt[1][l] * b;
-      r2 += bt[2][l] * b;
-    }
-    j.s += bs[0][k] * r0;
-    j.su += bs[1][k] * r0;
-    j.suu += bs[2][k] * r0;
-    j.sv += bs[0][k] * r1;
-    j.suv += bs[1][k] * r1;
-    j.svv += bs[0][k] * r2;
-  }
-  return j;
+  const std::array<Vec3, 6> a = bz_bernstein(net_.data(), p_, q_, s, t);
+  return rational() ? bz_quotient(a, bz_bernstein(weights_.data(), p_, q_, s, t)) : bz_jet(a);
+}
+
+void BezierPatch::homogeneous_jet(double s, double t, SurfaceJet& a, std::array<double, 6>& w) const {
+  a = bz_jet(bz_bernstein(net_.data(), p_, q_, s, t));
+  w = rational() ? bz_bernstein(weights_.data(), p_, q_, s, t)
+                 : std::array<double, 6>{1.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+}
+
+std::vector<double> distance_level_net(const BezierPatch& patch, const Vec3& p, double L) {
+  const std::vector<double> ones(patch.net().size(), 1.0);
+  const std::vector<double>& w = patch.rational() ? patch.weights() : ones;
+  BzLevelNets nets;
+  bz_level_nets(patch.net().data(), w.data(), patch.degree_s(), patch.degree_t(), 0.0, 0.0, p, nets);
+  std::vector<double> g(static_cast<std::size_t>((2 * patch.degree_s() + 1) * (2 * patch.degree_t() + 1)));
+  for (std::size_t k = 0; k < g.size(); ++k) g[k] = nets.n[k] - L * nets.m[k];
+  return g;
 }
 
 PatchNearest nearest_on_patch(const BezierPatch& patch, const Vec3& p, int max_boxes, double cutoff) {
