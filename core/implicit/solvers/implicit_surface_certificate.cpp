@@ -375,14 +375,23 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     ++c.boxes;
     if (lagrangian_settled(piece.box, bound)) continue;
     // Halved along the edges at least half its longest (a flat leaf of a flat box is not made
-    // flatter).
+    // flatter), whole along the others: the parts cover b.
     const Box3& b = piece.box;
     const double longest = b.max_edge();
     int axes = 0;
     for (int k = 0; k < 3; ++k)
       if (b.hi[k] - b.lo[k] >= 0.5 * longest) axes |= 1 << k;
-    for (int octant = 0; octant < 8; ++octant)
-      if ((octant & ~axes) == 0) pieces.push_back({octant_of(b, octant), piece.depth + 1});
+    for (int octant = 0; octant < 8; ++octant) {
+      if ((octant & ~axes) != 0) continue;
+      const Box3 half = octant_of(b, octant);
+      Box3 part = b;
+      for (int k = 0; k < 3; ++k)
+        if ((axes >> k) & 1) {
+          part.lo[k] = half.lo[k];
+          part.hi[k] = half.hi[k];
+        }
+      pieces.push_back({part, piece.depth + 1});
+    }
   }
   c.lower_bound = std::min(lower, distance);
   c.certified = Certificate::meets_gap(distance, c.lower_bound, c.absolute_gap);
