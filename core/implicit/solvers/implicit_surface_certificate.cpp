@@ -259,6 +259,7 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
   struct Piece {
     Box3 box;
     int depth;
+    std::int32_t leaf;  // a whole leaf's index in the cells' enclosure cache, or -1
   };
   std::vector<std::int32_t> stack{0};
   std::vector<Piece> pieces;
@@ -279,11 +280,17 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
   // by the separable diagonal part less the off-diagonal entries at b's half-widths.
   // With the augmented Lagrangian's weight (convex_bound) as well, g + c/2 f^2, whose Hessian adds
   // c (grad f grad f^T + f H): the better of the two bounds.
-  auto second_order_bound = [&](const Box3& b) {
-    const ImplicitSurfaceIntervalJet over = equation.interval_jet(b);
+  auto second_order_bound = [&](const Box3& b, const LeafEnclosures* leaf) {
+    const ImplicitSurfaceIntervalJet over = leaf ? leaf->over : equation.interval_jet(b);
     if (!over.smooth) return 0.0;
     const Vec3 centre = b.center();
-    const ImplicitSurfaceIntervalJet at = equation.interval_gradient({centre, centre});
+    ImplicitSurfaceIntervalJet at;
+    if (leaf) {
+      at.f = leaf->centre_f;
+      at.grad = leaf->centre_grad;
+    } else {
+      at = equation.interval_gradient({centre, centre});
+    }
     // The bound with multiplier `lm` and weight `weight`.
     auto bound_with = [&](double lm, double weight) {
       Interval value = add(mul(lm, at.f), mul(0.5 * weight, iv::sqr(at.f)));
@@ -321,12 +328,12 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     }
     return best;
   };
-  auto lagrangian_settled = [&](const Box3& b, double& bound) {
-    const ImplicitSurfaceIntervalJet jb = equation.interval_gradient(b);
+  auto lagrangian_settled = [&](const Box3& b, const LeafEnclosures* leaf, double& bound) {
+    const ImplicitSurfaceIntervalJet jb = leaf ? leaf->over : equation.interval_gradient(b);
     if (jb.f.excludes_zero()) return true;
     if (!jb.lipschitz) return false;
     const Vec3 centre = b.center();
-    const Interval fc = equation.value_enclosure({centre, centre});
+    const Interval fc = leaf ? leaf->centre_value : equation.value_enclosure({centre, centre});
     Interval mean = mul(l, fc), natural = mul(l, jb.f);
     for (int i = 0; i < 3; ++i) {
       const Interval side{b.lo[i], b.hi[i]};
@@ -338,7 +345,8 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
       mean = add(mean, mul(slope, sub(side, iv::point(centre[i]))));
     }
     double half_square = std::max(natural.lo, mean.lo) * (1.0 - kRound);
-    if (lower_sqrt(2.0 * half_square) < threshold) half_square = std::max(half_square, second_order_bound(b));
+    if (lower_sqrt(2.0 * half_square) < threshold)
+      half_square = std::max(half_square, second_order_bound(b, leaf));
     const double b2 = lower_sqrt(2.0 * half_square);
     if (b2 < threshold) return false;
     bound = b2;
@@ -360,7 +368,7 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
       if (!(have_k && k.contains(cell.box)) && norm(p - s) <= distance + cells.leaf_diagonal)
         out.rivals.push_back(s);
     }
-    pieces.push_back({cell.box, 0});
+    pieces.push_back({cell.box, 0, cell.leaf});
   }
   // Pieces of the leaves, depth first, up to 16 levels below the leaves and the box budget.
   while (!pieces.empty()) {
@@ -373,7 +381,9 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
       continue;
     }
     ++c.boxes;
-    if (lagrangian_settled(piece.box, bound)) continue;
+    LeafEnclosures kept;
+    if (piece.leaf >= 0) kept = cells.leaf_enclosures.get(equation, piece.leaf, piece.box);
+    if (lagrangian_settled(piece.box, piece.leaf >= 0 ? &kept : nullptr, bound)) continue;
     // Halved along the edges at least half its longest (a flat leaf of a flat box is not made
     // flatter), whole along the others: the parts cover b.
     const Box3& b = piece.box;
@@ -390,7 +400,7 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
           part.lo[k] = half.lo[k];
           part.hi[k] = half.hi[k];
         }
-      pieces.push_back({part, piece.depth + 1});
+      pieces.push_back({part, piece.depth + 1, -1});
     }
   }
   c.lower_bound = std::min(lower, distance);
