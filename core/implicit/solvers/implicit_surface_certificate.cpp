@@ -258,8 +258,9 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
   // Branch and bound over the tree, then over pieces of the leaves.
   struct Piece {
     Box3 box;
-    int depth;
-    std::int32_t leaf;  // a whole leaf's index in the cells' enclosure cache, or -1
+    int depth;          // 0: a whole leaf
+    std::int32_t leaf;  // the leaf it lies in: its index in the cells' enclosure cache
+    Box3 leaf_box;
   };
   std::vector<std::int32_t> stack{0};
   std::vector<Piece> pieces;
@@ -280,14 +281,17 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
   // by the separable diagonal part less the off-diagonal entries at b's half-widths.
   // With the augmented Lagrangian's weight (convex_bound) as well, g + c/2 f^2, whose Hessian adds
   // c (grad f grad f^T + f H): the better of the two bounds.
-  auto second_order_bound = [&](const Box3& b, const LeafEnclosures* leaf) {
-    const ImplicitSurfaceIntervalJet over = leaf ? leaf->over : equation.interval_jet(b);
+  // The enclosures over b are those over the leaf b lies in (`leaf`; wider than b's own, but
+  // holding over b), unless the formula is not smooth over the whole leaf; those at b's centre are
+  // the leaf's when b is the whole leaf (`whole`).
+  auto second_order_bound = [&](const Box3& b, const LeafEnclosures& leaf, bool whole) {
+    const ImplicitSurfaceIntervalJet over = leaf.over.smooth ? leaf.over : equation.interval_jet(b);
     if (!over.smooth) return 0.0;
     const Vec3 centre = b.center();
     ImplicitSurfaceIntervalJet at;
-    if (leaf) {
-      at.f = leaf->centre_f;
-      at.grad = leaf->centre_grad;
+    if (whole) {
+      at.f = leaf.centre_f;
+      at.grad = leaf.centre_grad;
     } else {
       at = equation.interval_gradient({centre, centre});
     }
@@ -328,12 +332,12 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     }
     return best;
   };
-  auto lagrangian_settled = [&](const Box3& b, const LeafEnclosures* leaf, double& bound) {
-    const ImplicitSurfaceIntervalJet jb = leaf ? leaf->over : equation.interval_gradient(b);
+  auto lagrangian_settled = [&](const Box3& b, const LeafEnclosures& leaf, bool whole, double& bound) {
+    const ImplicitSurfaceIntervalJet jb = whole ? leaf.over : equation.interval_gradient(b);
     if (jb.f.excludes_zero()) return true;
     if (!jb.lipschitz) return false;
     const Vec3 centre = b.center();
-    const Interval fc = leaf ? leaf->centre_value : equation.value_enclosure({centre, centre});
+    const Interval fc = whole ? leaf.centre_value : equation.value_enclosure({centre, centre});
     Interval mean = mul(l, fc), natural = mul(l, jb.f);
     for (int i = 0; i < 3; ++i) {
       const Interval side{b.lo[i], b.hi[i]};
@@ -346,7 +350,7 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     }
     double half_square = std::max(natural.lo, mean.lo) * (1.0 - kRound);
     if (lower_sqrt(2.0 * half_square) < threshold)
-      half_square = std::max(half_square, second_order_bound(b, leaf));
+      half_square = std::max(half_square, second_order_bound(b, leaf, whole));
     const double b2 = lower_sqrt(2.0 * half_square);
     if (b2 < threshold) return false;
     bound = b2;
@@ -368,7 +372,7 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
       if (!(have_k && k.contains(cell.box)) && norm(p - s) <= distance + cells.leaf_diagonal)
         out.rivals.push_back(s);
     }
-    pieces.push_back({cell.box, 0, cell.leaf});
+    pieces.push_back({cell.box, 0, cell.leaf, cell.box});
   }
   // Pieces of the leaves, depth first, up to 16 levels below the leaves and the box budget.
   while (!pieces.empty()) {
@@ -381,9 +385,8 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
       continue;
     }
     ++c.boxes;
-    LeafEnclosures kept;
-    if (piece.leaf >= 0) kept = cells.leaf_enclosures.get(equation, piece.leaf, piece.box);
-    if (lagrangian_settled(piece.box, piece.leaf >= 0 ? &kept : nullptr, bound)) continue;
+    const LeafEnclosures leaf = cells.leaf_enclosures.get(equation, piece.leaf, piece.leaf_box);
+    if (lagrangian_settled(piece.box, leaf, piece.depth == 0, bound)) continue;
     // Halved along the edges at least half its longest (a flat leaf of a flat box is not made
     // flatter), whole along the others: the parts cover b.
     const Box3& b = piece.box;
@@ -400,7 +403,7 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
           part.lo[k] = half.lo[k];
           part.hi[k] = half.hi[k];
         }
-      pieces.push_back({part, piece.depth + 1, -1});
+      pieces.push_back({part, piece.depth + 1, piece.leaf, piece.leaf_box});
     }
   }
   c.lower_bound = std::min(lower, distance);
