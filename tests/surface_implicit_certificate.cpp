@@ -96,7 +96,7 @@ TEST_CASE(
   std::mt19937 rng(29);
   std::uniform_real_distribution<double> xy(-3.0, 3.0), z(-1.0, 1.0), angle(0.0, 6.283185307179586);
   int checked = 0;
-  for (int i = 0; i < 100; ++i) {
+  for (int i = 0; i < 70; ++i) {
     const Vec3 p{xy(rng), xy(rng), z(rng)};
     const double reference = torus_distance(p);
     const double q[3] = {p.x, p.y, p.z};
@@ -128,5 +128,5 @@ TEST_CASE(
     CHECK(wrong.certificate.lower_bound <= reference * (1.0 + 1e-15) + 1e-300);
     CHECK_FALSE(wrong.certificate.certified);
   }
-  CHECK(checked >= 60);
+  CHECK(checked >= 40);
 }
