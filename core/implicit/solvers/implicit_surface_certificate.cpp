@@ -333,11 +333,27 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     return best;
   };
   auto lagrangian_settled = [&](const Box3& b, const LeafEnclosures& leaf, bool whole, double& bound) {
-    const ImplicitSurfaceIntervalJet jb = whole ? leaf.over : equation.interval_gradient(b);
+    const Vec3 centre = b.center();
+    ImplicitSurfaceIntervalJet jb;
+    Interval fc;
+    if (whole) {
+      jb = leaf.over;
+      fc = leaf.centre_value;
+    } else if (leaf.over.lipschitz) {
+      // A part of a leaf: the leaf's gradient enclosure holds over it, and f over it is enclosed
+      // by the mean value form about its centre, f(c) + grad f(leaf) . (b - c) (R. E. Moore,
+      // R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM 2009, Sec. 6.4).
+      fc = equation.value_enclosure({centre, centre});
+      jb.grad = leaf.over.grad;
+      jb.f = fc;
+      for (int i = 0; i < 3; ++i)
+        jb.f = add(jb.f, mul(jb.grad[i], sub(Interval{b.lo[i], b.hi[i]}, iv::point(centre[i]))));
+    } else {
+      jb = equation.interval_gradient(b);
+      fc = equation.value_enclosure({centre, centre});
+    }
     if (jb.f.excludes_zero()) return true;
     if (!jb.lipschitz) return false;
-    const Vec3 centre = b.center();
-    const Interval fc = whole ? leaf.centre_value : equation.value_enclosure({centre, centre});
     Interval mean = mul(l, fc), natural = mul(l, jb.f);
     for (int i = 0; i < 3; ++i) {
       const Interval side{b.lo[i], b.hi[i]};
