@@ -1,5 +1,7 @@
 #include "implicit/seeding/implicit_surface_cells.hpp"
 
+#include <cstring>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -147,10 +149,42 @@ bool land_on_surface(const ImplicitSurfaceEquation& equation, Vec3& x, int itera
   return false;
 }
 
+void LeafEnclosureCache::reset(std::size_t leaves) {
+  size_ = leaves;
+  state_ = std::make_unique<std::atomic<std::uint8_t>[]>(leaves);
+  for (std::size_t i = 0; i < leaves; ++i) state_[i].store(0, std::memory_order_relaxed);
+  // Uninitialized: an entry is written (and its pages touched) when its leaf is first used.
+  storage_.reset(new unsigned char[leaves * sizeof(LeafEnclosures)]);
+}
+
+LeafEnclosures LeafEnclosureCache::get(const ImplicitSurfaceEquation& equation, std::int32_t leaf,
+                                       const Box3& box) const {
+  std::atomic<std::uint8_t>& state = state_[static_cast<std::size_t>(leaf)];
+  unsigned char* kept = storage_.get() + static_cast<std::size_t>(leaf) * sizeof(LeafEnclosures);
+  if (state.load(std::memory_order_acquire) == 2) {
+    LeafEnclosures e;
+    std::memcpy(&e, kept, sizeof e);
+    return e;
+  }
+  const Vec3 c = box.center();
+  const ImplicitSurfaceIntervalJet at = equation.interval_gradient({c, c});
+  const LeafEnclosures e{equation.interval_jet(box), equation.value_enclosure({c, c}), at.f, at.grad};
+  std::uint8_t unclaimed = 0;
+  if (state.compare_exchange_strong(unclaimed, 1, std::memory_order_acq_rel)) {
+    std::memcpy(kept, &e, sizeof e);
+    state.store(2, std::memory_order_release);
+  }
+  return e;
+}
+
+std::size_t LeafEnclosureCache::memory_bytes() const {
+  return size_ * (sizeof(std::atomic<std::uint8_t>) + sizeof(LeafEnclosures));
+}
+
 std::size_t ImplicitSurfaceCells::memory_bytes() const {
   return sizeof(*this) + cells.capacity() * sizeof(ImplicitSurfaceCell) + samples.capacity() * sizeof(Vec3) +
-         edge_points.capacity() * sizeof(BoxEdgePoint) + singular_points.capacity() * sizeof(Vec3) +
-         (sample_index ? sample_index->memory_bytes() : 0);
+         leaf_enclosures.memory_bytes() + edge_points.capacity() * sizeof(BoxEdgePoint) +
+         singular_points.capacity() * sizeof(Vec3) + (sample_index ? sample_index->memory_bytes() : 0);
 }
 
 ImplicitSurfaceCells subdivide_surface(const ImplicitSurfaceEquation& equation, const Box3& box,
@@ -191,6 +225,7 @@ ImplicitSurfaceCells subdivide_surface(const ImplicitSurfaceEquation& equation, 
   const double same = 1e-9 * std::max(1.0, box.diagonal());
   for (ImplicitSurfaceCell& cell : out.cells) {
     if (cell.first_child >= 0) continue;  // split (a cell whose octants all excluded S holds none)
+    cell.leaf = static_cast<std::int32_t>(out.leaves);
     ++out.leaves;
     CompileBudget::check();
     Vec3 x = cell.box.center();
@@ -226,6 +261,8 @@ ImplicitSurfaceCells subdivide_surface(const ImplicitSurfaceEquation& equation, 
     for (int k = 0; k < 3; ++k) at_bounds += (x[k] == box.lo[k] || x[k] == box.hi[k]) ? 1 : 0;
     out.edge_points.push_back({x, at_bounds == 3});
   }
+  CompileBudget::grow(out.leaves * (sizeof(std::atomic<std::uint8_t>) + sizeof(LeafEnclosures)));
+  out.leaf_enclosures.reset(out.leaves);
   out.sample_index = std::make_shared<const PointIndex>(out.samples);
   return out;
 }

@@ -258,7 +258,9 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
   // Branch and bound over the tree, then over pieces of the leaves.
   struct Piece {
     Box3 box;
-    int depth;
+    int depth;          // 0: a whole leaf
+    std::int32_t leaf;  // the leaf it lies in: its index in the cells' enclosure cache
+    Box3 leaf_box;
   };
   std::vector<std::int32_t> stack{0};
   std::vector<Piece> pieces;
@@ -279,11 +281,20 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
   // by the separable diagonal part less the off-diagonal entries at b's half-widths.
   // With the augmented Lagrangian's weight (convex_bound) as well, g + c/2 f^2, whose Hessian adds
   // c (grad f grad f^T + f H): the better of the two bounds.
-  auto second_order_bound = [&](const Box3& b) {
-    const ImplicitSurfaceIntervalJet over = equation.interval_jet(b);
+  // The enclosures over b are those over the leaf b lies in (`leaf`; wider than b's own, but
+  // holding over b), unless the formula is not smooth over the whole leaf; those at b's centre are
+  // the leaf's when b is the whole leaf (`whole`).
+  auto second_order_bound = [&](const Box3& b, const LeafEnclosures& leaf, bool whole) {
+    const ImplicitSurfaceIntervalJet over = leaf.over.smooth ? leaf.over : equation.interval_jet(b);
     if (!over.smooth) return 0.0;
     const Vec3 centre = b.center();
-    const ImplicitSurfaceIntervalJet at = equation.interval_gradient({centre, centre});
+    ImplicitSurfaceIntervalJet at;
+    if (whole) {
+      at.f = leaf.centre_f;
+      at.grad = leaf.centre_grad;
+    } else {
+      at = equation.interval_gradient({centre, centre});
+    }
     // The bound with multiplier `lm` and weight `weight`.
     auto bound_with = [&](double lm, double weight) {
       Interval value = add(mul(lm, at.f), mul(0.5 * weight, iv::sqr(at.f)));
@@ -321,12 +332,28 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     }
     return best;
   };
-  auto lagrangian_settled = [&](const Box3& b, double& bound) {
-    const ImplicitSurfaceIntervalJet jb = equation.interval_gradient(b);
+  auto lagrangian_settled = [&](const Box3& b, const LeafEnclosures& leaf, bool whole, double& bound) {
+    const Vec3 centre = b.center();
+    ImplicitSurfaceIntervalJet jb;
+    Interval fc;
+    if (whole) {
+      jb = leaf.over;
+      fc = leaf.centre_value;
+    } else if (leaf.over.lipschitz) {
+      // A part of a leaf: the leaf's gradient enclosure holds over it, and f over it is enclosed
+      // by the mean value form about its centre, f(c) + grad f(leaf) . (b - c) (R. E. Moore,
+      // R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM 2009, Sec. 6.4).
+      fc = equation.value_enclosure({centre, centre});
+      jb.grad = leaf.over.grad;
+      jb.f = fc;
+      for (int i = 0; i < 3; ++i)
+        jb.f = add(jb.f, mul(jb.grad[i], sub(Interval{b.lo[i], b.hi[i]}, iv::point(centre[i]))));
+    } else {
+      jb = equation.interval_gradient(b);
+      fc = equation.value_enclosure({centre, centre});
+    }
     if (jb.f.excludes_zero()) return true;
     if (!jb.lipschitz) return false;
-    const Vec3 centre = b.center();
-    const Interval fc = equation.value_enclosure({centre, centre});
     Interval mean = mul(l, fc), natural = mul(l, jb.f);
     for (int i = 0; i < 3; ++i) {
       const Interval side{b.lo[i], b.hi[i]};
@@ -338,7 +365,8 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
       mean = add(mean, mul(slope, sub(side, iv::point(centre[i]))));
     }
     double half_square = std::max(natural.lo, mean.lo) * (1.0 - kRound);
-    if (lower_sqrt(2.0 * half_square) < threshold) half_square = std::max(half_square, second_order_bound(b));
+    if (lower_sqrt(2.0 * half_square) < threshold)
+      half_square = std::max(half_square, second_order_bound(b, leaf, whole));
     const double b2 = lower_sqrt(2.0 * half_square);
     if (b2 < threshold) return false;
     bound = b2;
@@ -360,7 +388,7 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
       if (!(have_k && k.contains(cell.box)) && norm(p - s) <= distance + cells.leaf_diagonal)
         out.rivals.push_back(s);
     }
-    pieces.push_back({cell.box, 0});
+    pieces.push_back({cell.box, 0, cell.leaf, cell.box});
   }
   // Pieces of the leaves, depth first, up to 16 levels below the leaves and the box budget.
   while (!pieces.empty()) {
@@ -373,16 +401,26 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
       continue;
     }
     ++c.boxes;
-    if (lagrangian_settled(piece.box, bound)) continue;
+    const LeafEnclosures leaf = cells.leaf_enclosures.get(equation, piece.leaf, piece.leaf_box);
+    if (lagrangian_settled(piece.box, leaf, piece.depth == 0, bound)) continue;
     // Halved along the edges at least half its longest (a flat leaf of a flat box is not made
-    // flatter).
+    // flatter), whole along the others: the parts cover b.
     const Box3& b = piece.box;
     const double longest = b.max_edge();
     int axes = 0;
     for (int k = 0; k < 3; ++k)
       if (b.hi[k] - b.lo[k] >= 0.5 * longest) axes |= 1 << k;
-    for (int octant = 0; octant < 8; ++octant)
-      if ((octant & ~axes) == 0) pieces.push_back({octant_of(b, octant), piece.depth + 1});
+    for (int octant = 0; octant < 8; ++octant) {
+      if ((octant & ~axes) != 0) continue;
+      const Box3 half = octant_of(b, octant);
+      Box3 part = b;
+      for (int k = 0; k < 3; ++k)
+        if ((axes >> k) & 1) {
+          part.lo[k] = half.lo[k];
+          part.hi[k] = half.hi[k];
+        }
+      pieces.push_back({part, piece.depth + 1, piece.leaf, piece.leaf_box});
+    }
   }
   c.lower_bound = std::min(lower, distance);
   c.certified = Certificate::meets_gap(distance, c.lower_bound, c.absolute_gap);
