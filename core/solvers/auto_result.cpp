@@ -1,9 +1,6 @@
 #include "solvers/auto_result.hpp"
 
 #include <algorithm>
-#include <cmath>
-
-#include "projection/certificate.hpp"
 
 namespace footpoint::curve {
 
@@ -12,20 +9,6 @@ void add_distinct_minimum(std::vector<Minimum>& minima, Vec3 x, double same, con
     return norm(Vec3{k.foot[0], k.foot[1], k.foot[2]} - x) <= same;
   });
   if (!known) minima.push_back(m);
-}
-
-AnswerMultiplicity tied_feet(const ProjectionResult& r, Vec3 p, const std::vector<ReachedFoot>& reached) {
-  AnswerMultiplicity m;
-  m.computed = true;
-  const Vec3 answer{r.foot[0], r.foot[1], r.foot[2]};
-  const double gap =
-      std::fmax(Certificate::kRelativeGap * r.distance, Certificate::absolute_gap_at(p, answer));
-  m.feet.push_back(r.foot);
-  for (const ReachedFoot& f : reached)
-    if (std::abs(f.distance - r.distance) <= gap)
-      m.add_distinct({f.foot.x, f.foot.y, f.foot.z}, kDistinctFoot * (1.0 + norm(f.foot)));
-  m.settle();
-  return m;
 }
 
 void finish_auto_result(ProjectionResult& r, bool met, int iterations, double step, int starts,

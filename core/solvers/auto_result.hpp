@@ -1,6 +1,5 @@
 // How the two curve searches (implicit_curve_auto, parametric_curve_auto) finish their answer:
-// the local minima they keep for all_minima, told apart by foot point, and the result at the best;
-// and how the implicit searches (curves and surfaces) tell a tie from the points they reached.
+// the local minima they keep for all_minima, told apart by foot point, and the result at the best.
 #pragma once
 #include <array>
 #include <vector>
@@ -21,17 +20,5 @@ void add_distinct_minimum(std::vector<Minimum>& minima, Vec3 x, double same, con
 void finish_auto_result(ProjectionResult& r, bool met, int iterations, double step, int starts,
                         const Options& options, std::vector<Minimum> minima,
                         std::vector<std::array<double, 3>> trace);
-
-// A point of the geometry a search reached (a solve's end, an edge or singular point) and its
-// distance to p.
-struct ReachedFoot {
-  Vec3 foot;
-  double distance;
-};
-
-// The answer r's multiplicity among the points reached: tied with the distinct feet (more than
-// kDistinctFoot (1 + |foot|) apart) whose distance is within the certificate's gap of r's, the
-// answer's first, when there is more than one; unique otherwise.
-AnswerMultiplicity tied_feet(const ProjectionResult& r, Vec3 p, const std::vector<ReachedFoot>& reached);
 
 }  // namespace footpoint::curve

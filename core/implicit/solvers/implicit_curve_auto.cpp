@@ -4,12 +4,13 @@
 #include <cmath>
 #include <vector>
 
+#include "implicit/geometry/implicit_curve_differentials.hpp"
 #include "implicit/solvers/curve_descent.hpp"
 #include "implicit/solvers/foot_refinement.hpp"
 #include "implicit/solvers/implicit_curve_certificate.hpp"
-#include "implicit/solvers/implicit_curve_multiplicity.hpp"
 #include "implicit/solvers/implicit_curve_summary.hpp"
 #include "implicit/solvers/lagrange_newton.hpp"
+#include "solvers/answer_multiplicity.hpp"
 #include "solvers/auto_result.hpp"
 
 namespace footpoint::curve {
@@ -150,7 +151,7 @@ ProjectionResult search(std::span<const DiscoveredCurve* const> factors, const B
   const DiscoveredCurve *best_on = nullptr, *best_met_on = nullptr;
   std::vector<std::array<double, 3>> trace, best_trace, best_met_trace;
   std::vector<Minimum> minima;
-  std::vector<ImplicitMinimum> found;  // every minimum solved, for the multiplicity
+  std::vector<ReachedFoot> found;  // every minimum solved, for the multiplicity
   int starts = 0;
   // The sample with the least bound d0 - h/2 of the distance to its stretch of curve.
   const DiscoveredCurve* lowest_on = nullptr;
@@ -257,7 +258,19 @@ ProjectionResult search(std::span<const DiscoveredCurve* const> factors, const B
     mark_singular(best.residuals);
   }
   r = implicit_result(best_on->equations.planar(), p, best.x, "auto", best.residuals);
-  r.summary.multiplicity = implicit_curve_multiplicity(best.jet, p, r, found);
+  // flat to second order (solvers/answer_multiplicity.hpp): with the arc length s, the unit
+  // tangent T and the curvature vector κ of [Curve] eq. (16), φ(s) = ½|X(s) - p|^2 has
+  // φ'' = <T, T> + <κ, X - p> = 1 + <κ, X - p>, which vanishes when p is the centre of the
+  // osculating circle: the centre of a circle, or a point of a sphere's and a plane's circle of
+  // intersection's axis. The search solves every sample's minimum that may beat the best by the
+  // samples' bound, so a tie within the gap is among `found`.
+  const auto flat = [&] {
+    Vec3 kappa;
+    return curvature_vector(best.jet, kappa) &&
+           std::abs(1.0 + dot(kappa, Vec3{r.foot[0], r.foot[1], r.foot[2]} - p)) <= kFlatMinimum;
+  };
+  r.summary.multiplicity =
+      answer_multiplicity(r, p, flat, found, [](const ReachedFoot& f) { return f.foot; });
   // a continuum of nearest points: the answer stands for all of them, no arbitrary sample
   if (r.summary.multiplicity.kind == Multiplicity::continuum)
     minima.assign(1, {r.foot, r.params, r.distance, r.summary.location});

@@ -7,7 +7,7 @@
 #include "implicit/solvers/implicit_surface_certificate.hpp"
 #include "implicit/solvers/implicit_surface_lagrange.hpp"
 #include "implicit/solvers/implicit_surface_methods.hpp"
-#include "implicit/solvers/implicit_surface_multiplicity.hpp"
+#include "solvers/answer_multiplicity.hpp"
 #include "solvers/iteration_control.hpp"
 
 namespace footpoint::surface_implicit {
@@ -148,7 +148,7 @@ class Search {
   const Candidate& best() const { return best_; }
   int starts() const { return starts_; }
   // Every point of S considered: the solves' ends, the box's edge points, the singular points.
-  const std::vector<curve::ReachedFoot>& reached() const { return reached_; }
+  const std::vector<ReachedFoot>& reached() const { return reached_; }
 
  private:
   const ImplicitSurfaceEquation& equation_;
@@ -157,7 +157,7 @@ class Search {
   const curve::IterationControl& control_;
   Candidate best_;
   int starts_ = 0;
-  std::vector<curve::ReachedFoot> reached_;
+  std::vector<ReachedFoot> reached_;
   std::vector<Candidate>* minima_ = nullptr;
 };
 
@@ -244,7 +244,22 @@ ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
   r.summary.starts = search.starts();
   r.summary.certificate = certificate;
   if (!certify) r.summary.certificate.computed = false;
-  r.summary.multiplicity = implicit_surface_multiplicity(equation, p, r, search.reached());
+  // flat to second order (solvers/answer_multiplicity.hpp): with p - X = l grad f (the Lagrange
+  // condition), the Hessian of ½|x - p|^2 on S at X is the Lagrangian's I + l H(X) on the tangent
+  // plane ([NW06] Theorem 12.5), whose least eigenvalue vanishes when p is a centre of curvature
+  // of S at X: the centre of a sphere, a point on a surface of revolution's axis facing its
+  // circle of feet. The points reached: the solves' ends, the box's edge points, the singular points.
+  const auto flat = [&] {
+    const Vec3 answer{r.foot[0], r.foot[1], r.foot[2]};
+    const ImplicitSurfaceJet j = equation.jet(answer);
+    const double g2 = norm2(j.grad);
+    if (!(g2 > 0.0)) return false;
+    const double l = dot(p - answer, j.grad) / g2;
+    return std::fabs(tangent_form(lagrangian_hessian(j, l), j.grad / std::sqrt(g2)).least_eigenvalue()) <=
+           kFlatMinimum;
+  };
+  r.summary.multiplicity =
+      answer_multiplicity(r, p, flat, search.reached(), [](const ReachedFoot& f) { return f.foot; });
   r.trace = std::move(trace);
   if (options.all_minima) {
     // The answer first, then the other local minima found, nearest first, each foot once.

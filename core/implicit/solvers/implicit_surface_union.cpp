@@ -7,7 +7,7 @@
 
 #include "implicit/solvers/implicit_surface_auto.hpp"
 #include "implicit/solvers/implicit_surface_certificate.hpp"
-#include "solvers/auto_result.hpp"
+#include "solvers/answer_multiplicity.hpp"
 
 namespace footpoint::surface_implicit {
 
@@ -44,7 +44,7 @@ ProjectionResult implicit_surface_union_auto(std::span<const SurfacePiece> piece
   int starts = 0;
   double lower = r.distance;
   bool computed = true;
-  std::vector<curve::ReachedFoot> reached;
+  std::vector<ReachedFoot> reached;
   std::vector<Minimum> minima;
   const bool certify = options.certify.value_or(true);
   for (std::size_t i = 0; i < answers.size(); ++i) {
@@ -82,7 +82,7 @@ ProjectionResult implicit_surface_union_auto(std::span<const SurfacePiece> piece
       c.reason = CertificateReason::budget_exhausted;
   }
   if (r.summary.multiplicity.kind != Multiplicity::continuum)
-    r.summary.multiplicity = curve::tied_feet(r, p, reached);
+    r.summary.multiplicity = tied_feet(r, p, reached);
   if (options.all_minima) {
     // The answer's list first, then the other pieces' minima, nearest first, each foot once.
     std::stable_sort(minima.begin(), minima.end(),

@@ -6,7 +6,7 @@
 // of a union is the nearest of the nearest points of its parts, and the union's distance is the
 // least of the parts', so its certified lower bound is the least of theirs. Feet of different
 // factor surfaces at the same distance (within the certificate's gap) are a tie, by the rule of
-// the implicit searches (solvers/auto_result.hpp, tied_feet); a foot on two factor surfaces at
+// every search (solvers/answer_multiplicity.hpp, tied_feet); a foot on two factor surfaces at
 // once is a singular point of f.
 #pragma once
 #include <span>

@@ -5,10 +5,10 @@
 
 #include "parametric/geometry/box_enclosure.hpp"
 #include "parametric/solvers/curve_kink_minimum.hpp"
-#include "parametric/solvers/curve_multiplicity.hpp"
 #include "parametric/solvers/parametric_curve_certificate.hpp"
 #include "parametric/solvers/parametric_curve_summary.hpp"
 #include "parametric/solvers/parametric_newton.hpp"
+#include "solvers/answer_multiplicity.hpp"
 #include "solvers/auto_result.hpp"
 #include "solvers/iteration_control.hpp"
 
@@ -193,7 +193,17 @@ ProjectionResult parametric_curve_auto(const CurveFormulas& formulas, const Para
     met = true;
   }
   if (best.distance < kInfinity) {
-    r.summary.multiplicity = curve_multiplicity(formulas, p, r, found);
+    // flat to second order (solvers/answer_multiplicity.hpp): φ''(t) = |c'|^2 + <c - p, c''> =
+    // |c'|^2 (1 - κ <n, p - c>) vanishes to kFlatMinimum of |c'|^2, p at the centre of the
+    // osculating circle. The minima are the local solves' (every sample that could hold the
+    // nearest point starts one) and the certificate's; only those that tie have their foot evaluated.
+    const auto flat = [&] {
+      const CurveJet j = formulas.jet(r.params[0]);
+      const double speed2 = dot(j.d1, j.d1);
+      return std::abs(speed2 + dot(j.c - p, j.d2)) <= kFlatMinimum * speed2;
+    };
+    r.summary.multiplicity =
+        answer_multiplicity(r, p, flat, found, [&](const CurveMinimum& f) { return formulas.point(f.t); });
     // a continuum of nearest points: the answer stands for all of them, no arbitrary sample
     if (r.summary.multiplicity.kind == Multiplicity::continuum)
       minima.assign(1, {r.foot, r.params, r.distance, r.summary.location});

@@ -5,6 +5,7 @@
 #include "parametric/solvers/surface_certificate.hpp"
 #include "parametric/solvers/surface_result.hpp"
 #include "parametric/solvers/surface_search.hpp"
+#include "solvers/answer_multiplicity.hpp"
 
 namespace footpoint::surface {
 
@@ -85,8 +86,6 @@ void SurfaceSearch::certify(ProjectionResult& r, bool within) {
 }
 
 AnswerMultiplicity SurfaceSearch::multiplicity(const ProjectionResult& r) const {
-  AnswerMultiplicity m;
-  m.computed = true;
   const double u = r.params[0], v = r.params[1];
   const SurfaceJet j = formulas_.jet(u, v);
   const Vec3 d = j.s - p_;
@@ -107,38 +106,38 @@ AnswerMultiplicity SurfaceSearch::multiplicity(const ProjectionResult& r) const 
   } else if (free_v) {
     smallest = h[1][1];
   }
-  if (!pole && smallest <= 1e-8 * scale && r.distance > 0.0) {
+  if (!pole && smallest <= kFlatMinimum * scale && r.distance > 0.0) {
+    AnswerMultiplicity m;
+    m.computed = true;
     m.kind = Multiplicity::continuum;
     return m;
   }
-  const double gap = std::fmax(Certificate::kRelativeGap * r.distance, Certificate::absolute_gap_at(p_, j.s));
-  m.feet.push_back(r.foot);
+  TiedFeet ties(r, p_, j.s);
   auto consider = [&](const Vec3& foot, double distance) {
-    if (!(std::abs(distance - r.distance) <= gap)) return;
-    m.add_distinct({foot.x, foot.y, foot.z}, kDistinctFoot * (1.0 + norm(foot)));
+    if (ties.ties(distance)) ties.add(foot);
   };
   for (int i = 0; i < minimisers_count_; ++i) {
     const Minimiser& k = minimisers_[i];
     if (k.complete) {
       consider(k.foot, k.distance);
-    } else if (k.distance <= r.distance + gap) {
+    } else if (k.distance <= r.distance + ties.gap()) {
       // A basin left early whose lower bound does not exclude a tie: solved to the end, unless
       // its predicted minimiser is a copy of a foot already listed (a periodic or self-covering
       // parametrisation reaches one foot from many (u, v)): the prediction is Newton's from 1-3
       // steps, within kCopyOfFoot of its minimiser's foot, where distinct tied feet are far apart.
       const Vec3 predicted = formulas_.point(k.u, k.v);
       const double near = kCopyOfFoot * (1.0 + norm(predicted));
-      const bool copy = std::any_of(m.feet.begin(), m.feet.end(), [&](const std::array<double, 3>& f) {
-        return norm2(Vec3{f[0], f[1], f[2]} - predicted) <= near * near;
-      });
+      const bool copy =
+          std::any_of(ties.feet().begin(), ties.feet().end(), [&](const std::array<double, 3>& f) {
+            return norm2(Vec3{f[0], f[1], f[2]} - predicted) <= near * near;
+          });
       if (copy) continue;
       const LocalSolution t = solve_across_seams(k.u, k.v);
       if (t.status == Status::converged) consider(t.jet.s, t.distance);
     }
   }
   for (const Found& f : all_) consider(f.sol.jet.s, f.sol.distance);
-  m.settle();
-  return m;
+  return ties.settle();
 }
 
 std::vector<std::array<double, 2>> SurfaceSearch::parameter_copies(std::vector<std::array<double, 2>> seeds,
