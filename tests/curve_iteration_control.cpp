@@ -1,13 +1,38 @@
-// solvers/iteration_control: how a step is classified (converged, at the rounding floor,
-// running) and how Options become a control.
+// solvers/iteration_control: how every method reads the Options (the surfaces' criteria
+// included), how a step is classified (converged, at the rounding floor, running) and how Options
+// become a control.
 #include <doctest/doctest.h>
 
 #include <vector>
 
+#include "parametric/solvers/surface_convergence.hpp"
 #include "solvers/iteration_control.hpp"
 
 using namespace footpoint;
 using curve::IterationControl;
+
+TEST_CASE("step_tolerance and iteration_budget: the Options' values when given, else the defaults") {
+  Options o;
+  CHECK(step_tolerance(o) == 1e-15);
+  CHECK(iteration_budget(o, 77) == 77);
+  o.tolerance = -1.0;  // not given
+  o.max_iterations = -3;
+  CHECK(step_tolerance(o) == 1e-15);
+  CHECK(iteration_budget(o, 77) == 77);
+  o.tolerance = 1e-10;
+  o.max_iterations = 5;
+  CHECK(step_tolerance(o) == 1e-10);
+  CHECK(iteration_budget(o, 77) == 5);
+  // the surfaces' criteria read them so; their scale is the domain's, max(|bounds|, widths) = 5
+  const ParamBox box{-2, 3, 0, 1};
+  const surface::ConvergenceCriteria given = surface::convergence_criteria(o, box, 77);
+  CHECK(given.tolerance == 1e-10);
+  CHECK(given.max_iterations == 5);
+  CHECK(given.scale == 5.0);
+  const surface::ConvergenceCriteria defaults = surface::convergence_criteria(Options{}, box, 77);
+  CHECK(defaults.tolerance == 1e-15);
+  CHECK(defaults.max_iterations == 77);
+}
 
 TEST_CASE("progress: the step tolerance, the rounding floor that no longer shrinks, and running") {
   const IterationControl c;  // 1e-15, floor 100x

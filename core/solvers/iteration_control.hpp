@@ -1,4 +1,12 @@
-// The stopping rules shared by the curve solvers, taken from the request's Options.
+// How every iterative method reads the request's Options (tolerance, iteration budget), and the
+// stopping rule of the curve solvers (implicit curves and surfaces' paper methods, parametric
+// curves). The parametric surfaces' methods read the Options here too but stop by a rule of their
+// own (parametric/solvers/surface_convergence.hpp), which differs in substance: it tests the step
+// and the orthogonality residual together, against the domain's parameter scale, with the
+// residual's rounding floor and a stall count, and masks the residual of a parameter held on its
+// bound; the rule here stops on the step alone, against max(1, |X|), and the residuals are judged
+// once the iteration has stopped (a stall is reported as such, degenerate). Either rule in the
+// other's place would stop the iterations at other steps, and so change their answers.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -8,12 +16,30 @@
 
 #include "projection/projection_result.hpp"
 
+namespace footpoint {
+
+// The default relative step tolerance: 1e-15 is a few units in the last place, the iterates have
+// stopped moving.
+inline constexpr double kDefaultTolerance = 1e-15;
+
+// options.tolerance when given (> 0), else kDefaultTolerance.
+inline double step_tolerance(const Options& options) {
+  return options.tolerance > 0.0 ? options.tolerance : kDefaultTolerance;
+}
+
+// options.max_iterations when given (> 0), else the method's own budget.
+inline int iteration_budget(const Options& options, int method_default) {
+  return options.max_iterations > 0 ? options.max_iterations : method_default;
+}
+
+}  // namespace footpoint
+
 namespace footpoint::curve {
 
 struct IterationControl {
   // Stop when the step is below step_tolerance * max(1, |X|) (relative position / parameter
-  // step): 1e-15 is a few units in the last place, the iterates have stopped moving.
-  double step_tolerance = 1e-15;
+  // step).
+  double step_tolerance = kDefaultTolerance;
   // Rounding floor: a step below floor_factor * step_tolerance * max(1, |X|) that no longer
   // shrinks is rounding noise of the update formula, not progress; the iteration stops there too.
   double floor_factor = 100.0;
@@ -56,11 +82,9 @@ struct IterationControl {
 inline IterationControl make_control(const Options& options, int default_max_iterations,
                                      std::vector<std::array<double, 3>>* trace) {
   IterationControl c;
-  if (options.tolerance > 0.0) {
-    c.step_tolerance = options.tolerance;
-    c.residual_tolerance = std::max(options.tolerance, c.residual_tolerance);
-  }
-  c.max_iterations = options.max_iterations > 0 ? options.max_iterations : default_max_iterations;
+  c.step_tolerance = step_tolerance(options);
+  if (options.tolerance > 0.0) c.residual_tolerance = std::max(options.tolerance, c.residual_tolerance);
+  c.max_iterations = iteration_budget(options, default_max_iterations);
   c.trace = options.trace ? trace : nullptr;
   c.max_distance = options.max_distance;
   return c;

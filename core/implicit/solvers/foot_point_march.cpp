@@ -24,7 +24,7 @@ ProjectionResult foot_point_march(const ImplicitEquations& equations, const Box3
   // 10,000 rounds, so the default budget stops it early and says so (max_iterations).
   const IterationControl control = make_control(options, 500, &trace);
   IterationControl landing = control;
-  landing.max_iterations = options.max_iterations > 0 ? options.max_iterations : kPaperIterations;
+  landing.max_iterations = iteration_budget(options, kPaperIterations);
   landing.trace = nullptr;
   const Landing start = land_on_curve(equations, paper_start(p, options, equations.planar()), landing);
   const Landing end = march_on_curve(equations, p, start, control, landing,

@@ -18,9 +18,9 @@ double ConvergenceCriteria::step_scale(double u, double v) const {
 ConvergenceCriteria convergence_criteria(const Options& options, const ParamBox& box,
                                          int default_max_iterations) {
   ConvergenceCriteria c;
-  c.tolerance = options.tolerance > 0.0 ? options.tolerance : kDefaultTolerance;
+  c.tolerance = step_tolerance(options);
   c.scale = parameter_scale(box);
-  c.max_iterations = options.max_iterations > 0 ? options.max_iterations : default_max_iterations;
+  c.max_iterations = iteration_budget(options, default_max_iterations);
   return c;
 }
 

@@ -1,4 +1,6 @@
-// When a surface projection counts as converged, shared by every surface method.
+// When a surface projection counts as converged, shared by every surface method. The tolerance
+// and the budget are read from the Options as for every method (solvers/iteration_control.hpp,
+// which says why the curves' stopping rule is another).
 //
 // Both conditions are required (numerical honesty):
 //  - the parameters have settled: the last increment |Δt|∞ <= tol x max(domain scale, |u|, |v|)
@@ -17,11 +19,10 @@
 
 #include "parametric/geometry/parametric_surface.hpp"
 #include "projection/projection_result.hpp"
+#include "solvers/iteration_control.hpp"
 
 namespace footpoint::surface {
 
-// Default relative tolerance: parameters converged to ~1e-15 relative.
-inline constexpr double kDefaultTolerance = 1e-15;
 // Largest relative residual accepted for an iteration stalled at the rounding level: orthogonal
 // to half the digits at least, else it is no stationary point at all.
 inline constexpr double kStalledResidual = 1e-8;
