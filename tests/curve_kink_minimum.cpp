@@ -1,5 +1,5 @@
 // `auto` on a parametric curve whose nearest point is a kink of its formulas (parametric/solvers/
-// curve_kink_minimum.hpp): converged, location kink, residual 0, the kink's parameter to its last bit.
+// kink_minimum.hpp, its curves): converged, location kink, residual 0, the kink's parameter to its last bit.
 // References in closed form: (t, |t|) from (0, -1/2) is nearest at its corner t = 0, 1/2 away;
 // (t, max(t, -t/2)) from (0, -1) at its corner, 1 away; the curve (t, -|t|) has its corner 1/2
 // from (0, -1/2) but its nearest points at t = ±1/4, √2/4 away (a kink that is a maximum of the

@@ -123,7 +123,7 @@ TEST_CASE("auto is never farther than a brute-force grid search on random points
        "sin(v)"},
       {"saddle", {-2, 2}, {-2, 2}, "u", "v", "u*u*u-3*u*v*v+0.5*sin(4*u*v)"},
       {"enneper", {-2, 2}, {-2, 2}, "u-u^3/3+u*v^2", "v-v^3/3+v*u^2", "u^2-v^2"},
-      // a kink along the circle u^2 + v^2 = 1/2 (parametric/solvers/surface_kink_minimum.hpp)
+      // a kink along the circle u^2 + v^2 = 1/2 (parametric/solvers/kink_minimum.hpp)
       {"kinked", {-1, 1}, {-1, 1}, "u", "v", "abs(u^2+v^2-0.5)"},
       // a kink along u = v^2, which meets the box at its corners (1, ±1)
       {"kinked_corners", {-1, 1}, {-1, 1}, "u", "v", "abs(u-v^2)"},

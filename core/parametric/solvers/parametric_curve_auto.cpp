@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "parametric/geometry/box_enclosure.hpp"
-#include "parametric/solvers/curve_kink_minimum.hpp"
+#include "parametric/solvers/kink_minimum.hpp"
 #include "parametric/solvers/parametric_curve_certificate.hpp"
 #include "parametric/solvers/parametric_curve_summary.hpp"
 #include "parametric/solvers/parametric_newton.hpp"

@@ -35,7 +35,7 @@ struct LocalSolution {
   // bound on its distance, `jet` the one at the last iterate; status is not meaningful.
   bool abandoned = false;
   // Ended on a kink curve of the formulas, stationary there in Clarke's sense
-  // (parametric/solvers/surface_kink_minimum.hpp): converged, with location kink.
+  // (parametric/solvers/kink_minimum.hpp): converged, with location kink.
   bool kink = false;
 };
 

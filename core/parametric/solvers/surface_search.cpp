@@ -2,7 +2,7 @@
 #include <cmath>
 #include <limits>
 
-#include "parametric/solvers/surface_kink_minimum.hpp"
+#include "parametric/solvers/kink_minimum.hpp"
 #include "parametric/solvers/surface_search.hpp"
 
 namespace footpoint::surface {

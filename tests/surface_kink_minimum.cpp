@@ -1,5 +1,5 @@
 // auto on a surface whose nearest point lies on a kink curve of its formulas
-// (parametric/solvers/surface_kink_minimum.hpp): converged, location kink, residual 0, against minima worked
+// (parametric/solvers/kink_minimum.hpp): converged, location kink, residual 0, against minima worked
 // out by hand; a kink that is no minimum of the distance is not claimed.
 #include <doctest/doctest.h>
 

@@ -1,9 +1,77 @@
-#include "parametric/solvers/surface_kink_minimum.hpp"
+#include "parametric/solvers/kink_minimum.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
+
+namespace footpoint {
+
+namespace {
+
+// Bisects [a, b] (a < b), across which a slope changes sign, down to adjacent doubles, at most
+// `steps` halvings: `at(x, point)` evaluates the point at x (false where it is not finite: the
+// bisection fails), `left(point)` says whether it takes a's place (its slope has a's sign) or b's.
+template <class Point, class At, class Left>
+bool bisect_slope_sign(double& a, double& b, Point& pa, Point& pb, int steps, At&& at, Left&& left) {
+  for (int i = 0; i < steps; ++i) {
+    const double m = 0.5 * (a + b);
+    if (!(m > a && m < b)) break;
+    Point pm;
+    if (!at(m, pm)) return false;
+    if (left(pm))
+      a = m, pa = pm;
+    else
+      b = m, pb = pm;
+  }
+  return true;
+}
+
+}  // namespace
+
+}  // namespace footpoint
+
+namespace footpoint::curve {
+
+namespace {
+
+constexpr double kU = 0x1p-53;
+
+struct Slope {
+  double g = 0.0;     // φ'(t)
+  double dg = 0.0;    // |φ''(t)|
+  double size = 0.0;  // |c'| |c - p|: the scale of φ'(t)'s rounding
+  double phi = 0.0;   // φ(t)
+};
+
+Slope slope_at(const CurveFormulas& formulas, Vec3 p, double t) {
+  const CurveJet j = formulas.jet(t);
+  const Vec3 d = j.c - p;
+  return {dot(d, j.d1), std::abs(dot(j.d1, j.d1) + dot(d, j.d2)), norm(j.d1) * norm(d), 0.5 * dot(d, d)};
+}
+
+}  // namespace
+
+bool kink_minimum(const CurveFormulas& formulas, Vec3 p, double scale, double& t) {
+  const double h = 16.0 * kU * std::max(std::abs(t), scale);
+  double a = t - h, b = t + h;
+  Slope sa = slope_at(formulas, p, a), sb = slope_at(formulas, p, b);
+  const auto kink = [](const Slope& l, const Slope& r, double width) {
+    const double smooth = 1e3 * width * std::max(l.dg, r.dg) + 64.0 * kU * std::max(l.size, r.size);
+    return l.g <= 0.0 && r.g >= 0.0 && r.g - l.g > smooth;
+  };
+  if (!std::isfinite(sa.g) || !std::isfinite(sb.g) || !kink(sa, sb, b - a)) return false;
+  // φ' keeps its signs on each side of the kink: bisect on them to adjacent doubles
+  const auto at = [&](double x, Slope& s) {
+    s = slope_at(formulas, p, x);
+    return std::isfinite(s.g);
+  };
+  if (!bisect_slope_sign(a, b, sa, sb, 64, at, [](const Slope& s) { return s.g <= 0.0; })) return false;
+  t = sa.phi <= sb.phi ? a : b;
+  return true;
+}
+
+}  // namespace footpoint::curve
 
 namespace footpoint::surface {
 
@@ -181,13 +249,14 @@ bool boundary_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box,
       if (!best.finite) return false;
     } else {
       if (!bracketed) return false;
-      for (int i = 0; i < 160; ++i) {
-        const double mid = 0.5 * (a.t[k] + b.t[k]);
-        if (mid == a.t[k] || mid == b.t[k]) break;
-        const Local m = point(mid);
-        if (!m.finite) return false;
-        (m.g[k] < 0.0 ? a : b) = m;
-      }
+      // as a curve's kink (the edge is one): bisection on the sign of the slope along the edge
+      double xa = a.t[k], xb = b.t[k];
+      const auto at = [&](double x, Local& l) {
+        l = point(x);
+        return l.finite;
+      };
+      if (!bisect_slope_sign(xa, xb, a, b, 160, at, [&](const Local& l) { return l.g[k] < 0.0; }))
+        return false;
       best = a.f <= b.f ? a : b;
     }
   }
@@ -257,7 +326,7 @@ bool point_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, co
 }
 
 // Steps 1-3 of the header: a minimum on a kink curve K, from the unconverged iterate t0.
-bool curve_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, double scale,
+bool kink_curve_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, double scale,
                         double margin, LocalSolution& s) {
   const P2 t0{s.u, s.v};
   const Local l0 = local_at(formulas, p, t0);
@@ -342,7 +411,7 @@ bool kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Ve
   if (!inside(box, {s.u, s.v}, margin)) return boundary_kink_minimum(formulas, box, p, scale, margin, s);
   const Local start = local_at(formulas, p, {s.u, s.v});
   if (!start.finite) return false;
-  return curve_kink_minimum(formulas, box, p, scale, margin, s) ||
+  return kink_curve_minimum(formulas, box, p, scale, margin, s) ||
          point_kink_minimum(formulas, box, p, scale, margin, start, {0.0, 0.0}, 1e-4 * scale, s);
 }
 

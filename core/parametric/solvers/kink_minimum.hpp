@@ -1,10 +1,28 @@
-// A minimum of f(t) = ½|s(t) - p|^2 on a kink curve of a parametric surface's formulas (abs, min,
+// Minima of the distance at a kink of a parametric curve's or surface's formulas (abs, min, max):
+// the one-dimensional case, a curve's parameter, and the two-dimensional one, a surface's; both
+// refine a minimum along a line of parameters (the curve's; a surface's edge, where a kink curve
+// meets the boundary) by the same bisection on the sign of the slope down to adjacent doubles, the
+// end with the smaller distance taken.
+//
+// Curves. A minimum of φ(t) = ½|c(t) - p|^2 at a kink of a parametric curve's formulas (abs, min,
+// max: c' jumps at t*). φ is not differentiable there and Newton does not converge: its iterates, or
+// a bracket's bisection, close in on t* while φ'(t) = <c(t) - p, c'(t)> keeps its size on each side.
+// t* is a local minimum when its one-sided slopes bracket zero, φ'(t*-) <= 0 <= φ'(t*+): zero lies
+// in Clarke's generalised gradient, the hull of the two (F. H. Clarke, Optimization and Nonsmooth
+// Analysis, Wiley 1983, Section 2.3: the stationarity of a locally Lipschitz function). That is the
+// KKT condition of a kink, so its residual is zero.
+//
+// Test: a few units in the last place of the parameter scale on each side of t, φ' changes sign
+// from <= 0 to >= 0 and jumps by more than a thousand times what φ'' allows over that width (a
+// smooth minimum's φ' changes sign too, by no more than φ''; it is no kink). Refinement: bisection
+// on the sign of φ' down to adjacent doubles; the one of the two with the smaller φ is t*.
+//
+// Surfaces. A minimum of f(t) = ½|s(t) - p|^2 on a kink curve of a parametric surface's formulas (abs, min,
 // max: the partials of s jump across a curve K of the parameter plane, as for z = |u| along u = 0
 // or z = |u - v^2| along u = v^2). f is not differentiable on K and Newton does not converge there:
 // its iterates close in on K while the gradient keeps its size on each side.
 //
-// Stationarity (F. H. Clarke, Optimization and Nonsmooth Analysis, Wiley 1983, Section 2.3; the
-// curves' one-dimensional case is parametric/solvers/curve_kink_minimum.hpp): with g- and g+ the gradients of
+// Stationarity (Clarke, Section 2.3, as for curves above): with g- and g+ the gradients of
 // f on the two sides of K at a point t* of it, t* is stationary when 0 lies in their hull. As f is
 // continuous across K, g+ - g- is normal to K (the derivatives along K agree), so that is: the
 // derivative along K, D = <g±, τ>, vanishes, and along the normal n = (g+ - g-)/|g+ - g-| f falls
@@ -42,8 +60,17 @@
 // around it (the boundary's test where it ends at the boundary): z = |u| + |v| at (0, 0), z = sqrt(u^2 +
 // v^2) at its tip, z = min(u^2, v^2) along u = v up to the corner (1, 1).
 #pragma once
+#include "parametric/geometry/parametric_curve.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 #include "parametric/solvers/projected_newton.hpp"
+
+namespace footpoint::curve {
+
+// Whether φ has a kink minimum within a few units in the last place of `t` (the parameter scale
+// `scale`: the domain's width or |t|, whichever is larger); then `t` becomes it.
+bool kink_minimum(const CurveFormulas& formulas, Vec3 p, double scale, double& t);
+
+}  // namespace footpoint::curve
 
 namespace footpoint::surface {
 
