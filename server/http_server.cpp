@@ -40,7 +40,9 @@ struct RequestContext {
   bool active = false;  // false when httplib answered before pre-routing (malformed request)
   Clock::time_point start;
   std::string request_id;
-  RouteMatch match;  // matched once, by admission ({id} views the request's path)
+  RouteMatch match;             // matched once, by admission ({id} views the request's path)
+  std::size_t body_length = 0;  // Content-Length, read once by admission
+  std::string media;            // the Content-Type's media type, read once by admission
   std::size_t points = 0;
   std::string error_code;       // the code of the error answered, for the log line
   bool admitted = false;        // already checked when the client asked "Expect: 100-continue"
@@ -425,6 +427,8 @@ bool HttpServer::admit(const httplib::Request& req, httplib::Response& res) {
       return reject(res, ApiError(400, "bad_request", "conflicting Content-Length headers"), true);
   }
   const bool has_body = framing.chunked || framing.length > 0;
+  ctx.body_length = framing.length;
+  ctx.media = media_type(req.get_header_value("Content-Type"));
 
   // The route is matched here once; the handlers read it from the request's context.
   ctx.match = match_route(req.method, req.path);
@@ -564,7 +568,7 @@ bool HttpServer::accept_body(const httplib::Request& req, httplib::Response& res
                            "Content-Encoding " + encoding + " is not accepted; send the JSON uncompressed"),
                   true);
   // Points may also come as binary (application/octet-stream) to the projection routes.
-  const std::string media = media_type(req.get_header_value("Content-Type"));
+  const std::string& media = t_request.media;
   const Route route = t_request.match.route;
   const bool projection = route == Route::geometry_project || route == Route::project;
   if (media != "application/json" && !(projection && media == "application/octet-stream"))
@@ -613,8 +617,7 @@ void HttpServer::answer(const httplib::Request& req, httplib::Response& res, con
   ApiResponse r = custom_handler_
                       ? handler_(match, req.method, req.body, query, caller)
                       : api_.handle(match, req.method, req.body, query, caller,
-                                    RequestFormat{media_type(req.get_header_value("Content-Type")),
-                                                  req.get_header_value("Accept"), source});
+                                    RequestFormat{t_request.media, req.get_header_value("Accept"), source});
   t_request.points = r.points;
   t_request.release = std::move(r.release);
   // an answer that left part of the body unread is the connection's last: the rest cannot be
@@ -654,10 +657,9 @@ void HttpServer::install_routes() {
     const Route route = t_request.match.route;
     const bool as_sent = !custom_handler_ && !tls_ &&
                          (route == Route::geometry_project || route == Route::project) &&
-                         media_type(req.get_header_value("Content-Type")) == "application/octet-stream" &&
+                         t_request.media == "application/octet-stream" &&
                          answer_format(req.get_header_value("Accept")) != AnswerFormat::json;
-    std::size_t length = 0;
-    parse_length(req.get_header_value("Content-Length"), length);  // checked by admit
+    const std::size_t length = t_request.body_length;
     const int socket = as_sent ? connection_socket(req) : -1;
     if (socket < 0) {
       auto& mutable_req = const_cast<httplib::Request&>(req);
