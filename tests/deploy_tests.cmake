@@ -34,7 +34,7 @@ if(FOOTPOINT_SHELLCHECK)
                    ${CMAKE_SOURCE_DIR}/tests/e2e/server_security_e2e.sh)
 endif()
 
-# openapi.yaml through Redocly's linter with its recommended rules (tests/openapi_lint.sh installs
+# openapi.yaml through Redocly's linter with its recommended rules (tests/e2e/openapi_lint.sh installs
 # the version tests/tools/redocly/package-lock.json pins; skipped without npm).
 add_test(NAME openapi_lint COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/e2e/openapi_lint.sh ${CMAKE_SOURCE_DIR})
 set_tests_properties(openapi_lint PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300)
