@@ -22,8 +22,9 @@ import shutil
 import sys
 import tempfile
 
-# The units of core/ that have no test of their own yet, each with what covers it meanwhile. The list
-# only shrinks: a unit tested by its path must come off it, and a new unit must come with its test.
+# The units of core/ that have no test of their own yet, each with what covers it meanwhile. The
+# list only shrinks: a unit tested by its path must come off it, and a new unit comes with its
+# test.
 UNTESTED = [
     # batch/: through tests/cases/core/ (answers independent of batches and threads) and the server.
     "core/batch/batch.cpp",
@@ -54,30 +55,21 @@ UNTESTED = [
     "core/implicit/solvers/tangent_foot.cpp",
     # mesh/: through the meshes' tests of each geometry (tests/core/mesh/) and the server's.
     "core/mesh/bspline_mesh.cpp",
-    "core/mesh/equidistribution.cpp",
     "core/mesh/mesh.cpp",
     # parametric/: parametric curves' and surfaces' `auto` and its parts, through tests/cases/.
     "core/parametric/geometry/closure_sampling.cpp",
-    "core/parametric/geometry/curve_closure.cpp",
-    "core/parametric/geometry/nurbs_patches.cpp",
     "core/parametric/geometry/self_covering.cpp",
     "core/parametric/seeding/curve_parametric_samples.cpp",
     "core/parametric/seeding/parametric_curve_cells.cpp",
     "core/parametric/seeding/surface_refinement.cpp",
-    "core/parametric/solvers/curvature_circle.cpp",
-    "core/parametric/solvers/first_order.cpp",
     "core/parametric/solvers/hybrid.cpp",
-    "core/parametric/solvers/newton.cpp",
     "core/parametric/solvers/newton_direction.cpp",
     "core/parametric/solvers/parametric_curve_auto.cpp",
     "core/parametric/solvers/projection_arc_search.cpp",
     "core/parametric/solvers/surface_auto.cpp",
     "core/parametric/solvers/surface_convergence.cpp",
     "core/parametric/solvers/surface_result.cpp",
-    # projection/: the result types, under every suite's answers.
-    "core/projection/projection_result.cpp",
-    # seeding/, solvers/: the k-d tree and the piecewise search, under `auto` of every geometry.
-    "core/seeding/point_index.cpp",
+    # solvers/: the piecewise search, under `auto` of every geometry with partial formulas.
     "core/solvers/piecewise_nearest.cpp",
 ]
 
@@ -140,7 +132,8 @@ def check(root, untested):
             unit = unit_of(name, folders[mirrored])
             if unit is None:
                 problems.append(f"{where}: names no unit of {mirrored}/ (<unit>_test.cpp or "
-                                f"<unit>_<aspect>_test.cpp; a suite across units goes in tests/cases/)")
+                                f"<unit>_<aspect>_test.cpp; a suite across units goes in "
+                                f"tests/cases/)")
             else:
                 tested.add(f"{mirrored}/{unit}")
     all_units = units(root)
@@ -162,8 +155,8 @@ def check(root, untested):
             dirs[:] = []
             continue
         if folder != "." and any(n.endswith(".cpp") for n in names) and folder not in built:
-            problems.append(f"tests/{folder}/: test sources that no footpoint_test(... DIRS ...) of "
-                            f"tests/CMakeLists.txt builds")
+            problems.append(f"tests/{folder}/: test sources that no footpoint_test(... DIRS ...) "
+                            f"of tests/CMakeLists.txt builds")
     return problems, len(all_units), len(untested)
 
 
