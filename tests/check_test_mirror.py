@@ -63,7 +63,6 @@ UNTESTED = [
     "core/parametric/seeding/parametric_curve_cells.cpp",
     "core/parametric/seeding/surface_refinement.cpp",
     "core/parametric/solvers/hybrid.cpp",
-    "core/parametric/solvers/newton_direction.cpp",
     "core/parametric/solvers/parametric_curve_auto.cpp",
     "core/parametric/solvers/projection_arc_search.cpp",
     "core/parametric/solvers/surface_auto.cpp",
