@@ -62,12 +62,9 @@ UNTESTED = [
     "core/parametric/seeding/curve_parametric_samples.cpp",
     "core/parametric/seeding/parametric_curve_cells.cpp",
     "core/parametric/seeding/surface_refinement.cpp",
-    "core/parametric/solvers/hybrid.cpp",
     "core/parametric/solvers/parametric_curve_auto.cpp",
     "core/parametric/solvers/projection_arc_search.cpp",
     "core/parametric/solvers/surface_auto.cpp",
-    "core/parametric/solvers/surface_convergence.cpp",
-    "core/parametric/solvers/surface_result.cpp",
     # solvers/: the piecewise search, under `auto` of every geometry with partial formulas.
     "core/solvers/piecewise_nearest.cpp",
 ]
