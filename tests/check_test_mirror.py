@@ -59,7 +59,6 @@ UNTESTED = [
     # parametric/: parametric curves' and surfaces' `auto` and its parts, through tests/cases/.
     "core/parametric/geometry/closure_sampling.cpp",
     "core/parametric/geometry/self_covering.cpp",
-    "core/parametric/seeding/curve_parametric_samples.cpp",
     "core/parametric/seeding/parametric_curve_cells.cpp",
     "core/parametric/seeding/surface_refinement.cpp",
     "core/parametric/solvers/parametric_curve_auto.cpp",
