@@ -40,7 +40,6 @@ UNTESTED = [
     "core/geometry/compile_budget.cpp",
     # implicit/: implicit curves' and surfaces' `auto` and its parts, through tests/cases/curve/ and
     # tests/cases/surface/implicit_cases_test.cpp.
-    "core/implicit/geometry/implicit_surface.cpp",
     "core/implicit/seeding/curve_arc_samples.cpp",
     "core/implicit/seeding/curve_cell_tree.cpp",
     "core/implicit/seeding/curve_cells.cpp",
