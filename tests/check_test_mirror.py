@@ -56,7 +56,6 @@ UNTESTED = [
     "core/mesh/bspline_mesh.cpp",
     "core/mesh/mesh.cpp",
     # parametric/: parametric curves' and surfaces' `auto` and its parts, through tests/cases/.
-    "core/parametric/geometry/closure_sampling.cpp",
     "core/parametric/geometry/self_covering.cpp",
     "core/parametric/seeding/parametric_curve_cells.cpp",
     "core/parametric/seeding/surface_refinement.cpp",
