@@ -9,6 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "compile_definition.hpp"
 #include "implicit_fixtures.hpp"
 #include "mesh/mesh.hpp"
 
@@ -18,21 +19,11 @@ namespace {
 
 constexpr double kMeshPi = std::numbers::pi;
 
-std::shared_ptr<const CompiledGeometry> mesh_test_geometry(
-    GeometryType type, std::vector<formula::NamedFormula> formulas,
-    std::vector<std::pair<std::string, std::array<double, 2>>> domain) {
-  GeometryDefinition def;
-  def.type = type;
-  def.formulas = std::move(formulas);
-  def.domain = std::move(domain);
-  return compile_geometry(def);
-}
-
 }  // namespace
 
 TEST_CASE("mesh: a parametric circle is a closed polyline on the circle") {
-  const auto circle = mesh_test_geometry(GeometryType::parametric_curve, {{"x", "cos(t)"}, {"y", "sin(t)"}},
-                                         {{"t", {0, 2 * kMeshPi}}});
+  const auto circle = test::compile_definition(GeometryType::parametric_curve,
+                                               {{"x", "cos(t)"}, {"y", "sin(t)"}}, {{"t", {0, 2 * kMeshPi}}});
   const Mesh m = mesh_geometry(*circle, MeshOptions{16});
   CHECK(m.num_params == 1);
   CHECK(m.triangles.empty());
@@ -50,9 +41,9 @@ TEST_CASE("mesh: a parametric circle is a closed polyline on the circle") {
 }
 
 TEST_CASE("mesh: a parametric sphere is triangles with unit normals on the sphere") {
-  const auto sphere = mesh_test_geometry(GeometryType::parametric_surface,
-                                         {{"x", "cos(u)*cos(v)"}, {"y", "sin(u)*cos(v)"}, {"z", "sin(v)"}},
-                                         {{"u", {0, 2 * kMeshPi}}, {"v", {-kMeshPi / 2, kMeshPi / 2}}});
+  const auto sphere = test::compile_definition(
+      GeometryType::parametric_surface, {{"x", "cos(u)*cos(v)"}, {"y", "sin(u)*cos(v)"}, {"z", "sin(v)"}},
+      {{"u", {0, 2 * kMeshPi}}, {"v", {-kMeshPi / 2, kMeshPi / 2}}});
   const Mesh m = mesh_geometry(*sphere, MeshOptions{8});
   CHECK(m.num_params == 2);
   CHECK_FALSE(m.triangles.empty());
@@ -80,8 +71,8 @@ TEST_CASE("mesh: an implicit circle is polylines on the circle, without paramete
 }
 
 TEST_CASE("mesh: a resolution below 2 is refused") {
-  const auto circle = mesh_test_geometry(GeometryType::parametric_curve, {{"x", "cos(t)"}, {"y", "sin(t)"}},
-                                         {{"t", {0, 2 * kMeshPi}}});
+  const auto circle = test::compile_definition(GeometryType::parametric_curve,
+                                               {{"x", "cos(t)"}, {"y", "sin(t)"}}, {{"t", {0, 2 * kMeshPi}}});
   CHECK_THROWS_AS(mesh_geometry(*circle, MeshOptions{1}), std::invalid_argument);
   CHECK_NOTHROW(mesh_geometry(*circle, MeshOptions{2}));
 }
