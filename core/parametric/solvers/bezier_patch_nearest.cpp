@@ -26,10 +26,41 @@ using BzCell = bezier_detail::Cell;
 using formula::interval::add;
 using formula::interval::mul;
 using formula::interval::sqr;
-BzInterval bz_dot(const BzVec& a, const BzVec& b) {
-  return add(add(mul(a[0], b[0]), mul(a[1], b[1])), mul(a[2], b[2]));
+
+// The sum of three intervals' bounds computed in floating point (lo, hi, each term rounded once
+// from its exact value), moved outwards by their rounding: the three terms' and the two sums'
+// are each at most 2^-53 of the terms' magnitudes' sum m (m rounded too: 2^-50 m covers all of
+// them), and bz_down / bz_up cover the last subtraction's. A NaN (0 x inf) gives the whole line.
+BzInterval bz_sum_widened(double lo, double hi, double m) {
+  if (std::isnan(lo) || std::isnan(hi)) return formula::interval::entire();
+  const double e = m * 0x1p-50 + 0x1p-1000;
+  return {bz_down(lo - e), bz_up(hi + e)};
 }
-BzInterval bz_norm2(const BzVec& a) { return add(add(sqr(a[0]), sqr(a[1])), sqr(a[2])); }
+// a·b: each product's bounds are the least and greatest of its four corner products.
+BzInterval bz_dot(const BzVec& a, const BzVec& b) {
+  double lo = 0.0, hi = 0.0, m = 0.0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    const double p0 = a[c].lo * b[c].lo, p1 = a[c].lo * b[c].hi, p2 = a[c].hi * b[c].lo,
+                 p3 = a[c].hi * b[c].hi;
+    const double l = std::min(std::min(p0, p1), std::min(p2, p3)),
+                 h = std::max(std::max(p0, p1), std::max(p2, p3));
+    lo += l;
+    hi += h;
+    m += std::max(std::fabs(l), std::fabs(h));
+  }
+  return bz_sum_widened(lo, hi, m);
+}
+// |a|²: each square's least value is 0 where the interval holds 0.
+BzInterval bz_norm2(const BzVec& a) {
+  double lo = 0.0, hi = 0.0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    const double l = std::fabs(a[c].lo), h = std::fabs(a[c].hi), big = std::max(l, h);
+    lo += a[c].lo <= 0.0 && a[c].hi >= 0.0 ? 0.0 : std::min(l, h) * std::min(l, h);
+    hi += big * big;
+  }
+  const BzInterval sum = bz_sum_widened(lo, hi, hi);
+  return {std::max(sum.lo, 0.0), sum.hi};
+}
 
 // The box of computed values v (each within w of its exact value, plus its own rounding) less
 // `origin`, as intervals.
