@@ -82,19 +82,23 @@ struct BzHull {
 };
 
 // The Bernstein basis of degree n at x and its first two derivatives (zero below degree 1, 2).
+// The triangle of the bases of degree 0 to n, B_k^m = (1 - x) B_k^(m-1) + x B_(k-1)^(m-1), is built in
+// place (k descending), keeping the levels n - 2 and n - 1 that the derivatives take.
 void bz_basis(int n, double x, double* b0, double* b1, double* b2) {
-  double level[BezierPatch::kMaxDegree + 1][BezierPatch::kMaxDegree + 1] = {};
-  level[0][0] = 1.0;
+  constexpr int kSize = BezierPatch::kMaxDegree + 3;
+  double b[kSize] = {1.0}, below1[kSize] = {}, below2[kSize] = {};  // levels n - 1, n - 2 (shifted by 2)
   for (int m = 1; m <= n; ++m) {
-    level[m][0] = (1.0 - x) * level[m - 1][0];
-    for (int k = 1; k < m; ++k) level[m][k] = (1.0 - x) * level[m - 1][k] + x * level[m - 1][k - 1];
-    level[m][m] = x * level[m - 1][m - 1];
+    if (m == n - 1) std::copy(b, b + m, below2 + 2);
+    if (m == n) std::copy(b, b + m, below1 + 2);
+    b[m] = x * b[m - 1];
+    for (int k = m - 1; k >= 1; --k) b[k] = (1.0 - x) * b[k] + x * b[k - 1];
+    b[0] = (1.0 - x) * b[0];
   }
-  auto at = [&](int m, int k) { return m < 0 || k < 0 || k > m ? 0.0 : level[m][k]; };
+  // below1[k + 2] = B_k^(n-1) (0 outside 0..n-1), below2[k + 2] = B_k^(n-2) (0 outside 0..n-2).
   for (int k = 0; k <= n; ++k) {
-    b0[k] = level[n][k];
-    b1[k] = n * (at(n - 1, k - 1) - at(n - 1, k));
-    b2[k] = n * (n - 1) * (at(n - 2, k - 2) - 2.0 * at(n - 2, k - 1) + at(n - 2, k));
+    b0[k] = b[k];
+    b1[k] = n * (below1[k + 1] - below1[k + 2]);
+    b2[k] = n * (n - 1) * (below2[k] - 2.0 * below2[k + 1] + below2[k + 2]);
   }
 }
 
