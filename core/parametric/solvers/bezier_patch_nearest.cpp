@@ -548,10 +548,14 @@ class BzSearch {
     if (beyond_cutoff(out)) return out;
     // Newton from the parameters of the control point nearest p.
     int best = 0;
-    for (int i = 1; i < stride_; ++i)
-      if (norm2(patch_.point(static_cast<std::size_t>(i)) - p_) <
-          norm2(patch_.point(static_cast<std::size_t>(best)) - p_))
+    double best_d2 = norm2(patch_.point(0) - p_);
+    for (int i = 1; i < stride_; ++i) {
+      const double d2 = norm2(patch_.point(static_cast<std::size_t>(i)) - p_);
+      if (d2 < best_d2) {
+        best_d2 = d2;
         best = i;
+      }
+    }
     newton(static_cast<double>(best / (deg_[1] + 1)) / deg_[0],
            static_cast<double>(best % (deg_[1] + 1)) / deg_[1]);
     if (!std::isfinite(f_)) return out;
