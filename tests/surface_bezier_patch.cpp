@@ -275,7 +275,7 @@ TEST_CASE("an octant's pole: on the sphere's axis the pole is the proved nearest
 // A gently curved bicubic patch and points above, below and beside it at up to a few times its
 // size: the sub-patches about the foot (the cluster the side points' Taylor forms bound) and those
 // over which f is monotone towards the inside (dropped) must leave the nearest point and a bound
-// below every point of the patch. The reference: the least distance over a 161 x 161 grid of the
+// below every point of the patch. The reference: the least distance over a 121 x 121 grid of the
 // patch's points by this file's own Bernstein sums (at or above the least distance, within the
 // grid's resolution of it).
 TEST_CASE("a bicubic patch's nearest point and bound against a dense grid, with and without cutoff") {
@@ -293,15 +293,15 @@ TEST_CASE("a bicubic patch's nearest point and bound against a dense grid, with 
   const BezierPatch patch(3, 3, net);
   std::uniform_real_distribution<double> across(-0.4, 0.9), height(-0.8, 0.8);
   int proved = 0;
-  for (int i = 0; i < 60; ++i) {
+  for (int i = 0; i < 40; ++i) {
     const Vec3 p{across(rng), across(rng), height(rng)};
     CAPTURE(p.x);
     CAPTURE(p.y);
     CAPTURE(p.z);
     double grid = std::numeric_limits<double>::infinity();
-    for (int a = 0; a <= 160; ++a)
-      for (int b = 0; b <= 160; ++b) {
-        const double s = a / 160.0, t = b / 160.0;
+    for (int a = 0; a <= 120; ++a)
+      for (int b = 0; b <= 120; ++b) {
+        const double s = a / 120.0, t = b / 120.0;
         const Vec3 x{tensor_sum(xs, 3, 3, s, t), tensor_sum(ys, 3, 3, s, t), tensor_sum(zs, 3, 3, s, t)};
         grid = std::min(grid, norm(x - p));
       }
@@ -311,10 +311,12 @@ TEST_CASE("a bicubic patch's nearest point and bound against a dense grid, with 
     CHECK(n.lower_bound <= grid * (1.0 + 1e-12));
     CHECK(n.distance <= grid * (1.0 + 1e-12));
     CHECK(n.distance - n.lower_bound <= 1e-9 * n.distance + 1e-15);
-    // A cutoff below the least distance: no point within it, proved; above: the nearest point.
+    // A cutoff below the grid's least distance: no point within it, proved, or (the grid's
+    // resolution above a point next to the patch) the nearest point; above: the nearest point.
     const PatchNearest below = nearest_on_patch(patch, p, 48, 0.9 * grid);
     if (below.proved) {
-      CHECK(below.lower_bound > 0.9 * grid);
+      CHECK((below.lower_bound > 0.9 * grid ||
+             std::abs(below.distance - n.distance) <= 1e-12 * (1.0 + n.distance)));
       CHECK(below.lower_bound <= grid * (1.0 + 1e-12));
     }
     const PatchNearest above = nearest_on_patch(patch, p, 48, 1.1 * grid);
@@ -323,5 +325,5 @@ TEST_CASE("a bicubic patch's nearest point and bound against a dense grid, with 
       CHECK(std::abs(above.distance - n.distance) <= 1e-12 * (1.0 + n.distance));
     }
   }
-  CHECK(proved >= 54);
+  CHECK(proved >= 36);
 }
