@@ -211,6 +211,24 @@ std::array<double, 2> augmentations(const ImplicitSurfaceJet& j, double l) {
   return out;
 }
 
+// The samples of the leaves under the cells `roots` whose box comes within `reach` of p (squared,
+// rounded outwards), those of leaves in k (have_k) left out when `outside_k`.
+void samples_within(const ImplicitSurfaceCells& cells, std::vector<std::int32_t> roots, Vec3 p, double reach,
+                    const Box3& k, bool have_k, bool outside_k, std::vector<std::int32_t>& out) {
+  const double reach2 = square_upper_bound(reach);
+  while (!roots.empty()) {
+    const ImplicitSurfaceCell& cell = cells.cells[static_cast<std::size_t>(roots.back())];
+    roots.pop_back();
+    if (distance2_lower_bound(p, cell.box) > reach2 || (outside_k && have_k && k.contains(cell.box)))
+      continue;
+    if (cell.first_child >= 0) {
+      for (std::int32_t i = 0; i < cell.children; ++i) roots.push_back(cell.first_child + i);
+    } else if (cell.sample >= 0) {
+      out.push_back(cell.sample);
+    }
+  }
+}
+
 double lower_sqrt(double twice_half_square) {
   return twice_half_square > 0.0 ? std::sqrt(twice_half_square) * (1.0 - kRound) : 0.0;
 }
@@ -264,6 +282,10 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
   };
   std::vector<std::int32_t> stack{0};
   std::vector<Piece> pieces;
+  // The tie's reach (SurfaceCertificate::tie_starts): the cells settled by their distance alone
+  // that come within it, to be descended for their leaves' samples once certified.
+  const double reach = distance + gap;
+  std::vector<std::int32_t> shell;
   // Settled by its distance: nothing in b is nearer than the threshold; or b lies in K.
   auto near_settled = [&](const Box3& b, double& bound) {
     bound = distance_lower_bound(p, b);
@@ -374,10 +396,14 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     return true;
   };
   while (!stack.empty()) {
-    const ImplicitSurfaceCell& cell = cells.cells[static_cast<std::size_t>(stack.back())];
+    const std::int32_t index = stack.back();
+    const ImplicitSurfaceCell& cell = cells.cells[static_cast<std::size_t>(index)];
     stack.pop_back();
     double bound = 0.0;
-    if (near_settled(cell.box, bound)) continue;
+    if (near_settled(cell.box, bound)) {
+      if (bound >= threshold && bound <= reach && !(have_k && k.contains(cell.box))) shell.push_back(index);
+      continue;
+    }
     if (cell.first_child >= 0) {
       for (std::int32_t i = 0; i < cell.children; ++i) stack.push_back(cell.first_child + i);
       continue;
@@ -387,6 +413,7 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
       if (norm(p - s) < distance - gap) out.nearer.push_back(s);
       if (!(have_k && k.contains(cell.box)) && norm(p - s) <= distance + cells.leaf_diagonal)
         out.rivals.push_back(s);
+      out.tie_starts.push_back(cell.sample);
     }
     pieces.push_back({cell.box, 0, cell.leaf, cell.box});
   }
@@ -424,6 +451,20 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
   }
   c.lower_bound = std::min(lower, distance);
   c.certified = Certificate::meets_gap(distance, c.lower_bound, c.absolute_gap);
+  if (c.certified) {
+    samples_within(cells, std::move(shell), p, reach, k, have_k, true, out.tie_starts);
+    const double apart = 2.0 * cells.leaf_diagonal;
+    std::erase_if(out.tie_starts, [&](std::int32_t i) {
+      return norm(cells.samples[static_cast<std::size_t>(i)] - foot) <= apart;
+    });
+    if (!out.tie_starts.empty()) {
+      std::sort(out.tie_starts.begin(), out.tie_starts.end());
+      samples_within(cells, {0}, p, reach, k, have_k, false, out.tie_samples);
+      std::sort(out.tie_samples.begin(), out.tie_samples.end());
+    }
+  } else {
+    out.tie_starts.clear();
+  }
   c.reason = c.certified           ? CertificateReason::gap_met
              : !out.nearer.empty() ? CertificateReason::nearer_point
                                    : CertificateReason::budget_exhausted;
