@@ -125,15 +125,14 @@ class Search {
   }
 
   // Other feet within the tie's gap of the answer's distance (solvers/answer_multiplicity.hpp):
-  // the certificate's tie_starts (the samples of the leaves whose box meets the ball of that
-  // radius about p, outside its convex box about the foot and more than two leaf diagonals from
-  // it: about every such foot) that are discrete local minima of the distance among the
-  // tie_samples (the samples of all those leaves) start solves, nearest first, at most kTieStarts.
-  // Among those leaves alone: a chain of ever nearer samples, each within two leaf diagonals of
-  // the last, from a tied foot's sample then stays among them and ends at a start, or by the
-  // answer (in K or within two leaf diagonals of it); a sample of a leaf beyond the ball (a sample
-  // may lie up to half a leaf's edge outside its leaf) could otherwise be the nearer one that hides
-  // the tie and starts nothing.
+  // the certificate's tie_starts (the samples of the leaves outside its convex box K that may hold
+  // such a foot, more than two leaf diagonals from the answer: every leaf that holds one) that are
+  // discrete local minima of the distance among the tie_samples (those, and K's leaves that meet
+  // the ball of that radius) start solves, nearest first, at most kTieStarts. Among those alone: a
+  // chain of ever nearer samples, each within two leaf diagonals of the last, from a tied foot's
+  // sample then stays among them and ends at a start, or by the answer; a sample of another leaf
+  // (a sample may lie up to half a leaf's edge outside its leaf) could otherwise be the nearer one
+  // that hides the tie and starts nothing.
   void solve_ties(const SurfaceCertificate& c) {
     if (c.tie_starts.empty() || !cells_.sample_index) return;
     const double h = cells_.leaf_diagonal;

@@ -21,8 +21,8 @@
 // The leaves' sample points nearer than the answer are reported (nearer), for the search to start
 // from them; so are the samples of the leaves that meet the ball of the answer's radius about p
 // away from the foot's convex box K (rivals), where a nearer minimum the bound did not settle
-// lies; and, once certified, those of the leaves that meet the closed ball of the answer's
-// distance plus the gap, where a tie lies (tie_starts, tie_samples).
+// lies; and, once certified, those of the leaves that may hold a point within the gap of the
+// answer's distance, where a tie lies (tie_starts, tie_samples).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -40,10 +40,13 @@ struct SurfaceCertificate {
   // distance plus a leaf diagonal of p.
   std::vector<Vec3> rivals;
   // With a certified answer, where a tie can be: every point of S within the gap of the answer's
-  // distance lies in a leaf whose box meets the closed ball of that radius about p, and in none
-  // that lies in K (the bound there exceeds it away from the foot). tie_starts: the samples
-  // (indices, ascending) of such leaves not in K, more than two leaf diagonals from the foot;
-  // tie_samples: those of all such leaves, only when tie_starts has any.
+  // distance lies in a leaf outside K (the bound there exceeds it away from the foot) that the
+  // branch and bound could not show to lie beyond that distance: a piece of it settled by a bound
+  // (of its distance or of the Lagrangian) at most that distance, or left at the budget, or the
+  // leaf settled whole by its distance, at most that. tie_starts: the samples (indices, ascending)
+  // of such leaves (a leaf without one: the sample nearest to its centre) more than two leaf
+  // diagonals from the foot; tie_samples, only when tie_starts has any: the samples of all such
+  // leaves and of the leaves in K whose box meets the closed ball of that radius about p.
   std::vector<std::int32_t> tie_samples, tie_starts;
 };
 
