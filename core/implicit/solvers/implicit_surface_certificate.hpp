@@ -44,9 +44,11 @@ struct SurfaceCertificate {
   // branch and bound could not show to lie beyond that distance: a piece of it settled by a bound
   // (of its distance or of the Lagrangian) at most that distance, or left at the budget, or the
   // leaf settled whole by its distance, at most that. tie_starts: the samples (indices, ascending)
-  // of such leaves (a leaf without one: the sample nearest to its centre) more than two leaf
-  // diagonals from the foot; tie_samples, only when tie_starts has any: the samples of all such
-  // leaves and of the leaves in K whose box meets the closed ball of that radius about p.
+  // of such leaves (a leaf bounded piece by piece without one: the sample nearest to its centre,
+  // as where a foot lies on a face of the box and Newton from the leaf's centre left it) more
+  // than two leaf diagonals from the foot; tie_samples, only when tie_starts has any: the samples
+  // of all such leaves and of the leaves in K whose box meets the closed ball of that radius
+  // about p.
   std::vector<std::int32_t> tie_samples, tie_starts;
 };
 
