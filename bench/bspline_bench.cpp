@@ -1,6 +1,7 @@
 // B-spline and NURBS surfaces projected with `auto` (compiled/bspline_geometry.hpp): the compile
-// time, and per point the CPU time (median, 90th percentile, mean), the certified share and the
-// boxes the certificates bisected, on two surfaces built here with a fixed seed:
+// time, and per point the CPU time (median, 90th percentile, mean), the certified share, the
+// boxes the certificates bisected and the local searches started (summary.starts: the pieces'
+// Newton starts and restarts, the tail's measure), on two surfaces built here with a fixed seed:
 //   B8  a bicubic B-spline of 8 x 8 pieces (11 x 11 control points on [0,4]^2, clamped uniform
 //       knots, heights 0.3 sin(x) cos(y) plus noise of 0.05);
 //   RS  the rational sphere of radius 1 (degree 2 x 2, the 9 x 5 net, 8 pieces);
@@ -115,8 +116,8 @@ int main(int argc, char** argv) {
   std::mt19937 rng(2026);
   const double overhead = bench::timer_overhead_ns();
   std::printf("%s\n", bench::load_average().c_str());
-  std::printf("%-4s %-5s %8s %8s %8s %8s %9s %7s %9s\n", "surf", "set", "compile", "p50 us", "p90 us",
-              "mean us", "certified", "boxes", "pieces");
+  std::printf("%-4s %-5s %8s %8s %8s %8s %9s %7s %7s %9s\n", "surf", "set", "compile", "p50 us", "p90 us",
+              "mean us", "certified", "boxes", "starts", "pieces");
   struct Named {
     const char* name;
     GeometryDefinition def;
@@ -132,7 +133,7 @@ int main(int argc, char** argv) {
     for (const Set& set : sets) {
       std::vector<double> us, distances;
       int certified = 0;
-      double boxes = 0.0, solved = 0.0;
+      double boxes = 0.0, solved = 0.0, starts = 0.0;
       const double batch_start = bench::thread_cpu_ns();
       for (const Vec3& p : set.points) {
         const double x[3] = {p.x, p.y, p.z};
@@ -142,6 +143,7 @@ int main(int argc, char** argv) {
         certified += r.summary.certificate.certified;
         distances.push_back(r.distance);
         boxes += r.summary.certificate.boxes;
+        starts += r.summary.starts;
       }
       const double mean =
           (bench::thread_cpu_ns() - batch_start) / 1e3 / static_cast<double>(set.points.size());
@@ -150,10 +152,11 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i < set.points.size(); ++i)
         for (std::size_t k = 0; k < bspline.pieces(); ++k)
           solved += distance_lower_bound(bspline.hull(k), set.points[i]) <= distances[i] * (1 + 1e-9);
-      std::printf("%-4s %-5s %6.1fms %8.1f %8.1f %8.1f %8.1f%% %7.1f %9zu\n", n.name, set.name.c_str(),
+      std::printf("%-4s %-5s %6.1fms %8.1f %8.1f %8.1f %8.1f%% %7.1f %7.2f %9zu\n", n.name, set.name.c_str(),
                   compile_ms, bench::percentile(us, 0.5), bench::percentile(us, 0.9), mean,
                   100.0 * certified / static_cast<double>(set.points.size()),
                   boxes / static_cast<double>(set.points.size()),
+                  starts / static_cast<double>(set.points.size()),
                   dynamic_cast<const BSplineSurface&>(*g).pieces());
       std::printf("     pieces solved per point %.2f; compiled %.1f MB\n",
                   solved / static_cast<double>(set.points.size()),

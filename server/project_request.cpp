@@ -70,62 +70,91 @@ void read_initial(JsonReader& r, ProjectRequest& request) {
   });
 }
 
-// Sets the option `key` (named `field` in messages) from `value`, which reads it: number(),
-// boolean() and numbers(start) (1 to 3 numbers into start, returns how many). False for a key
-// that is no option. The JSON body's "options" and a binary request's query share it.
+// An integer option in [lo, hi]; `meaning` follows the range in the message.
 template <class Value>
-bool set_option(ProjectRequest& request, const std::string& key, const std::string& field, Value& value) {
-  Options& o = request.options;
-  if (key == "tolerance") {
-    const double t = value.number();
-    if (!(t >= 0.0 && t < 1.0))
-      throw ApiError(400, "invalid_option", field + " must be in [0, 1) (0: the method's default)", field);
-    o.tolerance = t;
-  } else if (key == "max_iterations") {
-    const double n = value.number();
-    if (!(n >= 0.0 && n <= 10000.0 && n == std::floor(n)))
-      throw ApiError(400, "invalid_option",
-                     field + " must be an integer in [0, 10000] (0: the method's default)", field);
-    o.max_iterations = static_cast<int>(n);
-  } else if (key == "max_distance") {
-    const double d = value.number();
-    if (!(d > 0.0)) throw ApiError(400, "invalid_option", field + " must be positive", field);
-    o.max_distance = d;
-  } else if (key == "all_minima") {
-    o.all_minima = value.boolean();
-  } else if (key == "max_minima") {
-    const double n = value.number();
-    if (!(n >= 1.0 && n <= 10000.0 && n == std::floor(n)))
-      throw ApiError(400, "invalid_option", field + " must be an integer in [1, 10000]", field);
-    o.max_minima = static_cast<int>(n);
-  } else if (key == "trace") {
-    o.trace = value.boolean();
-  } else if (key == "certify") {
-    o.certify = value.boolean();
-  } else if (key == "histogram_bins") {
-    const double n = value.number();
-    if (!(n >= 1.0 && n <= DeviationOptions::kMaxBins && n == std::floor(n)))
-      throw ApiError(400, "invalid_option",
-                     field + " must be an integer in [1, " + std::to_string(DeviationOptions::kMaxBins) + "]",
-                     field);
-    request.deviation.histogram_bins = static_cast<int>(n);
-  } else if (key == "tolerance_band") {
-    std::array<double, 3> band{};
-    if (value.numbers(band) != 2)
-      throw ApiError(400, "wrong_dimension", field + " must be two numbers [lo, hi]", field);
-    if (!(std::isfinite(band[0]) && std::isfinite(band[1]) && band[0] <= band[1]))
-      throw ApiError(400, "invalid_option", field + " must be [lo, hi] with finite lo <= hi", field);
-    request.deviation.tolerance_band = std::array<double, 2>{band[0], band[1]};
-  } else {
-    return false;
-  }
-  return true;
+int integer_option(Value& value, const std::string& field, int lo, int hi, const char* meaning = "") {
+  const double n = value.number();
+  if (!(n >= lo && n <= hi && n == std::floor(n)))
+    throw ApiError(
+        400, "invalid_option",
+        field + " must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]" + meaning,
+        field);
+  return static_cast<int>(n);
 }
 
-constexpr const char* kOptionNames =
-    "tolerance, max_iterations, initial, all_minima, max_minima, trace, max_distance, certify, "
-    "histogram_bins, "
-    "tolerance_band";
+// The options of a projection request, the JSON body's "options" and the query parameters of a
+// binary request alike: each one's name and how its value is read, checked and stored. `Value`
+// reads the value: number(), boolean(), numbers(start) (1 to 3 numbers into start, returns how
+// many) and initial(request) (the start or starts, as the body or the query gives them).
+template <class Value>
+struct OptionMember {
+  std::string_view name;
+  void (*set)(ProjectRequest& request, const std::string& field, Value& value);
+};
+
+template <class Value>
+constexpr OptionMember<Value> kOptionMembers[] = {
+    {"tolerance",
+     [](ProjectRequest& q, const std::string& field, Value& v) {
+       const double t = v.number();
+       if (!(t >= 0.0 && t < 1.0))
+         throw ApiError(400, "invalid_option", field + " must be in [0, 1) (0: the method's default)", field);
+       q.options.tolerance = t;
+     }},
+    {"max_iterations",
+     [](ProjectRequest& q, const std::string& field, Value& v) {
+       q.options.max_iterations = integer_option(v, field, 0, 10000, " (0: the method's default)");
+     }},
+    {"initial", [](ProjectRequest& q, const std::string&, Value& v) { v.initial(q); }},
+    {"all_minima",
+     [](ProjectRequest& q, const std::string&, Value& v) { q.options.all_minima = v.boolean(); }},
+    {"max_minima", [](ProjectRequest& q, const std::string& field,
+                      Value& v) { q.options.max_minima = integer_option(v, field, 1, 10000); }},
+    {"trace", [](ProjectRequest& q, const std::string&, Value& v) { q.options.trace = v.boolean(); }},
+    {"max_distance",
+     [](ProjectRequest& q, const std::string& field, Value& v) {
+       const double d = v.number();
+       if (!(d > 0.0)) throw ApiError(400, "invalid_option", field + " must be positive", field);
+       q.options.max_distance = d;
+     }},
+    {"certify", [](ProjectRequest& q, const std::string&, Value& v) { q.options.certify = v.boolean(); }},
+    {"histogram_bins",
+     [](ProjectRequest& q, const std::string& field, Value& v) {
+       q.deviation.histogram_bins = integer_option(v, field, 1, DeviationOptions::kMaxBins);
+     }},
+    {"tolerance_band",
+     [](ProjectRequest& q, const std::string& field, Value& v) {
+       std::array<double, 3> band{};
+       if (v.numbers(band) != 2)
+         throw ApiError(400, "wrong_dimension", field + " must be two numbers [lo, hi]", field);
+       if (!(std::isfinite(band[0]) && std::isfinite(band[1]) && band[0] <= band[1]))
+         throw ApiError(400, "invalid_option", field + " must be [lo, hi] with finite lo <= hi", field);
+       q.deviation.tolerance_band = std::array<double, 2>{band[0], band[1]};
+     }},
+};
+
+// Sets the option `key` (named `field` in messages) from `value`. False for a key that is no option.
+template <class Value>
+bool set_option(ProjectRequest& request, const std::string& key, const std::string& field, Value& value) {
+  for (const OptionMember<Value>& option : kOptionMembers<Value>)
+    if (option.name == key) {
+      option.set(request, field, value);
+      return true;
+    }
+  return false;
+}
+
+// The options' names, for messages: "tolerance, max_iterations, ...".
+template <class Value>
+const std::string& option_names() {
+  static const std::string names = [] {
+    std::string out;
+    for (const OptionMember<Value>& option : kOptionMembers<Value>)
+      (out += out.empty() ? "" : ", ") += option.name;
+    return out;
+  }();
+  return names;
+}
 
 // An option's value in the JSON body.
 struct JsonOptionValue {
@@ -134,17 +163,16 @@ struct JsonOptionValue {
   double number() { return r.number(); }
   bool boolean() { return r.boolean(); }
   int numbers(std::array<double, 3>& start) { return read_start(r, start, field); }
+  void initial(ProjectRequest& request) { read_initial(r, request); }
 };
 
 void read_options(JsonReader& r, ProjectRequest& request) {
   read_object(r, "options", "options", "options.", [&](const std::string& key, const std::string& field) {
     at_field(field, [&] {
       JsonOptionValue value{r, field};
-      if (key == "initial") {
-        read_initial(r, request);
-      } else if (!set_option(request, key, field, value)) {
-        throw ApiError(400, "unknown_field", "unknown option " + field + " (" + kOptionNames + ")", field);
-      }
+      if (!set_option(request, key, field, value))
+        throw ApiError(400, "unknown_field",
+                       "unknown option " + field + " (" + option_names<JsonOptionValue>() + ")", field);
     });
   });
 }
@@ -301,7 +329,23 @@ struct QueryOptionValue {
       rest = rest.substr(comma + 1);
     }
   }
+  // One start for every point.
+  void initial(ProjectRequest& request) const {
+    std::array<double, 3> start{};
+    request.initial_length = numbers(start);
+    request.options.initial = start;
+  }
 };
+
+// A binary request's query parameters: how its body is read, then the options.
+const std::vector<std::string_view>& binary_query_names() {
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> out{"dtype", "method", "fields"};
+    for (const auto& option : kOptionMembers<QueryOptionValue>) out.push_back(option.name);
+    return out;
+  }();
+  return names;
+}
 
 }  // namespace
 
@@ -309,9 +353,7 @@ ProjectRequest read_binary_project_options(std::string_view query, int point_dim
                                            std::size_t max_points) {
   ProjectRequest request;
   bool fields_given = false;
-  for (const auto& [name, value] : query_parameters(
-           query, {"dtype", "method", "fields", "tolerance", "max_iterations", "initial", "all_minima",
-                   "max_minima", "trace", "max_distance", "certify", "histogram_bins", "tolerance_band"})) {
+  for (const auto& [name, value] : query_parameters(query, binary_query_names())) {
     QueryOptionValue v{value, name};
     if (name == "dtype") {
       if (value != "float64" && value != "float32")
@@ -329,10 +371,6 @@ ProjectRequest read_binary_project_options(std::string_view query, int point_dim
         rest = rest.substr(comma + 1);
       }
       fields_given = true;
-    } else if (name == "initial") {
-      std::array<double, 3> start{};
-      request.initial_length = v.numbers(start);
-      request.options.initial = start;
     } else {
       set_option(request, name, name, v);
     }

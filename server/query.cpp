@@ -36,8 +36,8 @@ std::string decoded(std::string_view text) {
 
 }  // namespace
 
-std::vector<std::pair<std::string, std::string>> query_parameters(
-    std::string_view query, std::initializer_list<std::string_view> allowed) {
+std::vector<std::pair<std::string, std::string>> query_parameters(std::string_view query,
+                                                                  std::span<const std::string_view> allowed) {
   std::vector<std::pair<std::string, std::string>> out;
   while (!query.empty()) {
     const auto amp = query.find('&');

@@ -280,7 +280,7 @@ std::vector<nurbs::CurvePiece> curve_pieces(const nurbs::Curve& c, std::size_t m
 // ---- surfaces ------------------------------------------------------------------------------------
 
 BSplineSurface::BSplineSurface(GeometryDefinition def, nurbs::Surface surface,
-                               const formula::CompileLimits& limits)
+                               const formula::CompileLimits& limits, CompileBudget& budget)
     : CompiledGeometry(std::move(def)), surface_(std::move(surface)) {
   breaks_u_ = breaks_of(surface_.knots_u, surface_.umin(), surface_.umax());
   breaks_v_ = breaks_of(surface_.knots_v, surface_.vmin(), surface_.vmax());
@@ -290,11 +290,11 @@ BSplineSurface::BSplineSurface(GeometryDefinition def, nurbs::Surface surface,
   for (nurbs::SurfacePiece& piece : pieces) {
     pieces_.push_back(std::make_unique<ParametricSurface>(
         piece_definition(GeometryType::parametric_surface, {{"u", {0.0, 1.0}}, {"v", {0.0, 1.0}}}),
-        std::move(piece.program), ParamBox{0.0, 1.0, 0.0, 1.0}, seeding));
+        std::move(piece.program), ParamBox{0.0, 1.0, 0.0, 1.0}, budget, seeding));
     spans_.push_back(piece.span);
     hulls.push_back(piece.hull);
     patches_.push_back(bezier_patch(piece, surface_));
-    CompileBudget::check();
+    budget.check();
   }
   tree_ = PieceTree(std::move(hulls));
   methods_ = bspline_surface_methods();
@@ -518,7 +518,8 @@ ProjectionResult BSplineSurface::project_auto(const Vec3& p, const Options& opti
 
 // ---- curves --------------------------------------------------------------------------------------
 
-BSplineCurve::BSplineCurve(GeometryDefinition def, nurbs::Curve curve, const formula::CompileLimits& limits)
+BSplineCurve::BSplineCurve(GeometryDefinition def, nurbs::Curve curve, const formula::CompileLimits& limits,
+                           CompileBudget& budget)
     : CompiledGeometry(std::move(def)), curve_(std::move(curve)) {
   breaks_ = breaks_of(curve_.knots, curve_.tmin(), curve_.tmax());
   std::vector<nurbs::CurvePiece> pieces = curve_pieces(curve_, limits.max_nodes);
@@ -526,10 +527,10 @@ BSplineCurve::BSplineCurve(GeometryDefinition def, nurbs::Curve curve, const for
   for (nurbs::CurvePiece& piece : pieces) {
     pieces_.push_back(std::make_unique<ParametricCurve>(
         piece_definition(GeometryType::parametric_curve, {{"t", {0.0, 1.0}}}),
-        CurveFormulas(std::move(piece.program)), ParamInterval{0.0, 1.0}));
+        CurveFormulas(std::move(piece.program)), ParamInterval{0.0, 1.0}, budget));
     spans_.push_back(piece.span);
     hulls.push_back(piece.hull);
-    CompileBudget::check();
+    budget.check();
   }
   tree_ = PieceTree(std::move(hulls));
   closed_ =
@@ -651,7 +652,8 @@ std::shared_ptr<const CompiledGeometry> compile_bspline_surface(const GeometryDe
   nurbs::SurfaceOrError s = nurbs::make_surface({net.degree[0], net.degree[1]}, net.knots[0], net.knots[1],
                                                 net.control_points, net.weights, kMaxControlPoints);
   if (!s.surface) throw bspline_error(s.error);
-  return std::make_shared<BSplineSurface>(def, std::move(*s.surface), limits);
+  CompileBudget budget(limits.deadline, limits.max_geometry_bytes);
+  return std::make_shared<BSplineSurface>(def, std::move(*s.surface), limits, budget);
 }
 
 std::shared_ptr<const CompiledGeometry> compile_bspline_curve(const GeometryDefinition& def,
@@ -664,7 +666,8 @@ std::shared_ptr<const CompiledGeometry> compile_bspline_curve(const GeometryDefi
       nurbs::make_curve(net.degree[0], net.knots[0], net.control_points[0],
                         net.weights.empty() ? std::vector<double>{} : net.weights[0], kMaxControlPoints);
   if (!c.curve) throw bspline_error(c.error);
-  return std::make_shared<BSplineCurve>(def, std::move(*c.curve), limits);
+  CompileBudget budget(limits.deadline, limits.max_geometry_bytes);
+  return std::make_shared<BSplineCurve>(def, std::move(*c.curve), limits, budget);
 }
 
 }  // namespace footpoint

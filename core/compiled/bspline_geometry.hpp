@@ -31,6 +31,7 @@
 #include "compiled/parametric_curve_geometry.hpp"
 #include "compiled/parametric_surface_geometry.hpp"
 #include "geometry/box3.hpp"
+#include "geometry/compile_budget.hpp"
 #include "parametric/geometry/nurbs.hpp"
 #include "parametric/solvers/bezier_patch_nearest.hpp"
 #include "solvers/piecewise_nearest.hpp"
@@ -39,7 +40,8 @@ namespace footpoint {
 
 class BSplineSurface final : public CompiledGeometry {
  public:
-  BSplineSurface(GeometryDefinition def, nurbs::Surface surface, const formula::CompileLimits& limits);
+  BSplineSurface(GeometryDefinition def, nurbs::Surface surface, const formula::CompileLimits& limits,
+                 CompileBudget& budget);
 
   int point_dim() const override { return 3; }
   int num_params() const override { return 2; }
@@ -82,7 +84,8 @@ class BSplineSurface final : public CompiledGeometry {
 
 class BSplineCurve final : public CompiledGeometry {
  public:
-  BSplineCurve(GeometryDefinition def, nurbs::Curve curve, const formula::CompileLimits& limits);
+  BSplineCurve(GeometryDefinition def, nurbs::Curve curve, const formula::CompileLimits& limits,
+               CompileBudget& budget);
 
   int point_dim() const override { return curve_.dimension; }
   int num_params() const override { return 1; }

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "compiled/bspline_geometry.hpp"
-#include "geometry/compile_budget.hpp"
 
 namespace footpoint {
 
@@ -131,7 +130,6 @@ std::vector<bool> declared_periodic(const GeometryDefinition& def,
 
 std::shared_ptr<const CompiledGeometry> compile_geometry(const GeometryDefinition& def,
                                                          const formula::CompileLimits& limits) {
-  const CompileBudget budget(limits.deadline, limits.max_geometry_bytes);
   switch (def.type) {
     case GeometryType::parametric_surface:
       return compile_parametric_surface(def, limits);

@@ -157,7 +157,9 @@ std::shared_ptr<const CompiledGeometry> compile_geometry(const GeometryDefinitio
                                                          const formula::CompileLimits& limits = {});
 
 // Per-type compilers and method tables (one per geometry file); compile_geometry and methods_of
-// dispatch to them.
+// dispatch to them. Each compiler builds its search structures within one CompileBudget made from
+// `limits` (its deadline and max_geometry_bytes; geometry/compile_budget.hpp), handed to every
+// loop that builds them.
 std::shared_ptr<const CompiledGeometry> compile_parametric_surface(const GeometryDefinition& def,
                                                                    const formula::CompileLimits& limits);
 std::shared_ptr<const CompiledGeometry> compile_parametric_curve(const GeometryDefinition& def,

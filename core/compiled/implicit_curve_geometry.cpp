@@ -113,20 +113,22 @@ const MethodTable<ImplicitCurve>& table(PointDims dims) {
 // certificate per point); equations with more stay whole.
 constexpr std::size_t kMaxFactorCurves = 8;
 
-ImplicitCurve::ImplicitCurve(GeometryDefinition def, ImplicitEquations equations, Box3 box)
+ImplicitCurve::ImplicitCurve(GeometryDefinition def, ImplicitEquations equations, Box3 box,
+                             CompileBudget& budget)
     : CompiledGeometry(std::move(def)), written_(std::move(equations)), box_(box) {
   const bool planar = written_.planar();
   std::vector<formula::Program> systems = written_.program().factor_systems(kMaxFactorCurves);
   if (systems.size() == 1) {
-    whole_ =
-        std::make_unique<const DiscoveredCurve>(ImplicitEquations(std::move(systems.front()), planar), box_);
+    whole_ = std::make_unique<const DiscoveredCurve>(ImplicitEquations(std::move(systems.front()), planar),
+                                                     box_, budget);
     factors_.push_back(whole_.get());
     return;
   }
   whole_ = std::make_unique<const DiscoveredCurve>(
-      ImplicitEquations(written_.program().square_free(), planar), box_);
+      ImplicitEquations(written_.program().square_free(), planar), box_, budget);
   for (formula::Program& system : systems) {
-    auto f = std::make_unique<const DiscoveredCurve>(ImplicitEquations(std::move(system), planar), box_);
+    auto f =
+        std::make_unique<const DiscoveredCurve>(ImplicitEquations(std::move(system), planar), box_, budget);
     if (f->discovery.samples.size() == 0) continue;  // no point of this factor in the box
     factors_.push_back(f.get());
     factor_curves_.push_back(std::move(f));
@@ -219,7 +221,9 @@ std::shared_ptr<const CompiledGeometry> compile_implicit_curve(const GeometryDef
         box.lo[static_cast<int>(k)] = range[0];
         box.hi[static_cast<int>(k)] = range[1];
       }
-  auto curve = std::make_shared<ImplicitCurve>(def, ImplicitEquations(std::move(program), planar), box);
+  CompileBudget budget(limits.deadline, limits.max_geometry_bytes);
+  auto curve =
+      std::make_shared<ImplicitCurve>(def, ImplicitEquations(std::move(program), planar), box, budget);
   // Nothing to project onto: a definition error, not a per-point failure.
   if (curve->discovery().samples.size() == 0)
     throw GeometryError("empty_curve", "domain", -1,

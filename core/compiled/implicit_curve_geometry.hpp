@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
+#include "geometry/compile_budget.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
 #include "implicit/seeding/discovered_curve.hpp"
 
@@ -24,7 +25,7 @@ namespace footpoint {
 
 class ImplicitCurve final : public CompiledGeometry {
  public:
-  ImplicitCurve(GeometryDefinition def, ImplicitEquations equations, Box3 box);
+  ImplicitCurve(GeometryDefinition def, ImplicitEquations equations, Box3 box, CompileBudget& budget);
 
   int point_dim() const override { return equations().planar() ? 2 : 3; }
   int num_params() const override { return 0; }

@@ -75,7 +75,8 @@ const MethodTable<ImplicitSurface>& table() {
 // certificate per point); equations with more stay whole.
 constexpr std::size_t kMaxFactorSurfaces = 8;
 
-ImplicitSurface::ImplicitSurface(GeometryDefinition def, formula::Program program, Box3 box)
+ImplicitSurface::ImplicitSurface(GeometryDefinition def, formula::Program program, Box3 box,
+                                 CompileBudget& budget)
     : CompiledGeometry(std::move(def)),
       written_(std::move(program)),
       equation_(written_.program().square_free()),
@@ -84,11 +85,11 @@ ImplicitSurface::ImplicitSurface(GeometryDefinition def, formula::Program progra
   if (systems.size() > 1)
     for (formula::Program& system : systems) {
       ImplicitSurfaceEquation factor(std::move(system));
-      ImplicitSurfaceCells cells = subdivide_surface(factor, box_);
+      ImplicitSurfaceCells cells = subdivide_surface(factor, box_, budget);
       if (!cells.empty()) pieces_.push_back({std::move(factor), std::move(cells)});  // else none in the box
     }
   // Not split, or no factor surface in the box (nor then the whole, empty_surface below).
-  if (pieces_.empty()) pieces_.push_back({equation_, subdivide_surface(equation_, box_)});
+  if (pieces_.empty()) pieces_.push_back({equation_, subdivide_surface(equation_, box_, budget)});
 }
 
 const std::vector<MethodInfo>& ImplicitSurface::methods() const { return table().infos(); }
@@ -155,7 +156,8 @@ std::shared_ptr<const CompiledGeometry> compile_implicit_surface(const GeometryD
         box.lo[static_cast<int>(k)] = range[0];
         box.hi[static_cast<int>(k)] = range[1];
       }
-  auto surface = std::make_shared<ImplicitSurface>(def, std::move(program), box);
+  CompileBudget budget(limits.deadline, limits.max_geometry_bytes);
+  auto surface = std::make_shared<ImplicitSurface>(def, std::move(program), box, budget);
   const std::vector<surface_implicit::SurfacePiece>& pieces = surface->pieces();
   const bool points =
       std::any_of(pieces.begin(), pieces.end(), [](const surface_implicit::SurfacePiece& piece) {

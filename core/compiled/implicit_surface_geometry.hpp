@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
+#include "geometry/compile_budget.hpp"
 #include "implicit/geometry/implicit_surface.hpp"
 #include "implicit/seeding/implicit_surface_cells.hpp"
 #include "implicit/solvers/implicit_surface_union.hpp"
@@ -20,7 +21,7 @@ namespace footpoint {
 
 class ImplicitSurface final : public CompiledGeometry {
  public:
-  ImplicitSurface(GeometryDefinition def, formula::Program program, Box3 box);
+  ImplicitSurface(GeometryDefinition def, formula::Program program, Box3 box, CompileBudget& budget);
 
   int point_dim() const override { return 3; }
   int num_params() const override { return 0; }

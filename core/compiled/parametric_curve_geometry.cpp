@@ -77,14 +77,15 @@ ParametricSampling ParametricCurve::sampling() {
   return s;
 }
 
-ParametricCurve::ParametricCurve(GeometryDefinition def, CurveFormulas formulas, ParamInterval domain)
+ParametricCurve::ParametricCurve(GeometryDefinition def, CurveFormulas formulas, ParamInterval domain,
+                                 CompileBudget& budget)
     : CompiledGeometry(std::move(def)),
       formulas_(std::move(formulas)),
       domain_(domain),
       closure_(detect_curve_closure(formulas_, domain_, declared_periodic(definition(), {"t"})[0])),
-      samples_(sample_parametric_curve(formulas_, domain_, sampling())),
+      samples_(sample_parametric_curve(formulas_, domain_, budget, sampling())),
       index_(samples_),
-      cells_(formulas_, domain_, samples_.params) {}
+      cells_(formulas_, domain_, samples_.params, budget) {}
 
 const std::vector<MethodInfo>& ParametricCurve::methods() const { return table().infos(); }
 
@@ -124,8 +125,9 @@ std::shared_ptr<const CompiledGeometry> compile_parametric_curve(const GeometryD
   validate_domain(def, {"t"});
   formula::Program program = compile_formulas(def, {"t"}, limits);
   const auto& range = def.domain.front().second;
+  CompileBudget budget(limits.deadline, limits.max_geometry_bytes);
   return std::make_shared<ParametricCurve>(def, CurveFormulas(std::move(program)),
-                                           ParamInterval{range[0], range[1]});
+                                           ParamInterval{range[0], range[1]}, budget);
 }
 
 }  // namespace footpoint

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
+#include "geometry/compile_budget.hpp"
 #include "parametric/geometry/curve_closure.hpp"
 #include "parametric/geometry/parametric_curve.hpp"
 #include "parametric/seeding/curve_parametric_samples.hpp"
@@ -17,7 +18,8 @@ namespace footpoint {
 
 class ParametricCurve final : public CompiledGeometry {
  public:
-  ParametricCurve(GeometryDefinition def, CurveFormulas formulas, ParamInterval domain);
+  ParametricCurve(GeometryDefinition def, CurveFormulas formulas, ParamInterval domain,
+                  CompileBudget& budget);
 
   int point_dim() const override { return formulas_.dim(); }
   int num_params() const override { return 1; }

@@ -95,13 +95,13 @@ std::array<double, 2> domain_of(const GeometryDefinition& def, const std::string
 }  // namespace
 
 ParametricSurface::ParametricSurface(GeometryDefinition def, formula::Program program, const ParamBox& box,
-                                     const SurfaceSeedingOptions& seeding)
+                                     CompileBudget& budget, const SurfaceSeedingOptions& seeding)
     : CompiledGeometry(std::move(def)),
       formulas_(std::move(program)),
       box_(box),
       closure_(detect_surface_closure(formulas_, box_, declared_uv(definition()))),
       self_covering_(detect_self_covering(formulas_, box_)),
-      cells_(formulas_, box_, seeding, self_covering_) {}
+      cells_(formulas_, box_, budget, seeding, self_covering_) {}
 
 const std::vector<MethodInfo>& ParametricSurface::methods() const { return table().infos(); }
 
@@ -144,7 +144,8 @@ std::shared_ptr<const CompiledGeometry> compile_parametric_surface(const Geometr
   formula::Program program = compile_formulas(def, {"u", "v"}, limits);
   const auto u = domain_of(def, "u"), v = domain_of(def, "v");
   const ParamBox box{u[0], u[1], v[0], v[1]};
-  return std::make_shared<ParametricSurface>(def, std::move(program), box);
+  CompileBudget budget(limits.deadline, limits.max_geometry_bytes);
+  return std::make_shared<ParametricSurface>(def, std::move(program), box, budget);
 }
 
 }  // namespace footpoint

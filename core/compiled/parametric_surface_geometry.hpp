@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
+#include "geometry/compile_budget.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 #include "parametric/geometry/surface_closure.hpp"
 #include "parametric/seeding/surface_cells.hpp"
@@ -16,9 +17,9 @@ class ParametricSurface final : public CompiledGeometry {
  public:
   // `program` computes x, y, z (in that order) from (u, v); finds the seams and poles (with the
   // directions def.periodic declares: GeometryError when they are not) and builds the seeding
-  // cells.
+  // cells within `budget`.
   ParametricSurface(GeometryDefinition def, formula::Program program, const ParamBox& box,
-                    const SurfaceSeedingOptions& seeding = {});
+                    CompileBudget& budget, const SurfaceSeedingOptions& seeding = {});
 
   int point_dim() const override { return 3; }
   int num_params() const override { return 2; }

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "geometry/vec.hpp"
@@ -21,6 +22,9 @@ class PointIndex {
   std::int32_t nearest(Vec3 p, double& distance2) const;
   // Whether a point t other than s (t != s) with |t - s| <= radius has |q - t|^2 < distance2.
   bool nearer_within(Vec3 s, double radius, Vec3 q, double distance2) const;
+  // The same among the points whose indices `among` lists (sorted ascending).
+  bool nearer_within(Vec3 s, double radius, Vec3 q, double distance2,
+                     std::span<const std::int32_t> among) const;
   std::size_t memory_bytes() const;
 
  private:

@@ -6,9 +6,12 @@
 
 namespace footpoint {
 
+double TiedFeet::gap_of(double distance, Vec3 p, Vec3 answer) {
+  return std::fmax(Certificate::kRelativeGap * distance, Certificate::absolute_gap_at(p, answer));
+}
+
 TiedFeet::TiedFeet(const ProjectionResult& r, Vec3 p, Vec3 answer)
-    : distance_(r.distance),
-      gap_(std::fmax(Certificate::kRelativeGap * r.distance, Certificate::absolute_gap_at(p, answer))) {
+    : distance_(r.distance), gap_(gap_of(r.distance, p, answer)) {
   m_.computed = true;
   m_.feet.push_back(r.foot);
 }

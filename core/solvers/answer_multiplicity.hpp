@@ -40,6 +40,8 @@ class TiedFeet {
   // r: the answer; `answer`: its foot as the geometry evaluates it (the gap's absolute part is
   // taken there).
   TiedFeet(const ProjectionResult& r, Vec3 p, Vec3 answer);
+  // The gap of an answer at `distance` with foot `answer`: the certificate's (projection/certificate.hpp).
+  static double gap_of(double distance, Vec3 p, Vec3 answer);
   double gap() const { return gap_; }
   bool ties(double distance) const { return std::abs(distance - distance_) <= gap_; }
   // Adds the foot unless one listed is within kDistinctFoot (1 + |foot|) of it.

@@ -37,8 +37,9 @@ inline GeometryDefinition example1(double half_width) {
 // uses the defaults).
 inline ParametricSurface compile_with(const GeometryDefinition& def, const SurfaceSeedingOptions& seeding) {
   const auto u = def.domain[0].second, v = def.domain[1].second;
+  CompileBudget unbounded;
   return ParametricSurface(def, compile_formulas(def, {"u", "v"}, {}), ParamBox{u[0], u[1], v[0], v[1]},
-                           seeding);
+                           unbounded, seeding);
 }
 
 inline ProjectionResult project(const CompiledGeometry& g, std::array<double, 3> p, std::string_view method,

@@ -29,8 +29,8 @@ int face_axis(const FaceCrossing& c, const Box3& cell, int dims) {
 class ArcChains {
  public:
   ArcChains(const ImplicitEquations& eq, const Box3& box, const CurveCells& cells,
-            const ArcSampling& settings, CurveSamples& samples)
-      : eq_(eq), box_(box), cells_(cells), settings_(settings), samples_(samples) {}
+            const ArcSampling& settings, CurveSamples& samples, CompileBudget& budget)
+      : eq_(eq), box_(box), cells_(cells), settings_(settings), samples_(samples), budget_(budget) {}
 
   ArcPieces run() {
     join_crossings();
@@ -288,7 +288,7 @@ class ArcChains {
   // Appends to the chain the samples strictly between its arc points a and b of `cell`, in order
   // from a to b.
   void between(ChainPoint a, ChainPoint b, const ProvedCell& cell, int depth) {
-    CompileBudget::check();
+    budget_.check();
     const Vec3 chord = b.x - a.x;
     Vec3 ta = a.tangent, tb = b.tangent;
     if (dot(ta, chord) < 0.0) ta = -ta;
@@ -325,13 +325,14 @@ class ArcChains {
   std::vector<ChainPoint> chain_;    // the chain being walked
   std::vector<ChainPoint> thinned_;  // its points kept, in order
   ArcPieces pieces_;
+  CompileBudget& budget_;
 };
 
 }  // namespace
 
 ArcPieces sample_proved_arcs(const ImplicitEquations& equations, const Box3& box, const CurveCells& cells,
-                             const ArcSampling& settings, CurveSamples& samples) {
-  return ArcChains(equations, box, cells, settings, samples).run();
+                             const ArcSampling& settings, CurveSamples& samples, CompileBudget& budget) {
+  return ArcChains(equations, box, cells, settings, samples, budget).run();
 }
 
 }  // namespace footpoint

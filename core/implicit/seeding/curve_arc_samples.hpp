@@ -23,6 +23,7 @@
 // lengths from the end that at most double from one to the next: the tangents do not tell the
 // curvature there (a cusp's grows without bound).
 #pragma once
+#include "geometry/compile_budget.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
 #include "implicit/seeding/curve_cells.hpp"
 #include "seeding/curve_samples.hpp"
@@ -44,6 +45,6 @@ struct ArcPieces {
 
 // Appends the samples of every proved arc to `samples`, linked along the curve.
 ArcPieces sample_proved_arcs(const ImplicitEquations& equations, const Box3& box, const CurveCells& cells,
-                             const ArcSampling& settings, CurveSamples& samples);
+                             const ArcSampling& settings, CurveSamples& samples, CompileBudget& budget);
 
 }  // namespace footpoint

@@ -24,10 +24,10 @@ std::string reached(const CurveCells& out, const CurveEnclosure& enclosure) {
 }  // namespace
 
 CurveCells subdivide_curve(const ImplicitEquations& equations, const CurveEnclosure& enclosure,
-                           const SubdivisionSettings& settings) {
+                           CompileBudget& budget, const SubdivisionSettings& settings) {
   CurveCells out;
   try {
-    subdivide(equations, enclosure, settings, out);
+    subdivide(equations, enclosure, settings, out, budget);
   } catch (const GeometryError& e) {
     if (e.code != "compile_timeout") throw;
     throw GeometryError(e.code, e.field, e.position,
@@ -37,7 +37,7 @@ CurveCells subdivide_curve(const ImplicitEquations& equations, const CurveEnclos
 }
 
 void subdivide(const ImplicitEquations& equations, const CurveEnclosure& enclosure,
-               const SubdivisionSettings& settings, CurveCells& out) {
+               const SubdivisionSettings& settings, CurveCells& out, CompileBudget& budget) {
   std::vector<CellGrid> grids{enclosure.grid};
   struct Item {
     int level;
@@ -49,7 +49,7 @@ void subdivide(const ImplicitEquations& equations, const CurveEnclosure& enclosu
   std::size_t tests = 0;
   FaceCrossingCache faces(equations);
   while (!stack.empty()) {
-    CompileBudget::check();
+    budget.check();
     const Item item = stack.back();
     stack.pop_back();
     if (++out.examined > settings.max_cells)
@@ -77,7 +77,7 @@ void subdivide(const ImplicitEquations& equations, const CurveEnclosure& enclosu
       out.crossings.insert(out.crossings.end(), proof.crossings.begin(), proof.crossings.end());
       out.capsules.insert(out.capsules.end(), proof.capsules.begin(), proof.capsules.end());
       out.capsule_begin.push_back(static_cast<std::int32_t>(out.capsules.size()));
-      CompileBudget::grow(sizeof(cell) + sizeof(std::int32_t));
+      budget.grow(sizeof(cell) + sizeof(std::int32_t));
       out.cells.push_back(cell);
       continue;
     }
@@ -89,7 +89,7 @@ void subdivide(const ImplicitEquations& equations, const CurveEnclosure& enclosu
     }
     if (static_cast<std::size_t>(item.level + 1) == grids.size()) grids.push_back(grid.refined());
     children.clear();
-    refine_cell(equations, grid, item.index, children, tests);
+    refine_cell(equations, grid, item.index, children, tests, budget);
     out.evaluations += tests;
     tests = 0;
     for (const CellIndex& child : children) stack.push_back({item.level + 1, child});

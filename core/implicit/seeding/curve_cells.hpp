@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "geometry/compile_budget.hpp"
 #include "implicit/seeding/curve_cell_proof.hpp"
 #include "implicit/seeding/curve_enclosure.hpp"
 
@@ -65,9 +66,9 @@ struct SubdivisionSettings {
 // Throws GeometryError geometry_too_complex past settings.max_cells, and passes on compile_timeout
 // (geometry/compile_budget.hpp), both saying what was reached.
 CurveCells subdivide_curve(const ImplicitEquations& equations, const CurveEnclosure& enclosure,
-                           const SubdivisionSettings& settings = {});
+                           CompileBudget& budget, const SubdivisionSettings& settings = {});
 // The same, filling `out` as it goes.
 void subdivide(const ImplicitEquations& equations, const CurveEnclosure& enclosure,
-               const SubdivisionSettings& settings, CurveCells& out);
+               const SubdivisionSettings& settings, CurveCells& out, CompileBudget& budget);
 
 }  // namespace footpoint

@@ -104,16 +104,17 @@ std::size_t CurveDiscovery::memory_bytes() const {
          singular_enclosures.capacity() * sizeof(Box3);
 }
 
-CurveDiscovery discover_implicit_curve(const ImplicitEquations& equations, const Box3& box) {
+CurveDiscovery discover_implicit_curve(const ImplicitEquations& equations, const Box3& box,
+                                       CompileBudget& budget) {
   const auto t0 = std::chrono::steady_clock::now();
   CurveDiscovery out;
-  const CurveEnclosure enclosure = enclose_curve(equations, box);
+  const CurveEnclosure enclosure = enclose_curve(equations, box, budget);
   out.stats.levels = enclosure.levels;
   out.stats.cells = enclosure.cells.size();
   out.stats.interval_tests = enclosure.tests;
   out.stats.enclosure_truncated = enclosure.truncated;
 
-  out.cells = subdivide_curve(equations, enclosure);
+  out.cells = subdivide_curve(equations, enclosure, budget);
   out.stats.cells_examined = out.cells.examined;
   out.stats.proved_cells = out.cells.cells.size();
   out.stats.unproved_boxes = out.cells.unproved.size();
@@ -121,7 +122,7 @@ CurveDiscovery discover_implicit_curve(const ImplicitEquations& equations, const
   out.stats.deepest = out.cells.deepest;
 
   const double max_step = kStepPerCell * enclosure.grid.max_edge();
-  const ArcPieces pieces = sample_proved_arcs(equations, box, out.cells, {max_step}, out.samples);
+  const ArcPieces pieces = sample_proved_arcs(equations, box, out.cells, {max_step}, out.samples, budget);
   out.stats.pieces = pieces.pieces;
   out.stats.closed_pieces = pieces.closed;
   out.stats.face_crossings = pieces.face_crossings;

@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "geometry/compile_budget.hpp"
 #include "implicit/seeding/curve_cell_tree.hpp"
 #include "implicit/seeding/curve_cells.hpp"
 #include "seeding/curve_samples.hpp"
@@ -56,6 +57,7 @@ struct CurveDiscovery {
   std::size_t memory_bytes() const;
 };
 
-CurveDiscovery discover_implicit_curve(const ImplicitEquations& equations, const Box3& box);
+CurveDiscovery discover_implicit_curve(const ImplicitEquations& equations, const Box3& box,
+                                       CompileBudget& budget);
 
 }  // namespace footpoint

@@ -77,7 +77,7 @@ CellGrid CellGrid::refined() const {
 }
 
 void refine_cell(const ImplicitEquations& equations, const CellGrid& grid, const CellIndex& parent,
-                 std::vector<CellIndex>& children, std::size_t& tests) {
+                 std::vector<CellIndex>& children, std::size_t& tests, CompileBudget& budget) {
   const auto split = grid.split_axes();
   const CellGrid fine = grid.refined();
   for (int m = 0; m < 8; ++m) {
@@ -92,12 +92,12 @@ void refine_cell(const ImplicitEquations& equations, const CellGrid& grid, const
     }
     if (!valid || !fine.solid(c)) continue;
     ++tests;
-    CompileBudget::check();
+    budget.check();
     if (equations.may_vanish(fine.cell(c))) children.push_back(c);
   }
 }
 
-CurveEnclosure enclose_curve(const ImplicitEquations& equations, const Box3& box,
+CurveEnclosure enclose_curve(const ImplicitEquations& equations, const Box3& box, CompileBudget& budget,
                              const EnclosureSettings& settings) {
   CurveEnclosure e;
   e.grid = enclosure_grid(box);
@@ -121,7 +121,7 @@ CurveEnclosure enclose_curve(const ImplicitEquations& equations, const Box3& box
       break;
     }
     next.clear();
-    for (const auto& c : e.cells) refine_cell(equations, e.grid, c, next, e.tests);
+    for (const auto& c : e.cells) refine_cell(equations, e.grid, c, next, e.tests, budget);
     e.grid = e.grid.refined();
     e.cells.swap(next);
     ++e.levels;

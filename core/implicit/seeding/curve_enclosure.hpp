@@ -14,6 +14,7 @@
 #include <limits>
 #include <vector>
 
+#include "geometry/compile_budget.hpp"
 #include "implicit/geometry/implicit_curve.hpp"
 
 namespace footpoint {
@@ -66,11 +67,11 @@ struct CurveEnclosure {
 // The enclosure's grid over `box`: the extended, offset box above, clipped to `box`.
 CellGrid enclosure_grid(const Box3& box);
 
-CurveEnclosure enclose_curve(const ImplicitEquations& equations, const Box3& box,
+CurveEnclosure enclose_curve(const ImplicitEquations& equations, const Box3& box, CompileBudget& budget,
                              const EnclosureSettings& settings = {});
 
 // The cells of `grid` one level finer inside `parent`'s cell that may hold curve points.
 void refine_cell(const ImplicitEquations& equations, const CellGrid& grid, const CellIndex& parent,
-                 std::vector<CellIndex>& children, std::size_t& tests);
+                 std::vector<CellIndex>& children, std::size_t& tests, CompileBudget& budget);
 
 }  // namespace footpoint

@@ -18,10 +18,10 @@
 namespace footpoint {
 
 struct DiscoveredCurve {
-  // Runs discovery (GeometryError geometry_too_complex past its budget).
-  DiscoveredCurve(ImplicitEquations eq, const Box3& box)
+  // Runs discovery within `budget` (GeometryError geometry_too_complex past its cell limits).
+  DiscoveredCurve(ImplicitEquations eq, const Box3& box, CompileBudget& budget)
       : equations(std::move(eq)),
-        discovery(discover_implicit_curve(equations, box)),
+        discovery(discover_implicit_curve(equations, box, budget)),
         index(discovery.samples),
         sines(sines_at_samples(equations, discovery.samples)) {}
   // The index points into discovery.samples: neither copied nor moved.

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include "geometry/compile_budget.hpp"
 #include "geometry/dense_solve.hpp"
 #include "geometry/krawczyk.hpp"
 
@@ -43,7 +42,6 @@ class FaceSolver {
     std::vector<Item> stack{{face, 0}};
     int examined = 0;
     while (!stack.empty()) {
-      CompileBudget::check();
       const Item q = stack.back();
       stack.pop_back();
       if (++examined > kMaxSubFaces || q.depth > kMaxDepth) return false;

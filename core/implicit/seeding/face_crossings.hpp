@@ -33,7 +33,8 @@ struct FaceCrossing {
 // Appends to `out` every point of the curve on `face` (a box flat along `axis`: lo[axis] ==
 // hi[axis]). False when some part of the face could not be decided (a touching point, a formula
 // not twice differentiable there, or the sub-face budget); `out` then holds what was found.
-// `evaluations` counts the interval evaluations made.
+// `evaluations` counts the interval evaluations made. A face costs at most a fixed number of
+// sub-faces, so the compile budget is checked by the loops over cells that call this, not here.
 bool locate_face_crossings(const ImplicitEquations& equations, const Box3& face, int axis,
                            std::vector<FaceCrossing>& out, std::size_t& evaluations);
 

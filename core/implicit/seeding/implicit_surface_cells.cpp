@@ -61,7 +61,7 @@ bool newton_singular(const ImplicitSurfaceEquation& equation, const Box3& cell, 
 // segment, bisection then Newton on each sign change, and the subintervals that shrink to
 // 2^-40 of the edge without a sign change but with |f| at the rounding level (a tangency).
 void edge_zeros(const ImplicitSurfaceEquation& equation, Vec3 a, Vec3 b, std::vector<Vec3>& out,
-                std::size_t& examined, std::size_t max_cells) {
+                std::size_t& examined, std::size_t max_cells, CompileBudget& budget) {
   struct Piece {
     double t0, t1;
   };
@@ -69,7 +69,7 @@ void edge_zeros(const ImplicitSurfaceEquation& equation, Vec3 a, Vec3 b, std::ve
   auto segment_box = [&](double t0, double t1) { return Box3{min(at(t0), at(t1)), max(at(t0), at(t1))}; };
   std::vector<Piece> stack{{0.0, 1.0}};
   while (!stack.empty()) {
-    CompileBudget::check();
+    budget.check();
     if (++examined > max_cells)
       throw GeometryError("geometry_too_complex", "domain", -1,
                           "the surface meets the box's edges too often to resolve within " +
@@ -188,11 +188,11 @@ std::size_t ImplicitSurfaceCells::memory_bytes() const {
 }
 
 ImplicitSurfaceCells subdivide_surface(const ImplicitSurfaceEquation& equation, const Box3& box,
-                                       const ImplicitSurfaceCellSettings& settings) {
+                                       CompileBudget& budget, const ImplicitSurfaceCellSettings& settings) {
   ImplicitSurfaceCells out;
   out.box = box;
   auto count = [&]() {
-    CompileBudget::check();
+    budget.check();
     if (++out.examined > settings.max_cells)
       throw GeometryError("geometry_too_complex", "domain", -1,
                           "the surface is too intricate to resolve in this box within the limit of " +
@@ -214,7 +214,7 @@ ImplicitSurfaceCells subdivide_surface(const ImplicitSurfaceEquation& equation, 
         count();
         const Box3 child = octant_of(parent, octant);
         if (enclosure(equation, child).excludes_zero()) continue;
-        CompileBudget::grow(sizeof(ImplicitSurfaceCell));
+        budget.grow(sizeof(ImplicitSurfaceCell));
         out.cells.push_back({child});
       }
       out.cells[i].first_child = first;
@@ -227,11 +227,11 @@ ImplicitSurfaceCells subdivide_surface(const ImplicitSurfaceEquation& equation, 
     if (cell.first_child >= 0) continue;  // split (a cell whose octants all excluded S holds none)
     cell.leaf = static_cast<std::int32_t>(out.leaves);
     ++out.leaves;
-    CompileBudget::check();
+    budget.check();
     Vec3 x = cell.box.center();
     if (land_on_surface(equation, x) && cell.box.contains(x, 0.5 * cell.box.max_edge()) && box.contains(x)) {
       cell.sample = static_cast<std::int32_t>(out.samples.size());
-      CompileBudget::grow(sizeof(Vec3));
+      budget.grow(sizeof(Vec3));
       out.samples.push_back(x);
     }
     const ImplicitSurfaceIntervalJet j = equation.interval_gradient(cell.box);
@@ -253,7 +253,7 @@ ImplicitSurfaceCells subdivide_surface(const ImplicitSurfaceEquation& equation, 
       a[k] = box.lo[k];
       b[k] = box.hi[k];
       std::vector<Vec3> zeros;
-      edge_zeros(equation, a, b, zeros, out.examined, settings.max_cells);
+      edge_zeros(equation, a, b, zeros, out.examined, settings.max_cells, budget);
       for (const Vec3& z : zeros) add_distinct(on_edges, z, same);
     }
   for (const Vec3& x : on_edges) {
@@ -261,7 +261,7 @@ ImplicitSurfaceCells subdivide_surface(const ImplicitSurfaceEquation& equation, 
     for (int k = 0; k < 3; ++k) at_bounds += (x[k] == box.lo[k] || x[k] == box.hi[k]) ? 1 : 0;
     out.edge_points.push_back({x, at_bounds == 3});
   }
-  CompileBudget::grow(out.leaves * (sizeof(std::atomic<std::uint8_t>) + sizeof(LeafEnclosures)));
+  budget.grow(out.leaves * (sizeof(std::atomic<std::uint8_t>) + sizeof(LeafEnclosures)));
   out.leaf_enclosures.reset(out.leaves);
   out.sample_index = std::make_shared<const PointIndex>(out.samples);
   return out;

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "geometry/box3.hpp"
+#include "geometry/compile_budget.hpp"
 #include "implicit/geometry/implicit_surface.hpp"
 #include "seeding/point_index.hpp"
 
@@ -92,6 +93,7 @@ struct ImplicitSurfaceCells {
 };
 
 ImplicitSurfaceCells subdivide_surface(const ImplicitSurfaceEquation& equation, const Box3& box,
+                                       CompileBudget& budget,
                                        const ImplicitSurfaceCellSettings& settings = {});
 
 // The child `octant` (bit k: the upper half along axis k) of a box.

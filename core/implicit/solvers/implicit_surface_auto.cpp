@@ -124,12 +124,34 @@ class Search {
     return !cells_.sample_index || !cells_.sample_index->nearer_within(s, radius, p_, norm2(p_ - s));
   }
 
-  // Other feet at the answer's distance (a tie): the certificate's rivals (samples within a leaf
-  // diagonal of every point of S at the answer's distance outside its convex box) that lie away
-  // from the answer and are discrete local minima of the distance over the samples start solves,
-  // nearest first, at most kTieStarts. `near_minima`: a nearer minimum the samples do not show
-  // (the certificate failed with no sample nearer than the answer; two minima of nearly equal
-  // distance within two leaf diagonals): every rival more than a leaf diagonal from the answer.
+  // Other feet within the tie's gap of the answer's distance (solvers/answer_multiplicity.hpp):
+  // the certificate's tie_starts (the samples of the leaves outside its convex box K that may hold
+  // such a foot, more than two leaf diagonals from the answer: every leaf that holds one) that are
+  // discrete local minima of the distance among the tie_samples (those, and K's leaves that meet
+  // the ball of that radius) start solves, nearest first, at most kTieStarts. Among those alone: a
+  // chain of ever nearer samples, each within two leaf diagonals of the last, from a tied foot's
+  // sample then stays among them and ends at a start, or by the answer; a sample of another leaf
+  // (a sample may lie up to half a leaf's edge outside its leaf) could otherwise be the nearer one
+  // that hides the tie and starts nothing.
+  void solve_ties(const SurfaceCertificate& c) {
+    if (c.tie_starts.empty() || !cells_.sample_index) return;
+    const double h = cells_.leaf_diagonal;
+    std::vector<Vec3> starts;
+    for (const std::int32_t i : c.tie_starts) {
+      const Vec3 s = cells_.samples[static_cast<std::size_t>(i)];
+      if (!cells_.sample_index->nearer_within(s, 2.0 * h, p_, norm2(p_ - s), c.tie_samples))
+        starts.push_back(s);
+    }
+    std::sort(starts.begin(), starts.end(), [&](Vec3 a, Vec3 b) { return norm2(p_ - a) < norm2(p_ - b); });
+    for (std::size_t i = 0; i < std::min(starts.size(), kTieStarts); ++i) solve_from(starts[i]);
+  }
+
+  // A nearer minimum or a continuum the certificate's bound did not settle (it failed with no
+  // sample nearer than the answer): its rivals that lie away from the answer and are discrete
+  // local minima of the distance over the samples start solves, nearest first, at most
+  // kTieStarts. `near_minima`: a nearer minimum the samples do not show (two minima of nearly
+  // equal distance within two leaf diagonals): every rival more than a leaf diagonal from the
+  // answer.
   void solve_from_rivals(std::vector<Vec3> rivals, bool near_minima = false) {
     if (!std::isfinite(best_.distance)) return;
     const double h = cells_.leaf_diagonal;
@@ -203,7 +225,7 @@ ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
           certify_surface_answer(equation, cells, p, search.best().x, search.best().distance, budget);
       certificate = c.certificate;
       if (certificate.certified) {
-        search.solve_from_rivals(std::move(c.rivals));  // a tie's other feet
+        search.solve_ties(c);  // a tie's other feet
         break;
       }
       const double before = search.best().distance;
@@ -262,7 +284,12 @@ ProjectionResult implicit_surface_auto(const ImplicitSurfaceEquation& equation,
       answer_multiplicity(r, p, flat, search.reached(), [](const ReachedFoot& f) { return f.foot; });
   r.trace = std::move(trace);
   if (options.all_minima) {
-    // The answer first, then the other local minima found, nearest first, each foot once.
+    // The answer first, then the other local minima found, nearest first, each foot once; a
+    // continuum of nearest points once, by the answer (as parametric surfaces and curves list it).
+    const bool continuum = r.summary.multiplicity.kind == Multiplicity::continuum;
+    const double gap = TiedFeet::gap_of(r.distance, p, Vec3{r.foot[0], r.foot[1], r.foot[2]});
+    if (continuum)
+      std::erase_if(minima, [&](const Candidate& m) { return std::fabs(m.distance - r.distance) <= gap; });
     minima.insert(minima.begin(), best);
     std::stable_sort(minima.begin() + 1, minima.end(),
                      [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });

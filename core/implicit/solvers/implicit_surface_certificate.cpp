@@ -211,6 +211,24 @@ std::array<double, 2> augmentations(const ImplicitSurfaceJet& j, double l) {
   return out;
 }
 
+// The samples of the leaves under the cells `roots` whose box comes within `reach` of p (squared,
+// rounded outwards) and that `keep(cell)` keeps; a cell `skip(cell)` names is not descended.
+template <class Skip, class Keep>
+void samples_within(const ImplicitSurfaceCells& cells, std::vector<std::int32_t> roots, Vec3 p, double reach,
+                    Skip&& skip, Keep&& keep, std::vector<std::int32_t>& out) {
+  const double reach2 = square_upper_bound(reach);
+  while (!roots.empty()) {
+    const ImplicitSurfaceCell& cell = cells.cells[static_cast<std::size_t>(roots.back())];
+    roots.pop_back();
+    if (distance2_lower_bound(p, cell.box) > reach2 || skip(cell)) continue;
+    if (cell.first_child >= 0) {
+      for (std::int32_t i = 0; i < cell.children; ++i) roots.push_back(cell.first_child + i);
+    } else if (cell.sample >= 0 && keep(cell)) {
+      out.push_back(cell.sample);
+    }
+  }
+}
+
 double lower_sqrt(double twice_half_square) {
   return twice_half_square > 0.0 ? std::sqrt(twice_half_square) * (1.0 - kRound) : 0.0;
 }
@@ -261,9 +279,29 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     int depth;          // 0: a whole leaf
     std::int32_t leaf;  // the leaf it lies in: its index in the cells' enclosure cache
     Box3 leaf_box;
+    std::int32_t sample;  // the leaf's sample (-1: none)
   };
   std::vector<std::int32_t> stack{0};
   std::vector<Piece> pieces;
+  // The tie's reach (SurfaceCertificate::tie_starts): the cells settled by their distance alone
+  // that come within it, to be descended for their leaves' samples once certified.
+  const double reach = distance + gap;
+  std::vector<std::int32_t> shell;
+  // The samples of the leaves bounded piece by piece one of whose pieces outside K may hold a point
+  // within reach: its bound (by distance or by the Lagrangian) at most reach, or not settled. A
+  // leaf without a sample (Newton from its centre left the box or the leaf: a foot on a face of
+  // the box) gives the sample nearest to its centre.
+  std::vector<std::int32_t> within_reach;
+  std::int32_t last_leaf = -1;  // a leaf's pieces are consecutive
+  auto may_tie = [&](const Piece& piece, double bound) {
+    if (piece.leaf == last_leaf || !(bound <= reach) || (have_k && k.contains(piece.box))) return;
+    last_leaf = piece.leaf;
+    double d2 = 0.0;
+    const std::int32_t sample = piece.sample >= 0 || !cells.sample_index
+                                    ? piece.sample
+                                    : cells.sample_index->nearest(piece.leaf_box.center(), d2);
+    if (sample >= 0) within_reach.push_back(sample);
+  };
   // Settled by its distance: nothing in b is nearer than the threshold; or b lies in K.
   auto near_settled = [&](const Box3& b, double& bound) {
     bound = distance_lower_bound(p, b);
@@ -352,7 +390,10 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
       jb = equation.interval_gradient(b);
       fc = equation.value_enclosure({centre, centre});
     }
-    if (jb.f.excludes_zero()) return true;
+    if (jb.f.excludes_zero()) {
+      bound = std::numeric_limits<double>::infinity();  // no point of S in b
+      return true;
+    }
     if (!jb.lipschitz) return false;
     Interval mean = mul(l, fc), natural = mul(l, jb.f);
     for (int i = 0; i < 3; ++i) {
@@ -374,10 +415,14 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
     return true;
   };
   while (!stack.empty()) {
-    const ImplicitSurfaceCell& cell = cells.cells[static_cast<std::size_t>(stack.back())];
+    const std::int32_t index = stack.back();
+    const ImplicitSurfaceCell& cell = cells.cells[static_cast<std::size_t>(index)];
     stack.pop_back();
     double bound = 0.0;
-    if (near_settled(cell.box, bound)) continue;
+    if (near_settled(cell.box, bound)) {
+      if (bound >= threshold && bound <= reach && !(have_k && k.contains(cell.box))) shell.push_back(index);
+      continue;
+    }
     if (cell.first_child >= 0) {
       for (std::int32_t i = 0; i < cell.children; ++i) stack.push_back(cell.first_child + i);
       continue;
@@ -388,21 +433,28 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
       if (!(have_k && k.contains(cell.box)) && norm(p - s) <= distance + cells.leaf_diagonal)
         out.rivals.push_back(s);
     }
-    pieces.push_back({cell.box, 0, cell.leaf, cell.box});
+    pieces.push_back({cell.box, 0, cell.leaf, cell.box, cell.sample});
   }
   // Pieces of the leaves, depth first, up to 16 levels below the leaves and the box budget.
   while (!pieces.empty()) {
     const Piece piece = pieces.back();
     pieces.pop_back();
     double bound = 0.0;
-    if (near_settled(piece.box, bound)) continue;
+    if (near_settled(piece.box, bound)) {
+      may_tie(piece, bound);
+      continue;
+    }
     if (c.boxes >= budget || piece.depth >= 16) {
       lower = std::min(lower, bound);
+      may_tie(piece, bound);
       continue;
     }
     ++c.boxes;
     const LeafEnclosures leaf = cells.leaf_enclosures.get(equation, piece.leaf, piece.leaf_box);
-    if (lagrangian_settled(piece.box, leaf, piece.depth == 0, bound)) continue;
+    if (lagrangian_settled(piece.box, leaf, piece.depth == 0, bound)) {
+      may_tie(piece, bound);
+      continue;
+    }
     // Halved along the edges at least half its longest (a flat leaf of a flat box is not made
     // flatter), whole along the others: the parts cover b.
     const Box3& b = piece.box;
@@ -419,11 +471,33 @@ SurfaceCertificate certify_surface_answer(const ImplicitSurfaceEquation& equatio
           part.lo[k] = half.lo[k];
           part.hi[k] = half.hi[k];
         }
-      pieces.push_back({part, piece.depth + 1, piece.leaf, piece.leaf_box});
+      pieces.push_back({part, piece.depth + 1, piece.leaf, piece.leaf_box, piece.sample});
     }
   }
   c.lower_bound = std::min(lower, distance);
   c.certified = Certificate::meets_gap(distance, c.lower_bound, c.absolute_gap);
+  if (c.certified) {
+    // The leaves that may hold a point within reach outside K: those bounded piece by piece that
+    // may, and those under the shell (settled by distance, at most reach) not in K.
+    const auto in_k = [&](const ImplicitSurfaceCell& cell) { return have_k && k.contains(cell.box); };
+    std::vector<std::int32_t> may = std::move(within_reach);
+    samples_within(
+        cells, std::move(shell), p, reach, in_k, [](const ImplicitSurfaceCell&) { return true; }, may);
+    std::sort(may.begin(), may.end());
+    may.erase(std::unique(may.begin(), may.end()), may.end());
+    const double apart = 2.0 * cells.leaf_diagonal;
+    for (const std::int32_t i : may)
+      if (norm(cells.samples[static_cast<std::size_t>(i)] - foot) > apart) out.tie_starts.push_back(i);
+    if (!out.tie_starts.empty()) {
+      // those and the samples of the leaves in K that meet the ball
+      out.tie_samples = std::move(may);
+      samples_within(
+          cells, {0}, p, reach, [](const ImplicitSurfaceCell&) { return false; }, in_k, out.tie_samples);
+      std::sort(out.tie_samples.begin(), out.tie_samples.end());
+      out.tie_samples.erase(std::unique(out.tie_samples.begin(), out.tie_samples.end()),
+                            out.tie_samples.end());
+    }
+  }
   c.reason = c.certified           ? CertificateReason::gap_met
              : !out.nearer.empty() ? CertificateReason::nearer_point
                                    : CertificateReason::budget_exhausted;

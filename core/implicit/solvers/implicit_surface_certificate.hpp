@@ -20,9 +20,11 @@
 //    the leaves' second-order bounds take the better of the two.
 // The leaves' sample points nearer than the answer are reported (nearer), for the search to start
 // from them; so are the samples of the leaves that meet the ball of the answer's radius about p
-// away from the foot's convex box K (rivals): every other foot at the answer's distance lies in
-// such a leaf, within a leaf diagonal of its sample.
+// away from the foot's convex box K (rivals), where a nearer minimum the bound did not settle
+// lies; and, once certified, those of the leaves that may hold a point within the gap of the
+// answer's distance, where a tie lies (tie_starts, tie_samples).
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "implicit/seeding/implicit_surface_cells.hpp"
@@ -35,8 +37,19 @@ struct SurfaceCertificate {
   // Samples nearer to p than the answer by more than the gap (only when not certified).
   std::vector<Vec3> nearer;
   // Samples of the leaves that meet the ball |x - p| < distance outside K, within the answer's
-  // distance plus a leaf diagonal of p: where another foot at the same distance (a tie) can be.
+  // distance plus a leaf diagonal of p.
   std::vector<Vec3> rivals;
+  // With a certified answer, where a tie can be: every point of S within the gap of the answer's
+  // distance lies in a leaf outside K (the bound there exceeds it away from the foot) that the
+  // branch and bound could not show to lie beyond that distance: a piece of it settled by a bound
+  // (of its distance or of the Lagrangian) at most that distance, or left at the budget, or the
+  // leaf settled whole by its distance, at most that. tie_starts: the samples (indices, ascending)
+  // of such leaves (a leaf bounded piece by piece without one: the sample nearest to its centre,
+  // as where a foot lies on a face of the box and Newton from the leaf's centre left it) more
+  // than two leaf diagonals from the foot; tie_samples, only when tie_starts has any: the samples
+  // of all such leaves and of the leaves in K whose box meets the closed ball of that radius
+  // about p.
+  std::vector<std::int32_t> tie_samples, tie_starts;
 };
 
 // The box budget of one certificate (pieces of leaves subdivided for this point).

@@ -16,8 +16,8 @@ bool finite(const formula::Interval& x) { return std::isfinite(x.lo) && std::isf
 }  // namespace
 
 template <int N>
-BoxEnclosure<N> enclose_box(const formula::Program& program, const std::array<double, N>& lo,
-                            const std::array<double, N>& hi, const formula::BranchChoice* choice) {
+BoxEnclosure<N> enclose_box(const formula::Program& program, const Params<N>& lo, const Params<N>& hi,
+                            const formula::BranchChoice* choice) {
   using formula::Interval;
   BoxEnclosure<N> e;
   e.lo = lo;
@@ -69,7 +69,7 @@ BoxEnclosure<N> enclose_box(const formula::Program& program, const std::array<do
 }
 
 template <int N>
-PointEnclosure<N> enclose_point(const formula::Program& program, const std::array<double, N>& t,
+PointEnclosure<N> enclose_point(const formula::Program& program, const Params<N>& t,
                                 const formula::BranchChoice* choice) {
   PointEnclosure<N> e;
   formula::BallJet1<N> out[3];
@@ -93,8 +93,8 @@ PointEnclosure<N> enclose_point(const formula::Program& program, const std::arra
   return e;
 }
 
-BoxEnclosure<2> derive_enclosure(const BoxEnclosure<2>& ancestor, const std::array<double, 2>& lo,
-                                 const std::array<double, 2>& hi, const PointEnclosure<2>& centre) {
+BoxEnclosure<2> derive_enclosure(const BoxEnclosure<2>& ancestor, const Params<2>& lo, const Params<2>& hi,
+                                 const PointEnclosure<2>& centre) {
   using formula::Interval;
   BoxEnclosure<2> e;
   e.lo = lo;
@@ -171,13 +171,13 @@ BoxEnclosure<2> intersect(const BoxEnclosure<2>& a, const BoxEnclosure<2>& b) {
   return e;
 }
 
-template BoxEnclosure<1> enclose_box<1>(const formula::Program&, const std::array<double, 1>&,
-                                        const std::array<double, 1>&, const formula::BranchChoice*);
-template BoxEnclosure<2> enclose_box<2>(const formula::Program&, const std::array<double, 2>&,
-                                        const std::array<double, 2>&, const formula::BranchChoice*);
-template PointEnclosure<1> enclose_point<1>(const formula::Program&, const std::array<double, 1>&,
+template BoxEnclosure<1> enclose_box<1>(const formula::Program&, const Params<1>&, const Params<1>&,
+                                        const formula::BranchChoice*);
+template BoxEnclosure<2> enclose_box<2>(const formula::Program&, const Params<2>&, const Params<2>&,
+                                        const formula::BranchChoice*);
+template PointEnclosure<1> enclose_point<1>(const formula::Program&, const Params<1>&,
                                             const formula::BranchChoice*);
-template PointEnclosure<2> enclose_point<2>(const formula::Program&, const std::array<double, 2>&,
+template PointEnclosure<2> enclose_point<2>(const formula::Program&, const Params<2>&,
                                             const formula::BranchChoice*);
 
 }  // namespace footpoint

@@ -10,13 +10,14 @@
 
 #include "formula/program.hpp"
 #include "geometry/vec.hpp"
+#include "parametric/geometry/params.hpp"
 
 namespace footpoint {
 
 template <int N>
 struct BoxEnclosure {
   static constexpr int kPairs = N * (N + 1) / 2;  // (i, j) with i <= j: 00 | 00, 01, 11
-  std::array<double, N> lo{}, hi{};               // the parameter box
+  Params<N> lo{}, hi{};                           // the parameter box
   // s over the box: every s(t) has |s_k(t) - s_mid_k| <= s_rad_k. Valid when `bounded`, and for
   // the t where s is finite when `finite_part`.
   Vec3 s_mid, s_rad;
@@ -41,8 +42,8 @@ struct BoxEnclosure {
 // The enclosure of `program` (inputs t_1..t_N, outputs x, y[, z]) over the box [lo, hi]; with
 // `choice`, of the formulas with its selects replaced by their branches.
 template <int N>
-BoxEnclosure<N> enclose_box(const formula::Program& program, const std::array<double, N>& lo,
-                            const std::array<double, N>& hi, const formula::BranchChoice* choice = nullptr);
+BoxEnclosure<N> enclose_box(const formula::Program& program, const Params<N>& lo, const Params<N>& hi,
+                            const formula::BranchChoice* choice = nullptr);
 
 // s and its first partials at one point, each exact value within `*_rad` of the stored one, per
 // coordinate (from a ball jet, or from a point jet and a bound on its rounding).
@@ -56,7 +57,7 @@ struct PointEnclosure {
 // The rigorous evaluation at t (Program::ball_jets1; with `choice`, of the formulas with its
 // selects replaced by their branches).
 template <int N>
-PointEnclosure<N> enclose_point(const formula::Program& program, const std::array<double, N>& t,
+PointEnclosure<N> enclose_point(const formula::Program& program, const Params<N>& t,
                                 const formula::BranchChoice* choice = nullptr);
 
 // The enclosure over a box B inside `ancestor`'s box from a rigorous evaluation at B's centre c
@@ -65,8 +66,8 @@ PointEnclosure<N> enclose_point(const formula::Program& program, const std::arra
 // the metric as interval products of those J, the second derivatives the ancestor's. Costs one ball
 // jet instead of an interval jet, and tightens with B (the ancestor's [∂²s] times h). Nothing
 // (not bounded) where the ancestor is not smooth or the centre's evaluation not valid.
-BoxEnclosure<2> derive_enclosure(const BoxEnclosure<2>& ancestor, const std::array<double, 2>& lo,
-                                 const std::array<double, 2>& hi, const PointEnclosure<2>& centre);
+BoxEnclosure<2> derive_enclosure(const BoxEnclosure<2>& ancestor, const Params<2>& lo, const Params<2>& hi,
+                                 const PointEnclosure<2>& centre);
 
 // Both enclosures of one box hold; their intersection is kept (s and the metric from whichever is
 // tighter per coordinate, the second derivatives likewise).

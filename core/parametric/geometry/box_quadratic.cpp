@@ -16,8 +16,7 @@ double minimize_1d(double a, double c, double lo, double hi) {
 int side_of(double x, double lo, double hi) { return x <= lo ? -1 : (x >= hi ? 1 : 0); }
 }  // namespace
 
-BoxMinimum minimize_on_box(const BoxQuadratic& q, const std::array<double, 2>& lo,
-                           const std::array<double, 2>& hi) {
+BoxMinimum minimize_on_box(const BoxQuadratic& q, const Params<2>& lo, const Params<2>& hi) {
   BoxMinimum best;
   const double a = q.H[0][0], b = q.H[0][1], c = q.H[1][1];
   const double det = a * c - b * b;

@@ -7,6 +7,8 @@
 #pragma once
 #include <array>
 
+#include "parametric/geometry/params.hpp"
+
 namespace footpoint {
 
 struct BoxQuadratic {
@@ -18,13 +20,12 @@ struct BoxQuadratic {
 };
 
 struct BoxMinimum {
-  std::array<double, 2> delta{};
+  Params<2> delta{};
   double value = 0.0;
   // which side of the rectangle the minimiser lies on: -1 low, +1 high, 0 strictly inside
   std::array<int, 2> side{};
 };
 
-BoxMinimum minimize_on_box(const BoxQuadratic& q, const std::array<double, 2>& lo,
-                           const std::array<double, 2>& hi);
+BoxMinimum minimize_on_box(const BoxQuadratic& q, const Params<2>& lo, const Params<2>& hi);
 
 }  // namespace footpoint

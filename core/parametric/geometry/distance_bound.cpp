@@ -117,13 +117,13 @@ double quadratic_lower_bound_1d(double g, double h, double lo, double hi) {
 }
 
 double quadratic_lower_bound(const std::array<double, 2>& g, const std::array<std::array<double, 2>, 2>& H,
-                             const std::array<double, 2>& lo, const std::array<double, 2>& hi) {
+                             const Params<2>& lo, const Params<2>& hi) {
   const double a = H[0][0], b = H[0][1], c = H[1][1];
   if (a >= 0.0 && c >= 0.0 && a * c - b * b >= 0.0) {  // convex
     BoxQuadratic q;
     q.g = g;
     q.H = H;
-    const std::array<double, 2> d = minimize_on_box(q, lo, hi).delta;
+    const Params<2> d = minimize_on_box(q, lo, hi).delta;
     if (std::isfinite(d[0]) && std::isfinite(d[1])) {
       const double s0 = g[0] + a * d[0] + b * d[1], s1 = g[1] + b * d[0] + c * d[1];
       return q.value(d[0], d[1]) + std::min(s0 * (lo[0] - d[0]), s0 * (hi[0] - d[0])) +

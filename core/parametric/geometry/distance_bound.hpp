@@ -29,12 +29,9 @@
 
 #include "geometry/vec.hpp"
 #include "parametric/geometry/box_enclosure.hpp"
+#include "parametric/geometry/params.hpp"
 
 namespace footpoint {
-
-// Parameters (deduced from the enclosures' N, never from these arrays).
-template <int N>
-using Params = std::type_identity_t<std::array<double, N>>;
 
 // The relative rounding allowance of a computed bound (see above): 64 u.
 inline constexpr double kBoundRounding = 64.0 * 0x1p-53;
@@ -78,7 +75,7 @@ double second_order_lower_bound(const GradientEnclosure<N>& at_q, const Params<N
 // min over the box of ∇(δ̂)·(δ - δ̂) (convexity: the tangent plane lies below); otherwise the
 // minimum is on the boundary, and the same for each edge's one-dimensional quadratic.
 double quadratic_lower_bound(const std::array<double, 2>& g, const std::array<std::array<double, 2>, 2>& H,
-                             const std::array<double, 2>& lo, const std::array<double, 2>& hi);
+                             const Params<2>& lo, const Params<2>& hi);
 double quadratic_lower_bound_1d(double g, double h, double lo, double hi);
 
 // The monotonicity test (E. Hansen and G. W. Walster, Global Optimization Using Interval

@@ -2,6 +2,7 @@
 #pragma once
 #include "formula/program.hpp"
 #include "geometry/vec.hpp"
+#include "parametric/geometry/params.hpp"
 
 namespace footpoint {
 
@@ -32,15 +33,15 @@ class SurfaceFormulas {
  public:
   explicit SurfaceFormulas(formula::Program program) : program_(std::move(program)) {}
   Vec3 point(double u, double v) const {
-    const double x[2] = {u, v};
+    const Params<2> x{u, v};
     double out[3];
-    program_.values(x, out);
+    program_.values(x.data(), out);
     return {out[0], out[1], out[2]};
   }
   SurfaceJet jet(double u, double v) const {
-    const double x[2] = {u, v};
+    const Params<2> x{u, v};
     formula::Jet2<2> j[3];
-    program_.jets2<2>(x, j);
+    program_.jets2<2>(x.data(), j);
     SurfaceJet r;
     r.s = {j[0].v, j[1].v, j[2].v};
     r.su = {j[0].g[0], j[1].g[0], j[2].g[0]};
@@ -51,9 +52,9 @@ class SurfaceFormulas {
     return r;
   }
   SurfaceJet3 jet3(double u, double v) const {
-    const double x[2] = {u, v};
+    const Params<2> x{u, v};
     formula::Jet3<2> j[3];
-    program_.jets3<2>(x, j);
+    program_.jets3<2>(x.data(), j);
     SurfaceJet3 r;
     auto pick = [&](auto f) { return Vec3{f(j[0]), f(j[1]), f(j[2])}; };
     r.s = pick([](auto& a) { return a.v; });

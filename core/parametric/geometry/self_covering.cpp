@@ -22,18 +22,17 @@ bool SelfCovering::covered(const ParamBox& box, double u0, double u1, double v0,
   return false;
 }
 
-std::vector<std::array<double, 2>> SelfCovering::copies(const ParamBox& box,
-                                                        const std::vector<std::array<double, 2>>& seeds,
-                                                        std::size_t cap, bool* truncated) const {
+std::vector<Params<2>> SelfCovering::copies(const ParamBox& box, const std::vector<Params<2>>& seeds,
+                                            std::size_t cap, bool* truncated) const {
   *truncated = false;
-  std::vector<std::array<double, 2>> out;
-  const auto known = [&](const std::array<double, 2>& t) {
+  std::vector<Params<2>> out;
+  const auto known = [&](const Params<2>& t) {
     const double tol = 1e-9 * (1.0 + std::hypot(t[0], t[1]));
-    return std::any_of(out.begin(), out.end(), [&](const std::array<double, 2>& c) {
+    return std::any_of(out.begin(), out.end(), [&](const Params<2>& c) {
       return std::abs(c[0] - t[0]) <= tol && std::abs(c[1] - t[1]) <= tol;
     });
   };
-  const auto add = [&](const std::array<double, 2>& t) {
+  const auto add = [&](const Params<2>& t) {
     if (known(t)) return true;
     if (out.size() == cap) {
       *truncated = true;
@@ -50,7 +49,7 @@ std::vector<std::array<double, 2>> SelfCovering::copies(const ParamBox& box,
     for (const auto& d : translations) {
       const double margin = 1e-12 * (std::hypot(d[0], d[1]) + size);
       for (const double sign : {1.0, -1.0}) {
-        std::array<double, 2> t{out[i][0] + sign * d[0], out[i][1] + sign * d[1]};
+        Params<2> t{out[i][0] + sign * d[0], out[i][1] + sign * d[1]};
         if (t[0] < box.umin - margin || t[0] > box.umax + margin || t[1] < box.vmin - margin ||
             t[1] > box.vmax + margin)
           continue;

@@ -17,12 +17,13 @@
 #include <vector>
 
 #include "parametric/geometry/parametric_surface.hpp"
+#include "parametric/geometry/params.hpp"
 
 namespace footpoint {
 
 struct SelfCovering {
   // lexicographically positive (δu > 0, or δu = 0 and δv > 0), shortest first
-  std::vector<std::array<double, 2>> translations;
+  std::vector<Params<2>> translations;
   // The rectangle [u0, u1] x [v0, v1] lies in box + δ for one of the translations, by a margin
   // of 1e-12 (|δ| + the box's largest coordinate) for the rounding of δ's double value.
   bool covered(const ParamBox& box, double u0, double u1, double v0, double v1) const;
@@ -33,9 +34,8 @@ struct SelfCovering {
   // 1e-9 (1 + |t|) of each other are one. At most `cap` (*truncated when more were reached).
   // Complete when `translations` holds every translation that fits in the box (at most 64 do,
   // detect_self_covering): two copies in the box differ by one of them, one step.
-  std::vector<std::array<double, 2>> copies(const ParamBox& box,
-                                            const std::vector<std::array<double, 2>>& seeds, std::size_t cap,
-                                            bool* truncated) const;
+  std::vector<Params<2>> copies(const ParamBox& box, const std::vector<Params<2>>& seeds, std::size_t cap,
+                                bool* truncated) const;
 };
 
 // At most 64 translations, the shortest (any subset serves the argument above).

@@ -9,6 +9,7 @@
 #include "formula/interval.hpp"
 #include "geometry/geometry_error.hpp"
 #include "parametric/geometry/closure_sampling.hpp"
+#include "parametric/geometry/params.hpp"
 
 namespace footpoint {
 
@@ -49,9 +50,7 @@ struct Direction {
   double lo_edge, hi_edge, lo, hi;
   int along() const { return 1 - index; }
   // (u, v) at edge parameter a and parameter t along the edge.
-  std::array<double, 2> at(double a, double t) const {
-    return index == 0 ? std::array{a, t} : std::array{t, a};
-  }
+  Params<2> at(double a, double t) const { return index == 0 ? std::array{a, t} : std::array{t, a}; }
 };
 
 Direction direction(const ParamBox& box, int index) {

@@ -32,7 +32,7 @@ struct Emitted {
 }  // namespace
 
 CurveSamples sample_parametric_curve(const CurveFormulas& formulas, const ParamInterval& domain,
-                                     const ParametricSampling& settings) {
+                                     CompileBudget& budget, const ParametricSampling& settings) {
   const int n0 = settings.initial_intervals;
   std::vector<Node> coarse;
   coarse.reserve(static_cast<std::size_t>(n0) + 1);
@@ -57,7 +57,7 @@ CurveSamples sample_parametric_curve(const CurveFormulas& formulas, const ParamI
   // no finite end is left (a finite part inside it, between two coarse samples, is not looked for).
   std::vector<Emitted> out;
   auto emit = [&](const Node& node, bool linked) {
-    CompileBudget::grow(settings.bytes_per_sample);
+    budget.grow(settings.bytes_per_sample);
     out.push_back({node, linked});
   };
   if (coarse.front().finite()) emit(coarse.front(), false);
@@ -65,7 +65,7 @@ CurveSamples sample_parametric_curve(const CurveFormulas& formulas, const ParamI
   for (int i = 0; i < n0; ++i) {
     stack.push_back({coarse[static_cast<std::size_t>(i)], coarse[static_cast<std::size_t>(i) + 1]});
     while (!stack.empty()) {
-      CompileBudget::check();
+      budget.check();
       auto [a, b] = stack.back();
       stack.pop_back();
       const double tm = 0.5 * (a.t + b.t);

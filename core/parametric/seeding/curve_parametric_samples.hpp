@@ -5,6 +5,7 @@
 #pragma once
 #include <cstddef>
 
+#include "geometry/compile_budget.hpp"
 #include "seeding/curve_samples.hpp"
 
 namespace footpoint {
@@ -29,6 +30,6 @@ struct ParametricSampling {
 };
 
 CurveSamples sample_parametric_curve(const CurveFormulas& formulas, const ParamInterval& domain,
-                                     const ParametricSampling& settings = {});
+                                     CompileBudget& budget, const ParametricSampling& settings = {});
 
 }  // namespace footpoint

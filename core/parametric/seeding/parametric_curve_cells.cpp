@@ -43,7 +43,7 @@ ParametricCurveCell make_cell(const CurveFormulas& f, double t0, double t1) {
 }  // namespace
 
 ParametricCurveCells::ParametricCurveCells(const CurveFormulas& formulas, const ParamInterval& domain,
-                                           std::vector<double> breaks, int per_cell) {
+                                           std::vector<double> breaks, CompileBudget& budget, int per_cell) {
   breaks.push_back(domain.tmin);
   breaks.push_back(domain.tmax);
   std::sort(breaks.begin(), breaks.end());
@@ -53,7 +53,7 @@ ParametricCurveCells::ParametricCurveCells(const CurveFormulas& formulas, const 
                breaks.end());
   const std::size_t step = static_cast<std::size_t>(std::max(per_cell, 1));
   for (std::size_t i = 0; i + 1 < breaks.size(); i += step) {
-    CompileBudget::check();
+    budget.check();
     const std::size_t j = std::min(i + step, breaks.size() - 1);
     cells_.push_back(make_cell(formulas, breaks[i], breaks[j]));
   }

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/compile_budget.hpp"
 #include "parametric/geometry/box_enclosure.hpp"
 #include "parametric/geometry/parametric_curve.hpp"
 
@@ -35,8 +36,9 @@ struct ParametricCurveCellNode {
 class ParametricCurveCells {
  public:
   // `breaks`: the samples' parameters (any order); every `per_cell` consecutive gaps make a cell.
+  // Built within `budget` (geometry/compile_budget.hpp).
   ParametricCurveCells(const CurveFormulas& formulas, const ParamInterval& domain, std::vector<double> breaks,
-                       int per_cell = 4);
+                       CompileBudget& budget, int per_cell = 4);
   const std::vector<ParametricCurveCell>& cells() const { return cells_; }
   // nodes()[0] is the root; empty for a single cell
   const std::vector<ParametricCurveCellNode>& nodes() const { return nodes_; }

@@ -126,7 +126,7 @@ SurfaceCellBounds cell_bounds(const SurfaceFormulas& f, const Rect& r, const Sur
 
 }  // namespace
 
-SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
+SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box, CompileBudget& budget,
                            const SurfaceSeedingOptions& options, const SelfCovering& covering)
     : covering_(covering) {
   for (int k = 0; k < 4; ++k) {
@@ -180,7 +180,7 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     std::vector<std::int32_t> next;
     next.reserve(open.size() * 2);
     for (std::int32_t i : open) {
-      CompileBudget::check();
+      budget.check();
       const auto [a, b] = split(i);
       if (kept(a)) next.push_back(a);
       if (kept(b)) next.push_back(b);
@@ -195,7 +195,7 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
   std::priority_queue<std::int32_t, std::vector<std::int32_t>, decltype(worse)> queue(worse, open);
   int leaves = static_cast<int>(open.size());
   while (!queue.empty()) {
-    CompileBudget::check();
+    budget.check();
     const std::int32_t i = queue.top();
     const double score = evals[static_cast<std::size_t>(i)].score;
     const bool refine = (score > options.flatness && leaves < target_cells) ||
@@ -257,8 +257,8 @@ SurfaceCells::SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
     leaf.cell = static_cast<std::int32_t>(cells_.size());
     leaves_in_space.push_back(leaf);
     cells_.push_back(cell);
-    CompileBudget::check();
-    CompileBudget::grow(sizeof(SurfaceCell) + sizeof(SurfaceCellBounds));
+    budget.check();
+    budget.grow(sizeof(SurfaceCell) + sizeof(SurfaceCellBounds));
     bounds_.push_back(cell_bounds(formulas, r, e.jet));
   }
   // sub-boxes on demand (by default up to four pairs per cell, at least 4096 pairs, ~4 MB; about

@@ -40,6 +40,7 @@
 #include <memory>
 #include <vector>
 
+#include "geometry/compile_budget.hpp"
 #include "parametric/geometry/box_enclosure.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
 #include "parametric/geometry/self_covering.hpp"
@@ -133,7 +134,8 @@ class SurfaceCells {
   // The cells cover the box less the rectangles `covering` shows to add no point of the surface
   // (parametric/geometry/self_covering.hpp): the search and the certificates see each point of the surface
   // from fewer parameter copies.
-  SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box,
+  // Built within `budget` (geometry/compile_budget.hpp).
+  SurfaceCells(const SurfaceFormulas& formulas, const ParamBox& box, CompileBudget& budget,
                const SurfaceSeedingOptions& options = {}, const SelfCovering& covering = {});
 
   // nodes()[0] is the root, unless the tree is a single cell (then nodes() is empty).

@@ -4,8 +4,8 @@
 
 namespace footpoint {
 
-SubBox::SubBox(const formula::Program& program, const BoxEnclosure<2>& ancestor,
-               const std::array<double, 2>& box_lo, const std::array<double, 2>& box_hi, bool evaluate)
+SubBox::SubBox(const formula::Program& program, const BoxEnclosure<2>& ancestor, const Params<2>& box_lo,
+               const Params<2>& box_hi, bool evaluate)
     : lo(box_lo), hi(box_hi) {
   centre = enclose_point<2>(program, {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])});
   enclosure = derive_enclosure(ancestor, lo, hi, centre);
@@ -16,16 +16,13 @@ SubBox::SubBox(const formula::Program& program, const BoxEnclosure<2>& ancestor,
 
 SubBox::~SubBox() { delete halves.load(std::memory_order_acquire); }
 
-SubBoxPair::SubBoxPair(const formula::Program& program, const BoxEnclosure<2>& ancestor,
-                       const std::array<double, 2>& lo, const std::array<double, 2>& hi, bool split_u,
-                       bool evaluate)
+SubBoxPair::SubBoxPair(const formula::Program& program, const BoxEnclosure<2>& ancestor, const Params<2>& lo,
+                       const Params<2>& hi, bool split_u, bool evaluate)
     : half{SubBox(program, ancestor, lo,
-                  split_u ? std::array<double, 2>{0.5 * (lo[0] + hi[0]), hi[1]}
-                          : std::array<double, 2>{hi[0], 0.5 * (lo[1] + hi[1])},
+                  split_u ? Params<2>{0.5 * (lo[0] + hi[0]), hi[1]} : Params<2>{hi[0], 0.5 * (lo[1] + hi[1])},
                   evaluate),
            SubBox(program, ancestor,
-                  split_u ? std::array<double, 2>{0.5 * (lo[0] + hi[0]), lo[1]}
-                          : std::array<double, 2>{lo[0], 0.5 * (lo[1] + hi[1])},
+                  split_u ? Params<2>{0.5 * (lo[0] + hi[0]), lo[1]} : Params<2>{lo[0], 0.5 * (lo[1] + hi[1])},
                   hi, evaluate)} {}
 
 SurfaceRefinement::SurfaceRefinement(formula::Program program, std::size_t cells, std::size_t max_pairs)
@@ -42,8 +39,8 @@ SurfaceRefinement::~SurfaceRefinement() {
 }
 
 const SubBoxPair& SurfaceRefinement::halves(std::atomic<const SubBoxPair*>& slot,
-                                            const BoxEnclosure<2>& ancestor, const std::array<double, 2>& lo,
-                                            const std::array<double, 2>& hi, bool split_u, bool of_cell,
+                                            const BoxEnclosure<2>& ancestor, const Params<2>& lo,
+                                            const Params<2>& hi, bool split_u, bool of_cell,
                                             std::unique_ptr<SubBoxPair>& scratch) const {
   const bool evaluate = of_cell || !sum_of_monomials_;
   if (const SubBoxPair* published = slot.load(std::memory_order_acquire)) return *published;

@@ -16,13 +16,14 @@
 
 #include "formula/program.hpp"
 #include "parametric/geometry/box_enclosure.hpp"
+#include "parametric/geometry/params.hpp"
 
 namespace footpoint {
 
 struct SubBoxPair;
 
 struct SubBox {
-  std::array<double, 2> lo{}, hi{};
+  Params<2> lo{}, hi{};
   BoxEnclosure<2> enclosure;  // s, its second partials and the metric over the box
   PointEnclosure<2> centre;   // s, s_u, s_v at the centre, enclosed
   bool split_u = true;        // its halves split it along u (it is longer along u on the surface)
@@ -36,8 +37,8 @@ struct SubBox {
   // with `evaluate`, or where the ancestor is not smooth (a kink of the formulas crosses it, and the
   // smaller box may be smooth), also an interval jet over the box (enclose_box), and the tighter
   // of the two enclosures.
-  SubBox(const formula::Program& program, const BoxEnclosure<2>& ancestor, const std::array<double, 2>& lo,
-         const std::array<double, 2>& hi, bool evaluate);
+  SubBox(const formula::Program& program, const BoxEnclosure<2>& ancestor, const Params<2>& lo,
+         const Params<2>& hi, bool evaluate);
   SubBox(const SubBox&) = delete;
   SubBox& operator=(const SubBox&) = delete;
   ~SubBox();
@@ -45,8 +46,8 @@ struct SubBox {
 
 struct SubBoxPair {
   // [lo, hi] halved along u (split_u) or v
-  SubBoxPair(const formula::Program& program, const BoxEnclosure<2>& ancestor,
-             const std::array<double, 2>& lo, const std::array<double, 2>& hi, bool split_u, bool evaluate);
+  SubBoxPair(const formula::Program& program, const BoxEnclosure<2>& ancestor, const Params<2>& lo,
+             const Params<2>& hi, bool split_u, bool evaluate);
   SubBox half[2];
 };
 
@@ -71,8 +72,8 @@ class SurfaceRefinement {
   // (Σ (s_k - p_k) ∂²s_k grows with the distance). The choice depends on the box and the formulas
   // only, never on the point: a certificate does not depend on the points answered before it.
   const SubBoxPair& halves(std::atomic<const SubBoxPair*>& slot, const BoxEnclosure<2>& ancestor,
-                           const std::array<double, 2>& lo, const std::array<double, 2>& hi, bool split_u,
-                           bool of_cell, std::unique_ptr<SubBoxPair>& scratch) const;
+                           const Params<2>& lo, const Params<2>& hi, bool split_u, bool of_cell,
+                           std::unique_ptr<SubBoxPair>& scratch) const;
   // What the refinement may take: the cap's worth of pairs (reserved, reported up front).
   std::size_t reserved_bytes() const { return max_pairs_ * sizeof(SubBoxPair); }
   std::size_t pairs() const { return pairs_.load(std::memory_order_relaxed); }

@@ -14,7 +14,7 @@ constexpr double kTie = 1e-13;
 
 BasinVerdict test_basin(const BasinIterate& it, const ParamBox& box, const EarlyStop& early) {
   BasinVerdict verdict;
-  const double lo[2] = {box.umin, box.vmin}, hi[2] = {box.umax, box.vmax};
+  const Params<2> lo{box.umin, box.vmin}, hi{box.umax, box.vmax};
   const double(&H)[2][2] = it.H;
   const double a = H[0][0], b = H[0][1], c = H[1][1];
   // on a face (one parameter held on its bound): the free one and the held one
@@ -22,7 +22,7 @@ BasinVerdict test_basin(const BasinIterate& it, const ParamBox& box, const Early
   const int fi = it.free_[0] ? 0 : 1, hj = 1 - fi;
   if (!(it.definite || (on_face && H[fi][fi] > 0.0))) return verdict;
   // the Newton step on the free parameters, and the smaller eigenvalue of H there
-  const double* delta = it.newton_step;
+  const Params<2>& delta = it.newton_step;
   const double lambda_min =
       it.definite ? it.det / (0.5 * (a + c) + std::sqrt(0.25 * (a - c) * (a - c) + b * b))  // det / λ2
                   : H[fi][fi];

@@ -27,17 +27,18 @@
 #include <limits>
 
 #include "parametric/geometry/parametric_surface.hpp"
+#include "parametric/geometry/params.hpp"
 
 namespace footpoint::surface {
 
 // What the caller knows that can end a solve early.
 struct EarlyStop {
   double cutoff = std::numeric_limits<double>::infinity();  // the best distance found so far
-  const std::array<double, 2>* minimisers = nullptr;        // minimisers found so far (u, v)
+  const Params<2>* minimisers = nullptr;                    // minimisers found so far (u, v)
   int minimiser_count = 0;
   // A point near the start and the Hessian of f there (upper triangle), for the first Lipschitz
   // estimate; reference_H[0] = NaN when there is none.
-  std::array<double, 2> reference_t{};
+  Params<2> reference_t{};
   std::array<double, 3> reference_H{std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};
 };
 
@@ -45,14 +46,14 @@ struct EarlyStop {
 // previous one (upper triangle), g, the residual r = s - p, Newton's step before any cap, which
 // parameters are free, and whether H is positive definite on both (newton_direction.hpp).
 struct BasinIterate {
-  double t[2];
-  double t_prev[2];
+  Params<2> t;
+  Params<2> t_prev;
   double H[2][2];
   double H_prev[3];
   double g[2];
   Vec3 r;
   Vec3 s;  // the surface point at t
-  double newton_step[2];
+  Params<2> newton_step;
   bool free_[2];
   bool definite;
   double det;

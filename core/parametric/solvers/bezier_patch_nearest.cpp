@@ -26,10 +26,41 @@ using BzCell = bezier_detail::Cell;
 using formula::interval::add;
 using formula::interval::mul;
 using formula::interval::sqr;
-BzInterval bz_dot(const BzVec& a, const BzVec& b) {
-  return add(add(mul(a[0], b[0]), mul(a[1], b[1])), mul(a[2], b[2]));
+
+// The sum of three intervals' bounds computed in floating point (lo, hi, each term rounded once
+// from its exact value), moved outwards by their rounding: the three terms' and the two sums'
+// are each at most 2^-53 of the terms' magnitudes' sum m (m rounded too: 2^-50 m covers all of
+// them), and bz_down / bz_up cover the last subtraction's. A NaN (0 x inf) gives the whole line.
+BzInterval bz_sum_widened(double lo, double hi, double m) {
+  if (std::isnan(lo) || std::isnan(hi)) return formula::interval::entire();
+  const double e = m * 0x1p-50 + 0x1p-1000;
+  return {bz_down(lo - e), bz_up(hi + e)};
 }
-BzInterval bz_norm2(const BzVec& a) { return add(add(sqr(a[0]), sqr(a[1])), sqr(a[2])); }
+// a·b: each product's bounds are the least and greatest of its four corner products.
+BzInterval bz_dot(const BzVec& a, const BzVec& b) {
+  double lo = 0.0, hi = 0.0, m = 0.0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    const double p0 = a[c].lo * b[c].lo, p1 = a[c].lo * b[c].hi, p2 = a[c].hi * b[c].lo,
+                 p3 = a[c].hi * b[c].hi;
+    const double l = std::min(std::min(p0, p1), std::min(p2, p3)),
+                 h = std::max(std::max(p0, p1), std::max(p2, p3));
+    lo += l;
+    hi += h;
+    m += std::max(std::fabs(l), std::fabs(h));
+  }
+  return bz_sum_widened(lo, hi, m);
+}
+// |a|²: each square's least value is 0 where the interval holds 0.
+BzInterval bz_norm2(const BzVec& a) {
+  double lo = 0.0, hi = 0.0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    const double l = std::fabs(a[c].lo), h = std::fabs(a[c].hi), big = std::max(l, h);
+    lo += a[c].lo <= 0.0 && a[c].hi >= 0.0 ? 0.0 : std::min(l, h) * std::min(l, h);
+    hi += big * big;
+  }
+  const BzInterval sum = bz_sum_widened(lo, hi, hi);
+  return {std::max(sum.lo, 0.0), sum.hi};
+}
 
 // The box of computed values v (each within w of its exact value, plus its own rounding) less
 // `origin`, as intervals.
@@ -51,19 +82,23 @@ struct BzHull {
 };
 
 // The Bernstein basis of degree n at x and its first two derivatives (zero below degree 1, 2).
+// The triangle of the bases of degree 0 to n, B_k^m = (1 - x) B_k^(m-1) + x B_(k-1)^(m-1), is built in
+// place (k descending), keeping the levels n - 2 and n - 1 that the derivatives take.
 void bz_basis(int n, double x, double* b0, double* b1, double* b2) {
-  double level[BezierPatch::kMaxDegree + 1][BezierPatch::kMaxDegree + 1] = {};
-  level[0][0] = 1.0;
+  constexpr int kSize = BezierPatch::kMaxDegree + 3;
+  double b[kSize] = {1.0}, below1[kSize] = {}, below2[kSize] = {};  // levels n - 1, n - 2 (shifted by 2)
   for (int m = 1; m <= n; ++m) {
-    level[m][0] = (1.0 - x) * level[m - 1][0];
-    for (int k = 1; k < m; ++k) level[m][k] = (1.0 - x) * level[m - 1][k] + x * level[m - 1][k - 1];
-    level[m][m] = x * level[m - 1][m - 1];
+    if (m == n - 1) std::copy(b, b + m, below2 + 2);
+    if (m == n) std::copy(b, b + m, below1 + 2);
+    b[m] = x * b[m - 1];
+    for (int k = m - 1; k >= 1; --k) b[k] = (1.0 - x) * b[k] + x * b[k - 1];
+    b[0] = (1.0 - x) * b[0];
   }
-  auto at = [&](int m, int k) { return m < 0 || k < 0 || k > m ? 0.0 : level[m][k]; };
+  // below1[k + 2] = B_k^(n-1) (0 outside 0..n-1), below2[k + 2] = B_k^(n-2) (0 outside 0..n-2).
   for (int k = 0; k <= n; ++k) {
-    b0[k] = level[n][k];
-    b1[k] = n * (at(n - 1, k - 1) - at(n - 1, k));
-    b2[k] = n * (n - 1) * (at(n - 2, k - 2) - 2.0 * at(n - 2, k - 1) + at(n - 2, k));
+    b0[k] = b[k];
+    b1[k] = n * (below1[k + 1] - below1[k + 2]);
+    b2[k] = n * (n - 1) * (below2[k] - 2.0 * below2[k + 1] + below2[k + 2]);
   }
 }
 
@@ -475,26 +510,37 @@ class BzSearch {
       const Vec3 foot = j.s;
       gap_ = std::fmax(Certificate::kRelativeGap * d, Certificate::absolute_gap_at(p_, foot));
       distance_ = d;
-      // f and its gradient at the candidate, enclosed: the Bernstein sums' rounding is at most
-      // (p + q + 2) roundings of the net's magnitude per term (the basis is nonnegative and sums to
-      // 1; its derivatives' absolute values sum to at most 2p), taken 16 times over.
+      const BzPoint at = enclose(j);
+      cand_f_ = at.f;
+      cand_gs_ = at.gs;
+      cand_gt_ = at.gt;
       const int pq = deg_[0] + deg_[1] + 2;
-      const double err0 = 16.0 * pq * 0x1p-53 * magnitude_;
-      const double err1 = 32.0 * std::max(deg_[0], deg_[1]) * pq * 0x1p-53 * magnitude_;
-      BzVec r, es, et;
-      for (int c = 0; c < 3; ++c) {
-        const double x = j.s[c] - p_[c];
-        r[c] = {bz_down(x - err0), bz_up(x + err0)};
-        es[c] = {bz_down(j.su[c] - err1), bz_up(j.su[c] + err1)};
-        et[c] = {bz_down(j.sv[c] - err1), bz_up(j.sv[c] + err1)};
-      }
-      cand_f_ = 0.5 * bz_norm2(r).lo;
-      cand_gs_ = bz_dot(r, es);
-      cand_gt_ = bz_dot(r, et);
       f_cert_ = 0.5 * std::pow(std::max(d - 0.5 * gap_, 0.0), 2);
       f_tie_ = 0.5 * (d + gap_) * (d + gap_);
       if (patch_.rational()) rational_candidate(s, t, pq);
     }
+  }
+
+  // f (rounded down) and its gradient at a point of the patch, enclosed from the jet j there by
+  // the Bernstein form (BezierPatch::jet): the Bernstein sums' rounding is at most (p + q + 2)
+  // roundings of the net's magnitude per term (the basis is nonnegative and sums to 1; its
+  // derivatives' absolute values sum to at most 2p), taken 16 times over.
+  struct BzPoint {
+    double f;
+    BzInterval gs, gt;
+  };
+  BzPoint enclose(const SurfaceJet& j) const {
+    const int pq = deg_[0] + deg_[1] + 2;
+    const double err0 = 16.0 * pq * 0x1p-53 * magnitude_;
+    const double err1 = 32.0 * std::max(deg_[0], deg_[1]) * pq * 0x1p-53 * magnitude_;
+    BzVec r, es, et;
+    for (int c = 0; c < 3; ++c) {
+      const double x = j.s[c] - p_[c];
+      r[c] = {bz_down(x - err0), bz_up(x + err0)};
+      es[c] = {bz_down(j.su[c] - err1), bz_up(j.su[c] + err1)};
+      et[c] = {bz_down(j.sv[c] - err1), bz_up(j.sv[c] + err1)};
+    }
+    return {0.5 * bz_norm2(r).lo, bz_dot(r, es), bz_dot(r, et)};
   }
 
   PatchNearest run(int max_boxes) {
@@ -502,10 +548,14 @@ class BzSearch {
     if (beyond_cutoff(out)) return out;
     // Newton from the parameters of the control point nearest p.
     int best = 0;
-    for (int i = 1; i < stride_; ++i)
-      if (norm2(patch_.point(static_cast<std::size_t>(i)) - p_) <
-          norm2(patch_.point(static_cast<std::size_t>(best)) - p_))
+    double best_d2 = norm2(patch_.point(0) - p_);
+    for (int i = 1; i < stride_; ++i) {
+      const double d2 = norm2(patch_.point(static_cast<std::size_t>(i)) - p_);
+      if (d2 < best_d2) {
+        best_d2 = d2;
         best = i;
+      }
+    }
     newton(static_cast<double>(best / (deg_[1] + 1)) / deg_[0],
            static_cast<double>(best % (deg_[1] + 1)) / deg_[1]);
     if (!std::isfinite(f_)) return out;
@@ -726,7 +776,8 @@ class BzSearch {
   }
 
   // A cell's lower bound of f without a candidate: its hull's, else the larger of that and the
-  // second-order form from its corner nearest p.
+  // second-order form from its corner nearest p; infinite where f descends inwards over it
+  // (descends_inwards: the patch's least value is attained in the other cells).
   double beyond_bound(int id, const BzCell& c) const {
     BzVec r;
     const double lower = hull_bound(c, r);
@@ -736,6 +787,8 @@ class BzSearch {
       level_nets(id, c, nets);
       return std::max(lower, ratio_bound(nets, (2 * deg_[0] + 1) * (2 * deg_[1] + 1)));
     }
+    if (descends_inwards(c.s0, c.s1, c.t0, c.t1, bz_dot(r, c.su), bz_dot(r, c.sv)))
+      return std::numeric_limits<double>::infinity();
     const BzInterval fss = add(c.su2, bz_dot(r, c.suu)), ftt = add(c.sv2, bz_dot(r, c.svv));
     const BzInterval fst = add(c.susv, bz_dot(r, c.suv));
     int best = 0;
@@ -827,8 +880,25 @@ class BzSearch {
     BzBox box{id, c.s0, c.s1, c.t0, c.t1};
     bound(box, c);
     boxes_.push_back(box);
+    if (descends_inwards(box)) return;
     const int index = static_cast<int>(boxes_.size()) - 1;
     (is_settled(box) ? settled_ : open_).push_back(index);
+  }
+
+  // Whether f is strictly monotone over the box along a direction in which the box's lower side
+  // (f increasing) or upper side (decreasing) is inside the patch: then at every point y of the
+  // box that partial derivative is nonzero and a step against it stays in the patch (y is not on
+  // the patch's side there), so y is neither the patch's nearest point nor a local minimum. The
+  // box drops out of the search and of the bound: the least of f over the patch is attained
+  // outside every such box, i.e. in the boxes kept ([Hansen] the monotonicity test). The
+  // gradient's enclosures (fs, ft) hold over the closed box; where they are not computed they are
+  // the whole line.
+  static bool descends_inwards(const BzBox& b) {
+    return descends_inwards(b.s0, b.s1, b.t0, b.t1, b.fs, b.ft);
+  }
+  static bool descends_inwards(double s0, double s1, double t0, double t1, BzInterval fs, BzInterval ft) {
+    return (fs.lo > 0.0 && s0 > 0.0) || (fs.hi < 0.0 && s1 < 1.0) || (ft.lo > 0.0 && t0 > 0.0) ||
+           (ft.hi < 0.0 && t1 < 1.0);
   }
 
   void settle_all() {
@@ -878,18 +948,23 @@ class BzSearch {
     return std::isfinite(lower) ? lower : 0.0;
   }
 
-  // Taylor's form from the candidate x* over a box holding it, in the box's local parameters: δ
-  // in [ds, dt] about x*, the gradient (cand_gs_, cand_gt_) scaled by the box's widths to as, at,
-  // and the least over the box of as δs + at δt + ½ δᵀ H δ for every H in (hss, hst, htt).
+  // Taylor's form from a point z = (s, t) of a box (the candidate x* on a box holding it), in the
+  // box's local parameters: δ in [ds, dt] about z, the gradient (gs, gt) at z scaled by the box's
+  // widths to as, at, and the least over the box of as δs + at δt + ½ δᵀ H δ for every H in (hss,
+  // hst, htt).
   struct BzForm {
     double least;
     BzInterval ds, dt, as, at;
   };
   BzForm candidate_form(const BzBox& b, BzInterval hss, BzInterval hst, BzInterval htt) const {
+    return taylor_form(b, s_, t_, cand_gs_, cand_gt_, hss, hst, htt);
+  }
+  static BzForm taylor_form(const BzBox& b, double s, double t, BzInterval gs, BzInterval gt, BzInterval hss,
+                            BzInterval hst, BzInterval htt) {
     const double ws = b.s1 - b.s0, wt = b.t1 - b.t0;
-    const double ls = std::min(bz_down((b.s0 - s_) / ws), 0.0), hs = std::max(bz_up((b.s1 - s_) / ws), 0.0);
-    const double lt = std::min(bz_down((b.t0 - t_) / wt), 0.0), ht = std::max(bz_up((b.t1 - t_) / wt), 0.0);
-    BzForm form{0.0, {ls, hs}, {lt, ht}, bz_scaled(cand_gs_, ws), bz_scaled(cand_gt_, wt)};
+    const double ls = std::min(bz_down((b.s0 - s) / ws), 0.0), hs = std::max(bz_up((b.s1 - s) / ws), 0.0);
+    const double lt = std::min(bz_down((b.t0 - t) / wt), 0.0), ht = std::max(bz_up((b.t1 - t) / wt), 0.0);
+    BzForm form{0.0, {ls, hs}, {lt, ht}, bz_scaled(gs, ws), bz_scaled(gt, wt)};
     for (const int sign_s : {-1, 1})
       for (const int sign_t : {-1, 1}) {
         const double X = sign_s > 0 ? hs : -ls, Y = sign_t > 0 ? ht : -lt;
@@ -926,24 +1001,33 @@ class BzSearch {
     b.ft = bz_dot(r, c.sv);
     b.fss = fss.lo;
     b.ftt = ftt.lo;
-    if (b.contains(s_, t_)) {
-      // Taylor from the candidate x*. The gradient over the box in the centred form ∇f(x*) + H δ
-      // bounds its sign far tighter than the hulls' product near x*.
-      const BzForm form = candidate_form(b, fss, fst, ftt);
-      const double taylor = bz_down(cand_f_ + form.least);
-      lower = std::max(lower, taylor);
+    // Taylor from the point z of the box nearest the candidate x* in the parameters: x* itself on
+    // a box holding it, else a corner (whose jet the cell holds) or a point of a side (evaluated).
+    // Near x*, where the boxes about a minimum cluster, f(z) exceeds f(x*) by ~ ½ |z - x*|² in
+    // f's Hessian, which an expansion from a farther corner loses. The gradient over the box in
+    // the centred form ∇f(z) + H δ bounds its sign far tighter than the hulls' product near z.
+    const double zs = std::clamp(s_, b.s0, b.s1), zt = std::clamp(t_, b.t0, b.t1);
+    const bool side_s = zs == b.s0 || zs == b.s1, side_t = zt == b.t0 || zt == b.t1;
+    if (!b.contains(s_, t_) && side_s && side_t) {
+      lower = std::max(lower, corner_taylor(c, zs == b.s1 ? 1 : 0, zt == b.t1 ? 1 : 0, fss, fst, ftt));
       b.lower = std::isfinite(lower) ? lower : 0.0;
-      const BzInterval cs = add(form.as, add(mul(fss, form.ds), mul(fst, form.dt)));
-      const BzInterval ct = add(form.at, add(mul(fst, form.ds), mul(ftt, form.dt)));
-      b.fs = {std::max(b.fs.lo, cs.lo), std::min(b.fs.hi, cs.hi)};
-      b.ft = {std::max(b.ft.lo, ct.lo), std::min(b.ft.hi, ct.hi)};
       return;
     }
-    // Taylor from the corner nearest the candidate.
-    const double taylor =
-        corner_taylor(c, s_ - b.s0 > b.s1 - s_ ? 1 : 0, t_ - b.t0 > b.t1 - t_ ? 1 : 0, fss, fst, ftt);
-    lower = std::max(lower, taylor);
+    BzForm form{};
+    double fz = cand_f_;
+    if (b.contains(s_, t_)) {
+      form = candidate_form(b, fss, fst, ftt);
+    } else {
+      const BzPoint z = enclose(patch_.jet(zs, zt));
+      form = taylor_form(b, zs, zt, z.gs, z.gt, fss, fst, ftt);
+      fz = z.f;
+    }
+    lower = std::max(lower, bz_down(fz + form.least));
     b.lower = std::isfinite(lower) ? lower : 0.0;
+    const BzInterval cs = add(form.as, add(mul(fss, form.ds), mul(fst, form.dt)));
+    const BzInterval ct = add(form.at, add(mul(fst, form.ds), mul(ftt, form.dt)));
+    b.fs = {std::max(b.fs.lo, cs.lo), std::min(b.fs.hi, cs.hi)};
+    b.ft = {std::max(b.ft.lo, ct.lo), std::min(b.ft.hi, ct.hi)};
   }
 
   const BezierPatch& patch_;

@@ -9,9 +9,16 @@
 //    and its kin are enclosed from the boxes of the nets of differences (S_s, S_t, S_ss, S_st,
 //    S_tt are Bézier patches of the differences of the net), and on each quadrant of the box
 //    about c (δ's signs fixed) the form's least value is found exactly (a corner, an edge's
-//    one-dimensional minimum, or the interior stationary point). c is the candidate foot x* on
-//    the sub-patches that hold it (∇f(x*) ~ 0: the bound is f(x*) to the rounding, which the
-//    hull alone reaches only after ~15 levels), else the corner nearest x*.
+//    one-dimensional minimum, or the interior stationary point). c is the point of the sub-patch
+//    nearest the candidate foot x* in the parameters: x* on the sub-patches that hold it
+//    (∇f(x*) ~ 0: the bound is f(x*) to the rounding, which the hull alone reaches only after ~15
+//    levels), else a corner or a point of a side (the sub-patches about x*, whose sides pass
+//    near it: there f(c) - f(x*) ~ ½ |c - x*|² in f's Hessian, lost from a farther corner).
+// A sub-patch over which a component of f's gradient keeps one sign (its enclosure, tightened by
+// the centred form ∇f(c) + H δ) towards a side inside the patch holds neither the nearest point
+// nor any local minimum: it is dropped, from the search and from the bound (the monotonicity test
+// of interval global optimisation, [Hansen] E. Hansen, G. W. Walster, Global Optimization Using
+// Interval Analysis, 2nd ed., Dekker 2004, ch. 12).
 // The candidate is projected Newton's on the box [0, 1]² from the parameters of the control point
 // nearest p, restarted in a sub-patch that may hold a nearer point. A sub-patch is settled when
 // it cannot hold a foot within the certificate's gap (projection/certificate.hpp) of the candidate,
@@ -20,7 +27,8 @@
 // edge, f's derivative of one sign over the whole sub-patch (enclosed in the centred form
 // ∇f(x*) + H δ) pushing towards that edge, and f convex along the other. Then x*, which meets
 // the first-order conditions, is the sub-patch's only minimum and the foot is unique. The lower
-// bound returned is the least of the settled sub-patches' bounds, rigorous for the polynomial of
+// bound returned is the least of the settled sub-patches' bounds (the dropped ones hold no
+// minimum), rigorous for the polynomial of
 // the net as stored: every subdivision's rounding is carried as an absolute error of the nets'
 // points, the candidate's jet is enclosed with the Bernstein sums' rounding, and every bound is
 // rounded outwards. The first kCellLevels levels of quarters and their enclosures, which do not

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "parametric/geometry/params.hpp"
+
 namespace footpoint {
 
 namespace {
@@ -77,24 +79,24 @@ namespace footpoint::surface {
 
 namespace {
 
-using P2 = std::array<double, 2>;
-
-P2 along(const P2& t, double mu, const P2& d) { return {t[0] + mu * d[0], t[1] + mu * d[1]}; }
-double dot2(const P2& a, const P2& b) { return a[0] * b[0] + a[1] * b[1]; }
-double norm2d(const P2& a) { return std::hypot(a[0], a[1]); }
+Params<2> along(const Params<2>& t, double mu, const Params<2>& d) {
+  return {t[0] + mu * d[0], t[1] + mu * d[1]};
+}
+double dot2(const Params<2>& a, const Params<2>& b) { return a[0] * b[0] + a[1] * b[1]; }
+double norm2d(const Params<2>& a) { return std::hypot(a[0], a[1]); }
 
 // f, its gradient and Hessian at t (the piece of the formulas that t lies on).
 struct Local {
-  P2 t;
+  Params<2> t;
   SurfaceJet jet;
   double f = 0.0;
-  P2 g{};
+  Params<2> g{};
   double h[3]{};  // H_uu, H_uv, H_vv
   double h_norm = 0.0;
   bool finite = false;
 };
 
-Local local_at(const SurfaceFormulas& formulas, const Vec3& p, const P2& t) {
+Local local_at(const SurfaceFormulas& formulas, const Vec3& p, const Params<2>& t) {
   Local l;
   l.t = t;
   l.jet = formulas.jet(t[0], t[1]);
@@ -116,26 +118,26 @@ struct Bracket {
 };
 
 // The slope of f along d at a point, and its rate of change there (<d, H d>).
-double slope(const Local& l, const P2& d) { return dot2(l.g, d); }
-double bend(const Local& l, const P2& d) {
+double slope(const Local& l, const Params<2>& d) { return dot2(l.g, d); }
+double bend(const Local& l, const Params<2>& d) {
   return l.h[0] * d[0] * d[0] + 2.0 * l.h[1] * d[0] * d[1] + l.h[2] * d[1] * d[1];
 }
 
 // How far the slope's change over [a, b] is from what a smooth f gives (the trapezoidal rule of its
 // rate): O(|b - a|^3) where f is smooth, the jump's size across a kink.
-double mismatch(const Local& a, const Local& b, const P2& d, double width) {
+double mismatch(const Local& a, const Local& b, const Params<2>& d, double width) {
   return std::abs(slope(b, d) - slope(a, d) - 0.5 * (bend(a, d) + bend(b, d)) * width);
 }
 
 // Bisects t + μ d, μ in [lo, hi], towards the half whose slope change a smooth f explains least,
 // down to adjacent doubles.
-bool bracket_along(const SurfaceFormulas& formulas, const Vec3& p, const P2& t, const P2& d, double lo,
-                   double hi, Bracket& out) {
+bool bracket_along(const SurfaceFormulas& formulas, const Vec3& p, const Params<2>& t, const Params<2>& d,
+                   double lo, double hi, Bracket& out) {
   Local a = local_at(formulas, p, along(t, lo, d)), b = local_at(formulas, p, along(t, hi, d));
   if (!a.finite || !b.finite) return false;
   for (int i = 0; i < 160; ++i) {
     const double mid = 0.5 * (lo + hi);
-    const P2 m = along(t, mid, d);
+    const Params<2> m = along(t, mid, d);
     if (m == a.t || m == b.t) break;
     const Local l = local_at(formulas, p, m);
     if (!l.finite) return false;
@@ -149,14 +151,14 @@ bool bracket_along(const SurfaceFormulas& formulas, const Vec3& p, const P2& t, 
   return true;
 }
 
-bool inside(const ParamBox& box, const P2& t, double margin) {
+bool inside(const ParamBox& box, const Params<2>& t, double margin) {
   return t[0] > box.umin + margin && t[0] < box.umax - margin && t[1] > box.vmin + margin &&
          t[1] < box.vmax - margin;
 }
 
 // The gradient jumps across the bracket by more than a smooth f allows.
 bool jumps(const Bracket& k) {
-  const P2 jump{k.b.g[0] - k.a.g[0], k.b.g[1] - k.a.g[1]};
+  const Params<2> jump{k.b.g[0] - k.a.g[0], k.b.g[1] - k.a.g[1]};
   const double width = norm2d({k.b.t[0] - k.a.t[0], k.b.t[1] - k.a.t[1]});
   const double size = std::max(norm2d(k.a.g), norm2d(k.b.g));
   return norm2d(jump) > 1e3 * width * std::max(k.a.h_norm, k.b.h_norm) + 1e-12 * size;
@@ -173,8 +175,8 @@ bool rises_across_fan(const SurfaceFormulas& formulas, const ParamBox& box, cons
   constexpr int kFan = 64;
   for (int i = 0; i <= kFan; ++i) {
     const double angle = first + width * i / kFan;
-    const P2 dir{std::cos(angle), std::sin(angle)};
-    P2 q = along(best.t, h, dir);
+    const Params<2> dir{std::cos(angle), std::sin(angle)};
+    Params<2> q = along(best.t, h, dir);
     q = {std::clamp(q[0], box.umin, box.umax), std::clamp(q[1], box.vmin, box.vmax)};
     const Local l = local_at(formulas, p, q);
     if (!l.finite) return false;
@@ -205,7 +207,7 @@ void adopt(const Local& best, LocalSolution& s) {
 // <g(t + h r), r>, the gradient of the piece r points into, off by at most |H| h.
 bool boundary_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, double scale,
                            double margin, LocalSolution& s) {
-  P2 t{s.u, s.v};
+  Params<2> t{s.u, s.v};
   bool u_lo = std::abs(t[0] - box.umin) <= margin, u_hi = std::abs(t[0] - box.umax) <= margin;
   bool v_lo = std::abs(t[1] - box.vmin) <= margin, v_hi = std::abs(t[1] - box.vmax) <= margin;
   bool at_u = u_lo || u_hi, at_v = v_lo || v_hi;
@@ -218,7 +220,7 @@ bool boundary_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box,
     const std::size_t k = at_u ? 1 : 0;
     const double lo = k == 0 ? box.umin : box.vmin, hi = k == 0 ? box.umax : box.vmax;
     const auto point = [&](double x) {
-      P2 q = t;
+      Params<2> q = t;
       q[k] = x;
       return local_at(formulas, p, q);
     };
@@ -291,7 +293,7 @@ bool boundary_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box,
 // Section 2.3 of the book the header cites), read from a fan of directions all around it as on the boundary;
 // f' is linear on each of the finitely many sectors between kinks.
 bool point_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, double scale,
-                        double margin, const Local& start, const P2& along_k, double first_step,
+                        double margin, const Local& start, const Params<2>& along_k, double first_step,
                         LocalSolution& s) {
   Local best = start;
   double angle0 = 0.0;
@@ -300,10 +302,11 @@ bool point_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, co
     bool moved = false;
     for (int i = 0; i < 10 && !moved; ++i) {
       const double angle = angle0 + 0.25 * std::numbers::pi * (i - 2);
-      const P2 dir =
-          i == 0 ? along_k : (i == 1 ? P2{-along_k[0], -along_k[1]} : P2{std::cos(angle), std::sin(angle)});
+      const Params<2> dir = i == 0 ? along_k
+                                   : (i == 1 ? Params<2>{-along_k[0], -along_k[1]}
+                                             : Params<2>{std::cos(angle), std::sin(angle)});
       if (!(norm2d(dir) > 0.0)) continue;
-      const P2 q = along(best.t, step, dir);
+      const Params<2> q = along(best.t, step, dir);
       if (!inside(box, q, 0.0)) continue;
       const Local l = local_at(formulas, p, q);
       ++evaluations;
@@ -328,14 +331,14 @@ bool point_kink_minimum(const SurfaceFormulas& formulas, const ParamBox& box, co
 // Steps 1-3 of the header: a minimum on a kink curve K, from the unconverged iterate t0.
 bool kink_curve_minimum(const SurfaceFormulas& formulas, const ParamBox& box, const Vec3& p, double scale,
                         double margin, LocalSolution& s) {
-  const P2 t0{s.u, s.v};
+  const Params<2> t0{s.u, s.v};
   const Local l0 = local_at(formulas, p, t0);
   if (!l0.finite) return false;
   // 1. across K along the piece's Newton step (its gradient where the Hessian is not definite)
   const double det = l0.h[0] * l0.h[2] - l0.h[1] * l0.h[1];
-  P2 d = det > 0.0 && l0.h[0] > 0.0 ? P2{-(l0.h[2] * l0.g[0] - l0.h[1] * l0.g[1]) / det,
-                                         -(l0.h[0] * l0.g[1] - l0.h[1] * l0.g[0]) / det}
-                                    : P2{-l0.g[0], -l0.g[1]};
+  Params<2> d = det > 0.0 && l0.h[0] > 0.0 ? Params<2>{-(l0.h[2] * l0.g[0] - l0.h[1] * l0.g[1]) / det,
+                                                       -(l0.h[0] * l0.g[1] - l0.h[1] * l0.g[0]) / det}
+                                           : Params<2>{-l0.g[0], -l0.g[1]};
   const double dn = norm2d(d);
   if (!(dn > 0.0) || !std::isfinite(dn)) return false;
   d = {d[0] / dn, d[1] / dn};
@@ -345,14 +348,14 @@ bool kink_curve_minimum(const SurfaceFormulas& formulas, const ParamBox& box, co
   // 2. along K
   double f = std::min(k.a.f, k.b.f);
   // the previous point on K and its derivative along K, for the secant of that derivative
-  P2 last{};
+  Params<2> last{};
   double last_D = 0.0;
   for (int step = 0; step < 32; ++step) {
-    P2 n{k.b.g[0] - k.a.g[0], k.b.g[1] - k.a.g[1]};
+    Params<2> n{k.b.g[0] - k.a.g[0], k.b.g[1] - k.a.g[1]};
     const double jn = norm2d(n);
     n = {n[0] / jn, n[1] / jn};
-    const P2 tau{-n[1], n[0]};
-    const P2 g{0.5 * (k.a.g[0] + k.b.g[0]), 0.5 * (k.a.g[1] + k.b.g[1])};
+    const Params<2> tau{-n[1], n[0]};
+    const Params<2> g{0.5 * (k.a.g[0] + k.b.g[0]), 0.5 * (k.a.g[1] + k.b.g[1])};
     const double D = dot2(g, tau);
     const Vec3 s_tau = k.a.jet.su * tau[0] + k.a.jet.sv * tau[1];
     if (std::abs(D) <= 1e-12 * std::sqrt(2.0 * f) * norm(s_tau)) {
@@ -369,7 +372,7 @@ bool kink_curve_minimum(const SurfaceFormulas& formulas, const ParamBox& box, co
                k.b.h[0] * tau[0] * tau[0] + 2.0 * k.b.h[1] * tau[0] * tau[1] + k.b.h[2] * tau[1] * tau[1]);
     // f along K bends by <τ, H τ> plus K's own curvature times the normal slope, which H does
     // not see: after the first step the secant of D along K measures the two together
-    const P2 mid{0.5 * (k.a.t[0] + k.b.t[0]), 0.5 * (k.a.t[1] + k.b.t[1])};
+    const Params<2> mid{0.5 * (k.a.t[0] + k.b.t[0]), 0.5 * (k.a.t[1] + k.b.t[1])};
     const double moved_along = dot2({mid[0] - last[0], mid[1] - last[1]}, tau);
     const double secant = step > 0 && moved_along != 0.0 ? (D - last_D) / moved_along : 0.0;
     const double rate = secant > 0.0 && std::isfinite(secant) ? secant : curvature;
@@ -378,7 +381,7 @@ bool kink_curve_minimum(const SurfaceFormulas& formulas, const ParamBox& box, co
     last_D = D;
     bool moved = false;
     for (int halve = 0; halve < 30 && !moved; ++halve, sigma *= 0.5) {
-      const P2 q = along(mid, sigma, tau);
+      const Params<2> q = along(mid, sigma, tau);
       if (!inside(box, q, margin)) continue;
       // back onto K across it: K bends away from its tangent by O(σ^2)
       const double w = std::abs(sigma) + 1e-9 * scale;
@@ -396,7 +399,7 @@ bool kink_curve_minimum(const SurfaceFormulas& formulas, const ParamBox& box, co
   // jumps there, and the secant steps across it back and forth) or into the boundary, where the
   // search along K's tangent takes over from the best point found on K.
   const Local& here = k.a.f <= k.b.f ? k.a : k.b;
-  P2 n{k.b.g[0] - k.a.g[0], k.b.g[1] - k.a.g[1]};
+  Params<2> n{k.b.g[0] - k.a.g[0], k.b.g[1] - k.a.g[1]};
   const double jn = norm2d(n);
   if (!(jn > 0.0)) return false;
   return point_kink_minimum(formulas, box, p, scale, margin, here, {-n[1] / jn, n[0] / jn}, 1e-4 * scale, s);

@@ -6,6 +6,8 @@
 #pragma once
 #include <array>
 
+#include "parametric/geometry/params.hpp"
+
 namespace footpoint::surface {
 
 // H counts as positive semidefinite when its smallest eigenvalue is >= -this x its largest entry
@@ -13,9 +15,9 @@ namespace footpoint::surface {
 inline constexpr double kSemidefinite = 1e-12;
 
 struct NewtonDirection {
-  std::array<double, 2> step{};                // zero on a held parameter
-  std::array<double, 2> negative_curvature{};  // a unit direction with e^T H e < 0; zero when convex
-  bool convex = true;                          // H positive semidefinite on the free parameters
+  Params<2> step{};                // zero on a held parameter
+  Params<2> negative_curvature{};  // a unit direction with e^T H e < 0; zero when convex
+  bool convex = true;              // H positive semidefinite on the free parameters
   // Both parameters free and H positive definite (λ1 >= kSemidefinite |H|): step = -H^{-1} g.
   bool definite = false;
   double det = 0.0;  // det H (both free)

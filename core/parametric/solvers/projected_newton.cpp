@@ -24,10 +24,10 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
                                double v0, const ConvergenceCriteria& criteria,
                                std::vector<std::array<double, 3>>* trace, const EarlyStop* early,
                                const SurfaceJet* start_jet) {
-  const double lo[2] = {box.umin, box.vmin}, hi[2] = {box.umax, box.vmax};
-  const double width[2] = {box.umax - box.umin, box.vmax - box.vmin};
+  const Params<2> lo{box.umin, box.vmin}, hi{box.umax, box.vmax};
+  const Params<2> width{box.umax - box.umin, box.vmax - box.vmin};
   const double norm_p = norm(p);
-  double t[2] = {std::clamp(u0, lo[0], hi[0]), std::clamp(v0, lo[1], hi[1])};
+  Params<2> t{std::clamp(u0, lo[0], hi[0]), std::clamp(v0, lo[1], hi[1])};
 
   LocalSolution sol;
   SurfaceJet jet = start_jet ? *start_jet : formulas.jet(t[0], t[1]);
@@ -37,7 +37,8 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
   int stagnant_steps = 0;
   // the previous iterate (first: the caller's reference point) and its H (upper triangle), for
   // the early stop's Lipschitz estimate
-  double t_prev[2] = {0.0, 0.0}, H_prev[3] = {0.0, 0.0, 0.0};
+  Params<2> t_prev{0.0, 0.0};
+  double H_prev[3] = {0.0, 0.0, 0.0};
   bool have_prev = false;
   if (early && !std::isnan(early->reference_H[0])) {
     t_prev[0] = early->reference_t[0], t_prev[1] = early->reference_t[1];
@@ -63,9 +64,9 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
 
     // Newton's direction on the free parameters, with H made positive definite where it is not
     const NewtonDirection direction = newton_direction(H, g, free_);
-    double d[2] = {direction.step[0], direction.step[1]};
+    Params<2> d = direction.step;
     const bool convex = direction.convex;
-    const double newton_step[2] = {d[0], d[1]};  // before the cap below (the early stop's δ)
+    const Params<2> newton_step = d;  // before the cap below (the early stop's δ)
     // no step longer than the domain
     for (int i = 0; i < 2; ++i)
       if (std::abs(d[i]) > width[i]) {
@@ -148,7 +149,7 @@ LocalSolution projected_newton(const SurfaceFormulas& formulas, const ParamBox& 
     // Armijo's backtracking along the projection arc (projection_arc_search.hpp)
     const ArcStep step = search_projection_arc(formulas, p, jet, t, d, lo, hi, g, convex, step_scale);
     const bool accepted = step.accepted, vanishes = step.vanishes;
-    const double(&tn)[2] = step.t;
+    const Params<2>& tn = step.t;
     const SurfaceJet& jn = step.jet;
     if (!accepted) {  // no decrease to be had: rounding level, or a descent direction lost to it
       // A convex Newton step below the parameters' last bit is convergence whatever the residual

@@ -17,10 +17,10 @@ constexpr double kLocalStep = 1e-6;
 }  // namespace
 
 ArcStep search_projection_arc(const SurfaceFormulas& formulas, const Vec3& p, const SurfaceJet& jet,
-                              const double (&t)[2], const double (&d)[2], const double (&lo)[2],
-                              const double (&hi)[2], const double (&g)[2], bool convex, double step_scale) {
+                              const Params<2>& t, const Params<2>& d, const Params<2>& lo,
+                              const Params<2>& hi, const double (&g)[2], bool convex, double step_scale) {
   ArcStep a;
-  double* tn = a.t;
+  Params<2>& tn = a.t;
   SurfaceJet& jn = a.jet;
   tn[0] = t[0];
   tn[1] = t[1];

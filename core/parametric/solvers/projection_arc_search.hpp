@@ -7,20 +7,21 @@
 // little more than its rounding: taken as they are.
 #pragma once
 #include "parametric/geometry/parametric_surface.hpp"
+#include "parametric/geometry/params.hpp"
 
 namespace footpoint::surface {
 
 struct ArcStep {
   bool accepted = false;
   bool vanishes = false;  // the full step changes no parameter: they are as good as they can be
-  double t[2] = {0.0, 0.0};
+  Params<2> t{0.0, 0.0};
   SurfaceJet jet;  // evaluated at t, when accepted
 };
 
 // From t (jet there, gradient g) along d, inside [lo, hi]; `step_scale` is the parameters' scale
 // (surface_convergence.hpp).
 ArcStep search_projection_arc(const SurfaceFormulas& formulas, const Vec3& p, const SurfaceJet& jet,
-                              const double (&t)[2], const double (&d)[2], const double (&lo)[2],
-                              const double (&hi)[2], const double (&g)[2], bool convex, double step_scale);
+                              const Params<2>& t, const Params<2>& d, const Params<2>& lo,
+                              const Params<2>& hi, const double (&g)[2], bool convex, double step_scale);
 
 }  // namespace footpoint::surface

@@ -19,16 +19,14 @@ namespace {
 
 constexpr double kU = 0x1p-53;
 
-using Params2 = std::array<double, 2>;
-
 // A box still open: a compiled cell, or a sub-box bounded at run time.
 struct OpenBox {
-  Params2 lo, hi;
+  Params<2> lo, hi;
   std::int32_t cell = -1;                            // the compiled cell, or -1 (a sub-box)
   std::atomic<const SubBoxPair*>* halves = nullptr;  // where its halves are published
   const BoxEnclosure<2>* ancestor = nullptr;         // its own enclosure (a cell's, a sub-box's)
   const BoxEnclosure<2>* parent = nullptr;           // the box it was bisected from (a sub-box)
-  Params2 parent_lo{}, parent_hi{};
+  Params<2> parent_lo{}, parent_hi{};
   double lb = 0.0;           // the best lower bound of the distance over it so far
   HessianBounds<2> hessian;  // ∇²f over it
   bool split_u = true;       // bisect along u (the box is longer along u on the surface)
@@ -44,27 +42,27 @@ struct ByBound {
 };
 
 struct Known {
-  explicit Known(const Params2& at_t) : t(at_t) {}
-  Params2 t;
+  explicit Known(const Params<2>& at_t) : t(at_t) {}
+  Params<2> t;
   bool enclosed = false;
   PointEnclosure<2> point;  // s and J at t (lazily)
   GradientEnclosure<2> at;  // f and ∇f at t, enclosed (lazily)
   // The compiled cell holding t (where the walk met it): the second partials about t.
   const BoxEnclosure<2>* cell = nullptr;
-  Params2 cell_lo{}, cell_hi{};
+  Params<2> cell_lo{}, cell_hi{};
 };
 
-bool holds(const Params2& lo, const Params2& hi, const Params2& t) {
+bool holds(const Params<2>& lo, const Params<2>& hi, const Params<2>& t) {
   return t[0] >= lo[0] && t[0] <= hi[0] && t[1] >= lo[1] && t[1] <= hi[1];
 }
 
 // Whether the hull of the box [lo, hi] and t lies in the union of that box and [a_lo, a_hi]:
 // each piece of the hull outside the box (at most four rectangles) lies in the other.
-bool hull_in_union(const Params2& lo, const Params2& hi, const Params2& t, const Params2& a_lo,
-                   const Params2& a_hi) {
-  const Params2 h_lo{std::min(lo[0], t[0]), std::min(lo[1], t[1])};
-  const Params2 h_hi{std::max(hi[0], t[0]), std::max(hi[1], t[1])};
-  auto inside = [&](const Params2& r_lo, const Params2& r_hi) {
+bool hull_in_union(const Params<2>& lo, const Params<2>& hi, const Params<2>& t, const Params<2>& a_lo,
+                   const Params<2>& a_hi) {
+  const Params<2> h_lo{std::min(lo[0], t[0]), std::min(lo[1], t[1])};
+  const Params<2> h_hi{std::max(hi[0], t[0]), std::max(hi[1], t[1])};
+  auto inside = [&](const Params<2>& r_lo, const Params<2>& r_hi) {
     return r_lo[0] >= a_lo[0] && r_hi[0] <= a_hi[0] && r_lo[1] >= a_lo[1] && r_hi[1] <= a_hi[1];
   };
   if (h_lo[0] < lo[0] && !inside({h_lo[0], h_lo[1]}, {lo[0], h_hi[1]})) return false;
@@ -91,7 +89,7 @@ BoxEnclosure<2> second_partials_hull(const BoxEnclosure<2>& a, const BoxEnclosur
 class Certifier {
  public:
   Certifier(const SurfaceCells& cells, const SurfaceFormulas& formulas, const ParamBox& domain, const Vec3& p,
-            const LocalSolution& answer, const std::vector<Params2>& known, const SurfaceLocalSolve& solve,
+            const LocalSolution& answer, const std::vector<Params<2>>& known, const SurfaceLocalSolve& solve,
             bool may_improve, const SurfaceCertifyOptions& options)
       : cells_(cells),
         formulas_(formulas),
@@ -102,10 +100,10 @@ class Certifier {
         options_(options),
         best_(answer),
         ledger_(answer.distance, Certificate::absolute_gap_at(p, answer.jet.s)) {
-    known_.emplace_back(Params2{answer.u, answer.v});
+    known_.emplace_back(Params<2>{answer.u, answer.v});
     if (!options.threshold && enclose(known_.front()))
       ledger_.measure_from(known_.front().point.s, known_.front().point.s_rad, p_);
-    for (const Params2& t : known)
+    for (const Params<2>& t : known)
       if (t[0] != answer.u || t[1] != answer.v) known_.emplace_back(t);
   }
 
@@ -145,7 +143,7 @@ class Certifier {
   // it, the bound of its branches (branch_lower_bound).
   void bound_branches(OpenBox& o) {
     if (o.bounded || !o.finite) return;
-    std::vector<Params2> nearby;
+    std::vector<Params<2>> nearby;
     for (const Known& k : known_)
       if (near(k, o)) nearby.push_back(k.t);
     o.lb =
@@ -240,7 +238,7 @@ class Certifier {
   bool monotone(const OpenBox& b, const BoxEnclosure<2>& e, const PointEnclosure<2>& centre) const {
     if (!b.bounded) return false;
     const std::array<int, 2> signs = gradient_signs<2>(e, centre, p_);
-    const Params2 dlo{domain_.umin, domain_.vmin}, dhi{domain_.umax, domain_.vmax};
+    const Params<2> dlo{domain_.umin, domain_.vmin}, dhi{domain_.umax, domain_.vmax};
     for (int i = 0; i < 2; ++i) {
       const std::size_t a = static_cast<std::size_t>(i);
       if ((signs[a] > 0 && b.lo[a] > dlo[a]) || (signs[a] < 0 && b.hi[a] < dhi[a])) return true;
@@ -263,8 +261,8 @@ class Certifier {
   // that hull: the box itself, the box it was bisected from, or its union with k's cell.
   double foot_region(const OpenBox& b, Known& k) {
     if (!enclose(k)) return -std::numeric_limits<double>::infinity();
-    const Params2 h_lo{std::min(b.lo[0], k.t[0]), std::min(b.lo[1], k.t[1])};
-    const Params2 h_hi{std::max(b.hi[0], k.t[0]), std::max(b.hi[1], k.t[1])};
+    const Params<2> h_lo{std::min(b.lo[0], k.t[0]), std::min(b.lo[1], k.t[1])};
+    const Params<2> h_hi{std::max(b.hi[0], k.t[0]), std::max(b.hi[1], k.t[1])};
     auto bound = [&](const BoxEnclosure<2>& d2) {
       return foot_region_lower_bound<2>(k.point, k.at, k.t, d2, h_lo, h_hi, p_);
     };
@@ -286,7 +284,7 @@ class Certifier {
     if (!b.hessian.valid) return false;
     for (Known& k : known_) {
       if (!near(k, b)) continue;
-      const Params2 q{std::clamp(k.t[0], b.lo[0], b.hi[0]), std::clamp(k.t[1], b.lo[1], b.hi[1])};
+      const Params<2> q{std::clamp(k.t[0], b.lo[0], b.hi[0]), std::clamp(k.t[1], b.lo[1], b.hi[1])};
       GradientEnclosure<2> at;
       if (q == k.t) {
         if (!enclose(k)) continue;
@@ -325,7 +323,7 @@ class Certifier {
 
   // Adds t to the known minimisers unless one lies within 2^-40 of the domain's widths of it (a
   // solve that found a known minimiser again: its bounds would repeat that one's). False then.
-  bool learn(const Params2& t) {
+  bool learn(const Params<2>& t) {
     const double tol_u = 0x1p-40 * (domain_.umax - domain_.umin),
                  tol_v = 0x1p-40 * (domain_.vmax - domain_.vmin);
     for (const Known& k : known_)
@@ -336,7 +334,7 @@ class Certifier {
 
   // Where a local solve starts in the box: the minimiser over it of the Newton model at its
   // centre (a cell's stored jet), or its centre.
-  Params2 start_in(const OpenBox& b) const {
+  Params<2> start_in(const OpenBox& b) const {
     if (b.cell < 0) return {0.5 * (b.lo[0] + b.hi[0]), 0.5 * (b.lo[1] + b.hi[1])};
     const SurfaceCell& c = cells_.cells()[static_cast<std::size_t>(b.cell)];
     const SurfaceJet& j = c.centre;
@@ -355,10 +353,10 @@ class Certifier {
     b.solved = true;
     if (solves_ >= options_.max_solves) return;
     ++solves_;
-    const Params2 t = start_in(b);
+    const Params<2> t = start_in(b);
     const LocalSolution s = solve_(t[0], t[1]);
     if (!std::isfinite(s.distance)) return;
-    if (!learn(Params2{s.u, s.v})) return;  // a minimiser known already
+    if (!learn(Params<2>{s.u, s.v})) return;  // a minimiser known already
     if (!(s.distance < best_.distance)) return;
     if (!may_improve_) {
       if (s.distance < best_.distance - ledger_.gap()) ledger_.refute();
@@ -424,7 +422,7 @@ class Certifier {
     bound_branches(b);
     if (!b.bounded) return b;
     b.hessian = hessian_bounds(e, p_);
-    const Params2 c{0.5 * (b.lo[0] + b.hi[0]), 0.5 * (b.lo[1] + b.hi[1])};
+    const Params<2> c{0.5 * (b.lo[0] + b.hi[0]), 0.5 * (b.lo[1] + b.hi[1])};
     const GradientEnclosure<2> g = enclose_gradient(h.centre, p_);
     b.lb = std::max(b.lb, distance_from_f_lower(
                               second_order_lower_bound(g, c, b.lo, b.hi, b.hessian, ledger_.target_f())));
@@ -458,9 +456,8 @@ class Certifier {
 
 SurfaceCertification certify_surface(const SurfaceCells& cells, const SurfaceFormulas& formulas,
                                      const ParamBox& box, const Vec3& p, const LocalSolution& answer,
-                                     const std::vector<std::array<double, 2>>& known,
-                                     const SurfaceLocalSolve& solve, bool may_improve,
-                                     const SurfaceCertifyOptions& options) {
+                                     const std::vector<Params<2>>& known, const SurfaceLocalSolve& solve,
+                                     bool may_improve, const SurfaceCertifyOptions& options) {
   return Certifier(cells, formulas, box, p, answer, known, solve, may_improve, options).run();
 }
 

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "parametric/geometry/parametric_surface.hpp"
+#include "parametric/geometry/params.hpp"
 #include "parametric/seeding/surface_cells.hpp"
 #include "parametric/solvers/projected_newton.hpp"
 #include "projection/certificate.hpp"
@@ -74,9 +75,8 @@ using SurfaceLocalSolve = std::function<LocalSolution(double u, double v)>;
 // replaces it when `may_improve` (auto: returned in `better`), and refutes it otherwise.
 SurfaceCertification certify_surface(const SurfaceCells& cells, const SurfaceFormulas& formulas,
                                      const ParamBox& box, const Vec3& p, const LocalSolution& answer,
-                                     const std::vector<std::array<double, 2>>& known,
-                                     const SurfaceLocalSolve& solve, bool may_improve,
-                                     const SurfaceCertifyOptions& options = {});
+                                     const std::vector<Params<2>>& known, const SurfaceLocalSolve& solve,
+                                     bool may_improve, const SurfaceCertifyOptions& options = {});
 
 // The certificate of an answer at (u, v) inside the domain, given as it is (a paper's method with
 // options.certify): certified, or refuted with reason nearer_point, or neither within the budget.

@@ -31,8 +31,7 @@ Location location_in(const ParamBox& box, double u, double v, const SurfaceClosu
   return Location::interior;
 }
 
-std::array<double, 2> seam_representative(const ParamBox& box, double u, double v,
-                                          const SurfaceClosure* closure) {
+Params<2> seam_representative(const ParamBox& box, double u, double v, const SurfaceClosure* closure) {
   if (closure && closure->periodic(0) && u == box.umax) u = box.umin;
   if (closure && closure->periodic(1) && v == box.vmax) v = box.vmin;
   return {u, v};

@@ -4,6 +4,7 @@
 #include <array>
 
 #include "parametric/geometry/parametric_surface.hpp"
+#include "parametric/geometry/params.hpp"
 #include "parametric/geometry/surface_closure.hpp"
 #include "projection/projection_result.hpp"
 
@@ -17,8 +18,7 @@ Location location_in(const ParamBox& box, double u, double v, const SurfaceClosu
 // The parameters a seam's two sides name once: along a periodic direction (closure.periodic) the
 // upper bound is the lower one, s(umax, v) = s(umin, v), and answers report the lower. A reversed
 // seam (a Möbius band's) and every other parameter are kept.
-std::array<double, 2> seam_representative(const ParamBox& box, double u, double v,
-                                          const SurfaceClosure* closure);
+Params<2> seam_representative(const ParamBox& box, double u, double v, const SurfaceClosure* closure);
 
 // A result at parameters (u, v) with surface point s and tangents su, sv there. The summary gets
 // method, orthogonality, location and on_boundary; status, iterations and step_norm are the

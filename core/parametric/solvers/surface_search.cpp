@@ -147,11 +147,11 @@ void SurfaceSearch::visit(std::int32_t index, double box_lb) {
   // its model's minimiser over the cell itself, whatever the model says about its neighbours
   const double margin = c.resolved ? kMargin : 0.0;
   const double mu = margin * (c.u1 - c.u0), mv = margin * (c.v1 - c.v0);
-  const double glo[2] = {std::max(c.u0 - mu, box_.umin), std::max(c.v0 - mv, box_.vmin)};
-  const double ghi[2] = {std::min(c.u1 + mu, box_.umax), std::min(c.v1 + mv, box_.vmax)};
+  const Params<2> glo{std::max(c.u0 - mu, box_.umin), std::max(c.v0 - mv, box_.vmin)};
+  const Params<2> ghi{std::min(c.u1 + mu, box_.umax), std::min(c.v1 + mv, box_.vmax)};
   const BoxMinimum m = minimize_on_box(q, {glo[0] - uc, glo[1] - vc}, {ghi[0] - uc, ghi[1] - vc});
   const double du = m.delta[0], dv = m.delta[1];
-  const Face model_face = face_of(box_, m.side, {glo[0], glo[1]}, {ghi[0], ghi[1]});
+  const Face model_face = face_of(box_, m.side, glo, ghi);
   // The claim rule: the model's minimum on the grown cell's border, inside the domain, claims that the
   // distance decreases into a neighbour, whose model answers for this cell. Next to the
   // boundary a model can miss an edge or corner minimum (far points see a flat landscape).
@@ -225,7 +225,7 @@ void SurfaceSearch::add_boundary_candidates(const SurfaceCell& c, const BoxQuadr
   const double uc = c.uc(), vc = c.vc();
   const double lo0 = c.u0 - uc, hi0 = c.u1 - uc, lo1 = c.v0 - vc, hi1 = c.v1 - vc;
   // a side's own face, and the corner where its minimiser is at the side's end on the boundary
-  auto side = [&](bool on_boundary, std::array<double, 2> lo, std::array<double, 2> hi, Face f) {
+  auto side = [&](bool on_boundary, Params<2> lo, Params<2> hi, Face f) {
     if (!on_boundary) return;
     const BoxMinimum e = minimize_on_box(q, lo, hi);
     if (!(e.value <= threshold)) return;

@@ -12,6 +12,7 @@
 
 #include "parametric/geometry/box_quadratic.hpp"
 #include "parametric/geometry/parametric_surface.hpp"
+#include "parametric/geometry/params.hpp"
 #include "parametric/geometry/surface_closure.hpp"
 #include "parametric/seeding/surface_cells.hpp"
 #include "parametric/solvers/projected_newton.hpp"
@@ -50,8 +51,8 @@ struct Face {
 
 // The face of the domain that a box minimum is on: on the side `side` of the rectangle
 // [lo, hi] where that side is the domain's bound.
-inline Face face_of(const ParamBox& box, const std::array<int, 2>& side, const std::array<double, 2>& lo,
-                    const std::array<double, 2>& hi) {
+inline Face face_of(const ParamBox& box, const std::array<int, 2>& side, const Params<2>& lo,
+                    const Params<2>& hi) {
   return {side[0] < 0 && lo[0] == box.umin ? -1 : (side[0] > 0 && hi[0] == box.umax ? 1 : 0),
           side[1] < 0 && lo[1] == box.vmin ? -1 : (side[1] > 0 && hi[1] == box.vmax ? 1 : 0)};
 }
@@ -176,8 +177,7 @@ class SurfaceSearch {
   std::vector<Minimum> minima(const ProjectionResult& r, bool* truncated) const;
   // The parameter copies of one foot point from the parameters solved for it (Minimum::copies):
   // their images across the closure's seams, then their translates (SelfCovering::copies).
-  std::vector<std::array<double, 2>> parameter_copies(std::vector<std::array<double, 2>> seeds,
-                                                      bool* truncated) const;
+  std::vector<Params<2>> parameter_copies(std::vector<Params<2>> seeds, bool* truncated) const;
 
   const SurfaceCells& cells_;
   const SurfaceFormulas& formulas_;
@@ -200,20 +200,20 @@ class SurfaceSearch {
   };
   Claim claims_[kClaims];
   struct Candidate {
-    double d_model;                     // distance to the model's foot point
-    double lb;                          // lower bound (box and tangent-plane rules)
-    double u, v;                        // start of the local solve
-    std::array<double, 4> basin;        // the known-minimum rule's region: u0, u1, v0, v1
-    Face face;                          // the face the model's minimiser is on
-    bool mergeable;                     // the known-minimum rule applies
-    std::array<double, 2> reference_t;  // the cell's centre and the Newton model's Hessian there
+    double d_model;               // distance to the model's foot point
+    double lb;                    // lower bound (box and tangent-plane rules)
+    double u, v;                  // start of the local solve
+    std::array<double, 4> basin;  // the known-minimum rule's region: u0, u1, v0, v1
+    Face face;                    // the face the model's minimiser is on
+    bool mergeable;               // the known-minimum rule applies
+    Params<2> reference_t;        // the cell's centre and the Newton model's Hessian there
     std::array<double, 3> reference_H;
   };
   Candidate candidates_[kCandidates];
   int candidates_count_ = 0;
   int claims_count_ = 0;
-  std::array<double, 2> feet_[kRemembered];  // minimisers found (all_minima: all_ has all of them)
-  double feet_distance_[kRemembered];        // and their distances (abandoned: lower bounds)
+  Params<2> feet_[kRemembered];        // minimisers found (all_minima: all_ has all of them)
+  double feet_distance_[kRemembered];  // and their distances (abandoned: lower bounds)
   int feet_count_ = 0;
   std::vector<Found> all_;
   // every minimiser found (u, v, distance; abandoned solves: the predicted minimiser and a lower

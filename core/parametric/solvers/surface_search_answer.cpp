@@ -55,7 +55,7 @@ ProjectionResult SurfaceSearch::no_answer() const {
 void SurfaceSearch::certify(ProjectionResult& r, bool within) {
   // the minimisers at the answer's distance (its copies on a periodic or folded
   // parametrisation: each needs its own bound) and near it
-  std::vector<std::array<double, 2>> known;
+  std::vector<Params<2>> known;
   LocalSolution target;
   if (within) {
     target = best_.sol;
@@ -140,8 +140,7 @@ AnswerMultiplicity SurfaceSearch::multiplicity(const ProjectionResult& r) const 
   return ties.settle();
 }
 
-std::vector<std::array<double, 2>> SurfaceSearch::parameter_copies(std::vector<std::array<double, 2>> seeds,
-                                                                   bool* truncated) const {
+std::vector<Params<2>> SurfaceSearch::parameter_copies(std::vector<Params<2>> seeds, bool* truncated) const {
   // A seam's two edges are one curve: (umin, v) is (umax, v), or (umax, vmin + vmax - v) reversed.
   const std::size_t solved = seeds.size();
   for (std::size_t i = 0; i < solved; ++i) {
@@ -151,7 +150,7 @@ std::vector<std::array<double, 2>> SurfaceSearch::parameter_copies(std::vector<s
       const double lo = d == 0 ? box_.umin : box_.vmin, hi = d == 0 ? box_.umax : box_.vmax;
       const double olo = d == 0 ? box_.vmin : box_.umin, ohi = d == 0 ? box_.vmax : box_.umax;
       const double tol = 1e-9 * (1.0 + std::abs(lo) + std::abs(hi));
-      std::array<double, 2> t = seeds[i];
+      Params<2> t = seeds[i];
       double& x = t[static_cast<std::size_t>(d)];
       double& y = t[static_cast<std::size_t>(1 - d)];
       if (std::abs(x - lo) <= tol) {
@@ -180,7 +179,7 @@ std::vector<Minimum> SurfaceSearch::minima(const ProjectionResult& r, bool* trun
   const std::size_t cap = options_.minima_cap();
   std::vector<Minimum> out;
   // the parameters solved for each entry of out: its copies' seeds
-  std::vector<std::vector<std::array<double, 2>>> solved;
+  std::vector<std::vector<Params<2>>> solved;
   *truncated = false;
   if (continuum) {
     Minimum m;

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -172,6 +173,174 @@ TEST_CASE("implicit surface multiplicity: continua at centres of curvature, ties
       CHECK(std::fabs(norm(a - c.p) - norm(b - c.p)) <= 1e-12);
       CHECK(norm(a - b) > 0.5);
     }
+  }
+}
+
+namespace {
+
+using ImplicitBox = std::array<std::array<double, 2>, 3>;
+
+std::shared_ptr<const CompiledGeometry> implicit_surface_in(const std::string& equation,
+                                                            const ImplicitBox& box) {
+  GeometryDefinition def;
+  def.type = GeometryType::implicit_surface;
+  def.formulas = {{"equation", equation}};
+  def.domain = {{"x", box[0]}, {"y", box[1]}, {"z", box[2]}};
+  return compile_geometry(def);
+}
+
+// A configuration whose nearest points are known in closed form: `feet` (two or more: a tie),
+// or none (a continuum at `distance`).
+struct KnownTie {
+  std::string equation;
+  ImplicitBox box;
+  Vec3 p;
+  double distance;
+  std::vector<Vec3> feet;
+};
+
+// auto's answer, multiplicity and all_minima against the closed form: the distance within 1e-12
+// relative, each tied foot listed within 1e-9, the certificate's lower bound not above the distance
+// (certified, for a tie); all_minima lists each tied foot once, a continuum once.
+void check_known_tie(const KnownTie& c) {
+  CAPTURE(c.equation);
+  CAPTURE(c.box[0][0]);
+  CAPTURE(c.box[0][1]);
+  CAPTURE(c.box[1][0]);
+  CAPTURE(c.box[1][1]);
+  CAPTURE(c.box[2][0]);
+  CAPTURE(c.box[2][1]);
+  CAPTURE(c.p.x);
+  CAPTURE(c.p.y);
+  CAPTURE(c.p.z);
+  const auto g = implicit_surface_in(c.equation, c.box);
+  const double p[3] = {c.p.x, c.p.y, c.p.z};
+  const auto r = g->project(p, "auto", {});
+  REQUIRE(r);
+  CHECK(std::fabs(r->distance - c.distance) <= 1e-12 * c.distance);
+  CHECK(r->summary.certificate.lower_bound <= c.distance * (1.0 + 1e-15));
+  const AnswerMultiplicity& m = r->summary.multiplicity;
+  REQUIRE(m.computed);
+  auto listed = [](const std::vector<std::array<double, 3>>& feet, Vec3 x) {
+    return std::count_if(feet.begin(), feet.end(), [&](const std::array<double, 3>& f) {
+      return norm(Vec3{f[0], f[1], f[2]} - x) <= 1e-9;
+    });
+  };
+  Options o;
+  o.all_minima = true;
+  const auto a = g->project(p, "auto", o);
+  REQUIRE(a);
+  std::vector<std::array<double, 3>> nearest;  // all_minima's entries at the nearest distance
+  for (const Minimum& k : a->minima)
+    if (std::fabs(k.distance - c.distance) <= 1e-12 * c.distance) nearest.push_back(k.foot);
+  if (c.feet.empty()) {
+    CHECK(m.kind == Multiplicity::continuum);
+    CHECK(nearest.size() == 1);
+    return;
+  }
+  CHECK(r->summary.certificate.certified);
+  CHECK(m.kind == Multiplicity::tied);
+  CHECK(m.count == static_cast<int>(c.feet.size()));
+  CHECK(nearest.size() == c.feet.size());
+  for (const Vec3& x : c.feet) {
+    CAPTURE(x.x);
+    CAPTURE(x.y);
+    CAPTURE(x.z);
+    CHECK(listed(m.feet, x) == 1);
+    CHECK(listed(nearest, x) == 1);
+  }
+}
+
+// The nearest points of the ellipsoid x^2/a^2 + y^2/b^2 + z^2/c^2 = 1 (a > b > c) from p = (x0, y0, 0)
+// on its plane of symmetry z = 0 where x = a^2 x0 / (a^2 - c^2), y = b^2 y0 / (b^2 - c^2) has
+// x^2/a^2 + y^2/b^2 < 1: the pair (x, y, +-c sqrt(1 - x^2/a^2 - y^2/b^2)) (D. Eberly, "Distance from a
+// point to an ellipse, an ellipsoid, or a hyperellipsoid", Geometric Tools, 2013, Sec. 3.3: the
+// degenerate case of the secular equation, multiplier c^2).
+KnownTie ellipsoid_pair(double a, double b, double c, double x0, double y0, const ImplicitBox& box) {
+  const double x = a * a * x0 / (a * a - c * c), y = b * b * y0 / (b * b - c * c);
+  const double z = c * std::sqrt(1.0 - x * x / (a * a) - y * y / (b * b));
+  char equation[160];
+  std::snprintf(equation, sizeof equation, "x^2/%.17g+y^2/%.17g+z^2/%.17g-1", a * a, b * b, c * c);
+  return {equation, box, {x0, y0, 0.0}, std::hypot(x - x0, y - y0, z), {{x, y, z}, {x, y, -z}}};
+}
+
+}  // namespace
+
+TEST_CASE("implicit surface multiplicity: the ellipsoid's two feet from its centre in a box cut at them") {
+  // x^2/4 + y^2 + 4 z^2 = 1 from its centre: (0, 0, +-1/2), tied at 1/2. The box [-3,3]x[-2,2]x[-1,1]
+  // puts both feet on faces of its leaves (z = +-1/2 is a plane of the octree's second level),
+  // where a leaf's box meets the ball of radius 1/2 about p at the foot alone.
+  for (const ImplicitBox& box :
+       {ImplicitBox{{{-3, 3}, {-2, 2}, {-1, 1}}}, ImplicitBox{{{-3, 3}, {-3, 3}, {-3, 3}}}})
+    check_known_tie({"x^2/4+y^2+4*z^2-1", box, {0, 0, 0}, 0.5, {{0, 0, 0.5}, {0, 0, -0.5}}});
+}
+
+TEST_CASE("implicit surface multiplicity: symmetric ties and continua in closed form, in many boxes") {
+  const ImplicitBox boxes[] = {{{{-3, 3}, {-3, 3}, {-3, 3}}},
+                               {{{-3, 3}, {-2, 2}, {-1, 1}}},
+                               {{{-2.5, 3.1}, {-1.3, 2.2}, {-0.9, 1.7}}},
+                               {{{-4, 2}, {-1.1, 3}, {-2.6, 0.8}}},
+                               {{{-2.2, 2.2}, {-1.2, 1.2}, {-0.6, 0.6}}},
+                               {{{-3, 3}, {-2, 2}, {-0.75, 0.75}}},
+                               {{{-2.25, 3}, {-1.5, 1.5}, {-1.25, 0.75}}}};
+  std::vector<KnownTie> cases;
+  for (const ImplicitBox& box : boxes) {
+    // the ellipsoid (2, 1, 1/2) from points of its plane z = 0: two feet
+    for (const Vec3 q :
+         {Vec3{0, 0, 0}, Vec3{0, 0.1, 0}, Vec3{0.3, 0, 0}, Vec3{-0.2, 0.15, 0}, Vec3{0.45, -0.2, 0}})
+      cases.push_back(ellipsoid_pair(2.0, 1.0, 0.5, q.x, q.y, box));
+    // a sphere from its centre, a torus (R = 1, r = 1/2) from its axis: continua at 1/2 and
+    // sqrt(1 + z0^2) - 1/2
+    cases.push_back({"x^2+y^2+z^2-0.25", box, {0, 0, 0}, 0.5, {}});
+    for (const double z0 : {0.0, 0.2, -0.35})
+      cases.push_back({"(x^2+y^2+z^2+0.75)^2-4*(x^2+y^2)", box, {0, 0, z0}, std::hypot(1.0, z0) - 0.5, {}});
+  }
+  // y^4 + z^4 + x^2/4 = 1 from the origin: four feet (0, +-1, 0), (0, 0, +-1) at 1 (on x = 0,
+  // y^2 + z^2 >= sqrt(y^4 + z^4) = 1; elsewhere |x|^2 = 4 (1 - y^4 - z^4) adds more), on the box's
+  // faces in the last box
+  for (const ImplicitBox& box :
+       {ImplicitBox{{{-3, 3}, {-2, 2}, {-2, 2}}}, ImplicitBox{{{-2.5, 3}, {-1.5, 1.25}, {-1.1, 2}}},
+        ImplicitBox{{{-2, 2}, {-1, 1}, {-1, 1}}}})
+    cases.push_back({"y^4+z^4+x^2/4-1", box, {0, 0, 0}, 1.0, {{0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}});
+  // four unit spheres about (+-2, 0, 0), (0, +-2, 0) from the origin: four feet at 1
+  for (const ImplicitBox& box :
+       {ImplicitBox{{{-4, 4}, {-4, 4}, {-4, 4}}}, ImplicitBox{{{-3.5, 4}, {-3.2, 3.1}, {-1.3, 2}}}})
+    cases.push_back({"((x-2)^2+y^2+z^2-1)*((x+2)^2+y^2+z^2-1)*(x^2+(y-2)^2+z^2-1)*(x^2+(y+2)^2+z^2-1)",
+                     box,
+                     {0, 0, 0},
+                     1.0,
+                     {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}}});
+  // two unit spheres about (+-2, 0, 0) from points of the plane x = 0: feet c + (p - c) / |p - c|
+  for (const ImplicitBox& box :
+       {ImplicitBox{{{-4, 4}, {-4, 4}, {-4, 4}}}, ImplicitBox{{{-3.5, 4}, {-3.2, 3.1}, {-1.3, 2}}},
+        ImplicitBox{{{-3.3, 3.3}, {-1, 1}, {-1, 1}}}})
+    for (const Vec3 q : {Vec3{0, 0, 0}, Vec3{0, 0.3, 0.2}, Vec3{0, -0.5, 0.4}}) {
+      const Vec3 right{2, 0, 0}, left{-2, 0, 0};
+      cases.push_back({"((x-2)^2+y^2+z^2-1)*((x+2)^2+y^2+z^2-1)",
+                       box,
+                       q,
+                       norm(q - right) - 1.0,
+                       {right + (q - right) / norm(q - right), left + (q - left) / norm(q - left)}});
+    }
+  for (const KnownTie& c : cases) check_known_tie(c);
+}
+
+TEST_CASE("implicit surface multiplicity: random ellipsoids from their plane of symmetry, random boxes") {
+  // Triaxial ellipsoids, p on z = 0 inside the region of Eberly's tied pair, boxes that hold both
+  // feet at random margins (none symmetric about p; every fifth with a foot on the box's top face).
+  std::mt19937_64 rng(34);
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  for (int n = 0; n < 40; ++n) {
+    const double a = uniform(1.5, 3.0), b = uniform(0.8, a - 0.3), c = uniform(0.3, b - 0.3);
+    const double radius = 0.9 * std::sqrt(uniform(0.0, 1.0)), angle = uniform(0.0, 2.0 * M_PI);
+    const double x = a * radius * std::cos(angle), y = b * radius * std::sin(angle);
+    const double x0 = x * (a * a - c * c) / (a * a), y0 = y * (b * b - c * c) / (b * b);
+    const double z = c * std::sqrt(1.0 - x * x / (a * a) - y * y / (b * b));
+    auto margin = [&]() { return uniform(0.05, 1.5); };
+    const ImplicitBox box{{{std::min(x, x0) - margin(), std::max(x, x0) + margin()},
+                           {std::min(y, y0) - margin(), std::max(y, y0) + margin()},
+                           {-z - margin(), z + (n % 5 == 4 ? 0.0 : margin())}}};
+    check_known_tie(ellipsoid_pair(a, b, c, x0, y0, box));
   }
 }
 

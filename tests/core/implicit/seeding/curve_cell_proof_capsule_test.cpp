@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "geometry/compile_budget.hpp"
 #include "geometry/segment_distance.hpp"
 #include "implicit/seeding/curve_discovery.hpp"
 #include "implicit_fixtures.hpp"
@@ -125,7 +126,8 @@ TEST_CASE("arc capsules hold their arcs: Viviani's curve, every proved cell") {
   // Sphere |X| = 2 and cylinder (x - 1)^2 + y^2 = 1: X(t) = (1 + cos t, sin t, 2 sin(t / 2)),
   // t in [0, 4 pi), through its double point (2, 0, 0) at t = 0 and 2 pi.
   const ImplicitEquations eq = spatial_equations("x^2+y^2+z^2-4", "(x-1)^2+y^2-1");
-  const CurveDiscovery d = discover_implicit_curve(eq, {{-3.0, -3.0, -3.0}, {3.0, 3.0, 3.0}});
+  CompileBudget budget;
+  const CurveDiscovery d = discover_implicit_curve(eq, {{-3.0, -3.0, -3.0}, {3.0, 3.0, 3.0}}, budget);
   REQUIRE(d.cells.cells.size() > 100);
   REQUIRE(d.cells.capsules.size() * 2 == d.cells.crossings.size());
   REQUIRE(d.cells.capsule_begin.size() == d.cells.cells.size() + 1);
@@ -145,7 +147,8 @@ TEST_CASE("arc capsules hold their arcs: Viviani's curve, every proved cell") {
 TEST_CASE("arc capsules hold their arcs: an ellipse, every proved cell") {
   // x^2 / 4 + y^2 = 1: (2 cos t, sin t).
   const ImplicitEquations eq = planar_equations("x^2/4+y^2-1");
-  const CurveDiscovery d = discover_implicit_curve(eq, {{-3.0, -2.0, 0.0}, {3.0, 2.0, 0.0}});
+  CompileBudget budget;
+  const CurveDiscovery d = discover_implicit_curve(eq, {{-3.0, -2.0, 0.0}, {3.0, 2.0, 0.0}}, budget);
   REQUIRE(d.cells.cells.size() > 20);
   std::vector<Vec3> curve;
   const int n = 100000;

@@ -6,6 +6,7 @@
 #include <set>
 #include <vector>
 
+#include "geometry/compile_budget.hpp"
 #include "geometry/geometry_error.hpp"
 #include "implicit/seeding/curve_cells.hpp"
 #include "implicit/seeding/curve_enclosure.hpp"
@@ -44,7 +45,8 @@ TEST_CASE("CellGrid: cells tile the box, index_of finds the cell of a point, pla
 TEST_CASE("enclose_curve: every point of the circle lies in a kept cell; far cells are dropped") {
   const ImplicitEquations eq = planar_equations("x^2+y^2-1");
   const Box3 box{{-2, -2, 0}, {2, 2, 0}};
-  const CurveEnclosure e = enclose_curve(eq, box);
+  CompileBudget budget;
+  const CurveEnclosure e = enclose_curve(eq, box, budget);
   REQUIRE(!e.cells.empty());
   CHECK(!e.truncated);
   CHECK(e.levels >= 5);
@@ -67,10 +69,11 @@ TEST_CASE("enclose_curve: every point of the circle lies in a kept cell; far cel
 
 TEST_CASE("enclose_curve: nothing kept when the curve misses the box, and the cell budget truncates") {
   const ImplicitEquations eq = planar_equations("x^2+y^2-1");
-  CHECK(enclose_curve(eq, {{2, 2, 0}, {3, 3, 0}}).cells.empty());
+  CompileBudget budget;
+  CHECK(enclose_curve(eq, {{2, 2, 0}, {3, 3, 0}}, budget).cells.empty());
   EnclosureSettings small;
   small.max_cells = 64;
-  const CurveEnclosure e = enclose_curve(eq, {{-2, -2, 0}, {2, 2, 0}}, small);
+  const CurveEnclosure e = enclose_curve(eq, {{-2, -2, 0}, {2, 2, 0}}, budget, small);
   CHECK(e.truncated);
   CHECK(e.cells.size() * 8 > small.max_cells);
 }
@@ -78,14 +81,15 @@ TEST_CASE("enclose_curve: nothing kept when the curve misses the box, and the ce
 TEST_CASE("refine_cell: the children of a kept cell cover its part of the curve") {
   const ImplicitEquations eq = circle();
   const Box3 box{{-2, -2, 0}, {2, 2, 2}};
-  const CurveEnclosure e = enclose_curve(eq, box);
+  CompileBudget budget;
+  const CurveEnclosure e = enclose_curve(eq, box, budget);
   REQUIRE(!e.cells.empty());
   const CellGrid fine = e.grid.refined();
   std::size_t tests = 0;
   std::set<std::uint64_t> children;
   for (const CellIndex& c : e.cells) {
     std::vector<CellIndex> found;
-    refine_cell(eq, e.grid, c, found, tests);
+    refine_cell(eq, e.grid, c, found, tests, budget);
     for (const CellIndex& f : found) {
       children.insert(CellGrid::key(f));
       const Box3 child = fine.cell(f), parent = e.grid.cell(c);
@@ -105,7 +109,8 @@ TEST_CASE("subdivide_curve: past max_cells the curve is refused as too intricate
   SubdivisionSettings settings;
   settings.max_cells = 500;
   try {
-    (void)subdivide_curve(eq, enclose_curve(eq, box), settings);
+    CompileBudget budget;
+    (void)subdivide_curve(eq, enclose_curve(eq, box, budget), budget, settings);
     FAIL("expected geometry_too_complex");
   } catch (const GeometryError& e) {
     CHECK(e.code == "geometry_too_complex");

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "formula/program.hpp"
+#include "geometry/compile_budget.hpp"
 #include "parametric/geometry/parametric_curve.hpp"
 #include "parametric/seeding/curve_parametric_samples.hpp"
 
@@ -40,7 +41,8 @@ void check_one_chain(const CurveSamples& s) {
 }  // namespace
 
 TEST_CASE("parametric samples: a unit segment is halved to the chord bound 1/256") {
-  const CurveSamples s = sample_parametric_curve(sampled_curve("t", "0"), {0.0, 1.0});
+  CompileBudget sampling_budget;
+  const CurveSamples s = sample_parametric_curve(sampled_curve("t", "0"), {0.0, 1.0}, sampling_budget);
   REQUIRE(s.points.size() == 257);
   check_one_chain(s);
   for (std::size_t k = 0; k < s.points.size(); ++k) {
@@ -54,7 +56,9 @@ TEST_CASE("parametric samples: a unit segment is halved to the chord bound 1/256
 
 TEST_CASE("parametric samples: the unit circle, chords within the bound and arcs within spacing") {
   const double two_pi = 2 * std::numbers::pi;
-  const CurveSamples s = sample_parametric_curve(sampled_curve("cos(t)", "sin(t)"), {0.0, two_pi});
+  CompileBudget sampling_budget;
+  const CurveSamples s =
+      sample_parametric_curve(sampled_curve("cos(t)", "sin(t)"), {0.0, two_pi}, sampling_budget);
   check_one_chain(s);
   CHECK(s.params.front() == 0.0);
   CHECK(s.params.back() == two_pi);
@@ -75,7 +79,8 @@ TEST_CASE("parametric samples: the unit circle, chords within the bound and arcs
 
 TEST_CASE("parametric samples: formulas finite on part of the domain are sampled from its end") {
   // √t is finite for t >= 0 only; the coarse sample at t = 0 (the 33rd of 65 on [-1, 1]) starts it.
-  const CurveSamples s = sample_parametric_curve(sampled_curve("t", "sqrt(t)"), {-1.0, 1.0});
+  CompileBudget sampling_budget;
+  const CurveSamples s = sample_parametric_curve(sampled_curve("t", "sqrt(t)"), {-1.0, 1.0}, sampling_budget);
   check_one_chain(s);
   CHECK(s.params.front() == 0.0);
   CHECK(s.params.back() == 1.0);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "formula/program.hpp"
+#include "geometry/compile_budget.hpp"
 #include "parametric/seeding/curve_parametric_samples.hpp"
 #include "parametric/solvers/curvature_circle.hpp"
 
@@ -32,7 +33,8 @@ Options curvature_circle_start(double t) {
 TEST_CASE("curvature circle: on a circle each step is sin(a - t), cubic convergence to the foot") {
   const CurveFormulas circle = curvature_circle_curve("2*cos(t)", "2*sin(t)");
   const ParamInterval domain{-3.0, 3.0};
-  const CurveSamples samples = sample_parametric_curve(circle, domain);
+  CompileBudget sampling_budget;
+  const CurveSamples samples = sample_parametric_curve(circle, domain, sampling_budget);
   const CurveSampleIndex index(samples);
   for (const double a : {-2.5, -0.4, 0.3, 1.0, 2.2}) {
     for (const double radius : {0.5, 3.0, 7.0}) {
@@ -63,7 +65,8 @@ TEST_CASE("curvature circle: a straight line takes the first-order step, exact i
   // distance |(2, -1)| = √5.
   const CurveFormulas line = curvature_circle_curve("t", "2*t");
   const ParamInterval domain{-4.0, 4.0};
-  const CurveSamples samples = sample_parametric_curve(line, domain);
+  CompileBudget sampling_budget;
+  const CurveSamples samples = sample_parametric_curve(line, domain, sampling_budget);
   const CurveSampleIndex index(samples);
   const ProjectionResult r =
       curve::curvature_circle(line, domain, index, {3, 1, 0}, curvature_circle_start(-3.0));
@@ -79,7 +82,8 @@ TEST_CASE("curvature circle: a foot beyond the domain is outside_domain") {
   // The unit circle over [0, 1]; p at angle 2 has its foot at t = 2, beyond tmax.
   const CurveFormulas circle = curvature_circle_curve("cos(t)", "sin(t)");
   const ParamInterval domain{0.0, 1.0};
-  const CurveSamples samples = sample_parametric_curve(circle, domain);
+  CompileBudget sampling_budget;
+  const CurveSamples samples = sample_parametric_curve(circle, domain, sampling_budget);
   const CurveSampleIndex index(samples);
   const Vec3 p{3 * std::cos(2.0), 3 * std::sin(2.0), 0.0};
   const ProjectionResult r = curve::curvature_circle(circle, domain, index, p, curvature_circle_start(0.9));

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "formula/program.hpp"
+#include "geometry/compile_budget.hpp"
 #include "parametric/seeding/curve_parametric_samples.hpp"
 #include "parametric/solvers/parametric_curve_summary.hpp"
 
@@ -67,7 +68,8 @@ TEST_CASE("finish_parametric_result: converged only inside the domain and orthog
 
 TEST_CASE("parametric_start: options.initial, else the nearest sample's t") {
   const CurveFormulas f = unit_circle();
-  const CurveSamples samples = sample_parametric_curve(f, kHalf);
+  CompileBudget budget;
+  const CurveSamples samples = sample_parametric_curve(f, kHalf, budget);
   const CurveSampleIndex index(samples);
   const double t =
       curve::parametric_start(kHalf, index, {2.0 * std::cos(2.0), 2.0 * std::sin(2.0), 0}, Options{});

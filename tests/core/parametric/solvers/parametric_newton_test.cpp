@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "formula/program.hpp"
+#include "geometry/compile_budget.hpp"
 #include "parametric/seeding/curve_parametric_samples.hpp"
 #include "parametric/solvers/parametric_iteration.hpp"
 #include "parametric/solvers/parametric_newton.hpp"
@@ -59,7 +60,8 @@ TEST_CASE(
     "parametric_newton: from the nearest sample or a start; outside_domain when it leaves [tmin, tmax]") {
   const CurveFormulas f = formulas("t", "t^2");
   const ParamInterval domain{-1.0, 2.0};
-  const CurveSamples samples = sample_parametric_curve(f, domain);
+  CompileBudget budget;
+  const CurveSamples samples = sample_parametric_curve(f, domain, budget);
   const CurveSampleIndex index(samples);
   const ProjectionResult r = curve::parametric_newton(f, domain, index, {1, 0, 0}, Options{});
   CHECK(r.summary.status == Status::converged);
@@ -76,7 +78,8 @@ TEST_CASE(
 TEST_CASE("iterate_parametric: failures, the budget, and what a step at the rounding floor concludes") {
   const CurveFormulas f = formulas("t", "t^2");
   const ParamInterval domain{-1.0, 2.0};
-  const CurveSamples samples = sample_parametric_curve(f, domain);
+  CompileBudget budget;
+  const CurveSamples samples = sample_parametric_curve(f, domain, budget);
   const CurveSampleIndex index(samples);
   Options o;
   o.initial = std::array<double, 3>{0.25, 0, 0};
