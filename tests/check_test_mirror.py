@@ -14,7 +14,7 @@ Fails on:
     for a unit (a .cpp or a header) of core/<path>/ (a suite across units belongs in tests/cases/);
   - a folder of tests/ holding test sources (.cpp) that no footpoint_test(... DIRS ...) of
     tests/CMakeLists.txt names, so that no executable would build them (tests/registry/ and
-    tests/tools/ have executables of their own).
+    tests/tools/ have executables of their own), and a .cpp directly in tests/ (the flat layout).
 """
 import os
 import re
@@ -146,7 +146,11 @@ def check(root, untested):
         if folder.split("/")[0] in OWN_EXECUTABLES or folder == "support":
             dirs[:] = []
             continue
-        if folder != "." and any(n.endswith(".cpp") for n in names) and folder not in built:
+        if folder == ".":
+            # The flat layout's files (tests/<prefix>_<name>.cpp) belong in the folders now.
+            problems += [f"tests/{n}: a test source outside the mirrored folders (docs/testing.md)"
+                         for n in sorted(names) if n.endswith(".cpp")]
+        elif any(n.endswith(".cpp") for n in names) and folder not in built:
             problems.append(f"tests/{folder}/: test sources that no footpoint_test(... DIRS ...) "
                             f"of tests/CMakeLists.txt builds")
     return problems, len(all_units), len(untested)
@@ -194,6 +198,9 @@ def self_test(root):
         expect("a test folder mirroring nothing", "tests/core/no_such_folder/thing_test.cpp")
         expect("a test folder no executable builds", "tests/core/no_such_folder/")
         shutil.rmtree(os.path.join(copy, "tests/core/no_such_folder"))
+        write("tests/surface_flat_layout.cpp")
+        expect("a test file in the flat layout", "tests/surface_flat_layout.cpp")
+        remove("tests/surface_flat_layout.cpp")
         if UNTESTED:
             first = UNTESTED[0]
             write("tests/" + first[: -len(".cpp")] + "_test.cpp")
