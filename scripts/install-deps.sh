@@ -28,12 +28,12 @@ test_packages=(
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev  # bench/occt/
   libocct-data-exchange-dev                  # tools/step_import/ (footpoint-import reads STEP)
   clang-format clang-tidy shellcheck         # scripts/check_format.sh, scripts/check_tidy.sh, deploy_shellcheck
-  chromium python3-websocket                 # the browser pages in headless chromium (tests/ui_playground_browser.py)
+  chromium python3-websocket                 # the browser pages in headless chromium (tests/e2e/ui_playground_browser.py)
   python3-matplotlib                         # examples/inspection/: the deviation colour map and histogram
-  nodejs                                     # tests/client_js_test.mjs: the JavaScript client (ui/footpoint-client.js)
+  nodejs                                     # tests/e2e/client_js_test.mjs: the JavaScript client (ui/footpoint-client.js)
 )
 # npm (with Node.js): the build installs Swagger UI for /docs with it (npm ci against
-# ui/vendor/package-lock.json; server/CMakeLists.txt), and tests/openapi_lint.sh Redocly's linter
+# ui/vendor/package-lock.json; server/CMakeLists.txt), and tests/e2e/openapi_lint.sh Redocly's linter
 # (tests/tools/redocly/package-lock.json). Debian's, unless an npm is already there (e.g. with
 # another Node.js distribution).
 command -v npm >/dev/null || packages+=(npm)

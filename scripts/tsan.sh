@@ -27,6 +27,6 @@ if [[ -n "$filter" ]]; then
   "$build/tests/test_server" --test-case="$filter"
   exit 0
 fi
-"$build/tests/test_core" --source-file='*core_thread_pool.cpp'
-"$build/tests/test_server" --source-file='*server_stream_body_test.cpp,*server_inspection_test.cpp' \
+"$build/tests/test_core" --source-file='*batch/thread_pool_test.cpp'
+"$build/tests/test_server" --source-file='*server/stream_body_test.cpp,*server/inspection_test.cpp' \
   --test-case-exclude='*points answered while they are sent*'

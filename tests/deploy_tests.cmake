@@ -19,7 +19,7 @@ endif()
 # certificate made by openssl at test time, API keys, rate limit, delete audit, SIGHUP reload).
 if(TARGET footpoint-server)
   add_test(NAME server_security_e2e
-           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/server_security_e2e.sh $<TARGET_FILE:footpoint-server>)
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/e2e/server_security_e2e.sh $<TARGET_FILE:footpoint-server>)
   set_tests_properties(server_security_e2e PROPERTIES TIMEOUT 300)
 endif()
 
@@ -30,11 +30,11 @@ if(FOOTPOINT_SHELLCHECK)
   add_test(NAME deploy_shellcheck
            COMMAND ${FOOTPOINT_SHELLCHECK} ${CMAKE_SOURCE_DIR}/deploy/check_layout.sh
                    ${CMAKE_SOURCE_DIR}/examples/project_csv.sh ${FOOTPOINT_SCRIPTS} ${CMAKE_SOURCE_DIR}/.ci/run
-                   ${CMAKE_SOURCE_DIR}/tests/check_installed_package.sh ${CMAKE_SOURCE_DIR}/tests/openapi_lint.sh
-                   ${CMAKE_SOURCE_DIR}/tests/server_security_e2e.sh)
+                   ${CMAKE_SOURCE_DIR}/tests/e2e/check_installed_package.sh ${CMAKE_SOURCE_DIR}/tests/e2e/openapi_lint.sh
+                   ${CMAKE_SOURCE_DIR}/tests/e2e/server_security_e2e.sh)
 endif()
 
-# openapi.yaml through Redocly's linter with its recommended rules (tests/openapi_lint.sh installs
+# openapi.yaml through Redocly's linter with its recommended rules (tests/e2e/openapi_lint.sh installs
 # the version tests/tools/redocly/package-lock.json pins; skipped without npm).
-add_test(NAME openapi_lint COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/openapi_lint.sh ${CMAKE_SOURCE_DIR})
+add_test(NAME openapi_lint COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/e2e/openapi_lint.sh ${CMAKE_SOURCE_DIR})
 set_tests_properties(openapi_lint PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300)

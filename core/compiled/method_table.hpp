@@ -3,8 +3,8 @@
 // dispatch through their table, GET /v1/methods lists the tables, and an unknown method name is
 // answered with the names a table holds. Rows are structs, so that a method carries what it is
 // (its full citation, the options it reads, the statuses it can report) without a second list
-// that could drift from the first (tests/core_method_table.cpp holds the options and statuses to
-// what the methods do).
+// that could drift from the first (tests/core/compiled/compiled_geometry_methods_test.cpp holds the options
+// and statuses to what the methods do).
 #pragma once
 #include <array>
 #include <cstddef>

@@ -1,5 +1,5 @@
 // sin x and cos x together, in one reduction of x, within 1 ulp of the exact values
-// (tests/formula_sin_cos.cpp measures the error against long double); the values and jets of
+// (tests/core/formula/sin_cos_test.cpp measures the error against long double); the values and jets of
 // every sin and cos node use it. Internal to core/formula.
 //
 // x = k π/2 + r, |r| <= π/4 (about): Cody and Waite's reduction with π/2 = P1 + P2 + P3, where P1

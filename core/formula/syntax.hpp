@@ -4,7 +4,7 @@
 //   unknown_function  sinn(u) -> sin, pow(u,2) -> u^2, arcsin -> asin
 //   unknown_variable  pi -> _pi, w in a surface (the variables are u, v)
 //   syntax            u**2 -> ^, sin(u (the '(' at 3 is not closed), 2·3 (· is not an operator: *)
-// The grammar is muparser's as this library configures it (tests/formula_syntax.cpp checks that
+// The grammar is muparser's as this library configures it (tests/core/formula/syntax_test.cpp checks that
 // both accept the same formulas):
 //   formula  := ternary
 //   ternary  := chain [ '?' ternary ':' ternary ]

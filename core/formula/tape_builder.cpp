@@ -215,7 +215,7 @@ Program::Tape build_tape(const std::vector<NamedFormula>& formulas, const std::v
       parser.SetExpr(parsed_text);
       parser.Eval();  // muparser builds the bytecode on the first evaluation
     } catch (const mu::ParserError& e) {
-      // The grammars agree (tests/formula_syntax.cpp), so this is not expected; muparser's own
+      // The grammars agree (tests/core/formula/syntax_test.cpp), so this is not expected; muparser's own
       // words are not passed on, its position is kept within the formula.
       const int last = std::max(0, static_cast<int>(parsed_text.size()) - 1);
       const int pos = std::clamp(static_cast<int>(e.GetPos()), 0, last);

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Reference values for tests/formula_derivatives.cpp: value and all partial derivatives up to
+"""Reference values for tests/core/formula/program_test.cpp: value and all partial derivatives up to
 third order of muparser-syntax formulas, computed symbolically with sympy and evaluated with 40
 digits. Run with Debian's python3-sympy:  /usr/bin/python3 tests/tools/gen_formula_refs.py
 It rewrites tests/data/formula_refs.json."""

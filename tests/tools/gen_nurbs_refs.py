@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Reference values for tests/geometry_nurbs.cpp: points of NURBS curves and surfaces and their
+"""Reference values for tests/core/parametric/geometry/nurbs_test.cpp: points of NURBS curves and surfaces and their
 derivatives to second order, in exact rational arithmetic (Python's fractions), by a method of
 its own: on the knot span of the parameter every basis function N_{i,p} is a polynomial, built
 as one from the Cox-de Boor recurrence

@@ -4,7 +4,7 @@
 //   build/tests/projection_dump tests/data [more_cases.json] > after.txt
 //   cmp before.txt after.txt
 // The geometries: every reference geometry of tests/data/*.json (surfaces and curves), the
-// shapes of the brute-force sweep (tests/surface_auto_stress.cpp) and, when given, the cases of a
+// shapes of the brute-force sweep (tests/cases/surface/auto_stress_test.cpp) and, when given, the cases of a
 // file in the format of tests/data/curve_*_cases.json or the papers' public cases. The points:
 // each file's own, 48 uniform in the box twice the geometry's size, and 48 within 2 % of its
 // size from the foot points of those. Every method runs with default options, and with a start,
@@ -114,7 +114,7 @@ std::vector<Case> read_cases(const std::string& data_dir, const std::string& ext
         if (c.is_object() && c.contains("kind")) add_case(c, cases);
     }
   }
-  // The brute-force sweep's shapes (tests/surface_auto_stress.cpp).
+  // The brute-force sweep's shapes (tests/cases/surface/auto_stress_test.cpp).
   const double tau = 6.283185307179586, half_pi = 1.5707963267948966;
   const std::vector<Case> stress = {
       {"stress_S1", surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", {-3, 3}, {-3, 3}), {}},

@@ -23,7 +23,7 @@ protocol (python3-websocket), against the built footpoint-server on a loopback p
 Screenshots go to --out (the build folder). Exit 77 (ctest: skipped) when chromium or
 python3-websocket is missing.
 
-  tests/ui_playground_browser.py --server build/footpoint-server --source . --out build/screenshots
+  tests/e2e/ui_playground_browser.py --server build/footpoint-server --source . --out build/screenshots
 """
 import argparse
 import base64

@@ -1,17 +1,15 @@
-// parametric/geometry/surface_closure and parametric/geometry/curve_closure: seams and poles of surfaces,
-// closed curves. The references are what each shape is in closed form: a torus closes both ways, a sphere's
-// longitude closes and its latitude ends in two poles, a cylinder closes one way with two
-// boundary circles, a cone's apex is a pole, a Möbius band closes with its width reversed, a
-// teardrop's profile closes with a crease; a plane and the papers' surfaces do not close, and edges
-// 1e-6 apart, or apart only between uniform samples, are no seam. Declared periodic directions
-// are accepted near rounding level and refused when the edges visibly differ.
+// parametric/geometry/surface_closure: seams and poles of surfaces. The references are what each shape is in
+// closed form: a torus closes both ways, a sphere's longitude closes and its latitude ends in two poles, a
+// cylinder closes one way with two boundary circles, a cone's apex is a pole, a Möbius band closes with its
+// width reversed, a teardrop's profile closes with a crease; a plane and the papers' surfaces do not close,
+// and edges 1e-6 apart, or apart only between uniform samples, are no seam. Declared periodic directions are
+// accepted near rounding level and refused when the edges visibly differ.
 #include <doctest/doctest.h>
 
 #include <numbers>
 #include <string>
 
-#include "geometry/geometry_error.hpp"
-#include "parametric/geometry/curve_closure.hpp"
+#include "closure_refusal.hpp"
 #include "parametric/geometry/surface_closure.hpp"
 
 using namespace footpoint;
@@ -24,30 +22,10 @@ SurfaceFormulas surface(const std::string& x, const std::string& y, const std::s
   return SurfaceFormulas(formula::Program::compile({{"x", x}, {"y", y}, {"z", z}}, {"u", "v"}, {}));
 }
 
-CurveFormulas curve(const std::string& x, const std::string& y, const std::string& z = "") {
-  std::vector<formula::NamedFormula> f = {{"x", x}, {"y", y}};
-  if (!z.empty()) f.push_back({"z", z});
-  return CurveFormulas(formula::Program::compile(f, {"t"}, {}));
-}
-
 bool no_pole(const SurfaceClosure& c) {
   for (const SurfacePole& p : c.poles)
     if (p.collapsed) return false;
   return true;
-}
-
-// The message of the GeometryError `detect` throws (code not_periodic, field periodic).
-template <class Detect>
-std::string refusal(Detect detect) {
-  try {
-    detect();
-  } catch (const GeometryError& e) {
-    CHECK(e.code == "not_periodic");
-    CHECK(e.field == "periodic");
-    return e.what();
-  }
-  FAIL("no GeometryError");
-  return {};
 }
 
 const ParamBox kFullTurns{0, 2 * kPi, 0, 2 * kPi};
@@ -133,7 +111,7 @@ TEST_CASE("a Möbius band closes with its width reversed: a seam, not a period")
   CHECK(!c.seams[1].closed);
   CHECK(no_pole(c));
   // Declaring u periodic claims s(u + 2 pi, v) = s(u, v): refused, saying what it is instead.
-  const std::string why = refusal([&] { detect_surface_closure(moebius, box, {true, false}); });
+  const std::string why = test::closure_refusal([&] { detect_surface_closure(moebius, box, {true, false}); });
   CHECK(why.find("reversed") != std::string::npos);
 }
 
@@ -196,42 +174,15 @@ TEST_CASE(
   CHECK(c.periodic(1));
 
   const SurfaceFormulas plane = surface("1+2*u+v", "u-v", "3*u+0.5*v");
-  const std::string u = refusal([&] { detect_surface_closure(plane, {0, 1, 0, 1}, {true, false}); });
+  const std::string u = test::closure_refusal([&] {
+    detect_surface_closure(plane, {0, 1, 0, 1}, {true, false});
+  });
   CHECK(u.find("u is declared periodic") != std::string::npos);
   CHECK(u.find("apart at v = ") != std::string::npos);
-  const std::string v = refusal([&] { detect_surface_closure(plane, {0, 1, 0, 1}, {false, true}); });
+  const std::string v = test::closure_refusal([&] {
+    detect_surface_closure(plane, {0, 1, 0, 1}, {false, true});
+  });
   CHECK(v.find("v = vmin and v = vmax") != std::string::npos);
   // A domain typed with too few digits of 2 pi: the edges are ~2e-5 apart, 3 x the limit.
-  refusal([&] { detect_surface_closure(torus, {0, 6.2832, 0, 2 * kPi}, {true, false}); });
-}
-
-TEST_CASE("curves: a circle, an ellipse and a trefoil close smoothly; a helix and a parabola do not") {
-  const CurveClosure circle = detect_curve_closure(curve("cos(t)", "sin(t)"), {0, 2 * kPi});
-  CHECK(circle.closed);
-  CHECK(circle.smooth);
-  CHECK(circle.gap <= circle.tolerance);
-  CHECK(circle.gap_bound <= 1e-14);
-  CHECK(detect_curve_closure(curve("3*cos(t)", "2*sin(t)"), {0, 2 * kPi}).smooth);
-  const CurveClosure trefoil =
-      detect_curve_closure(curve("sin(t)+2*sin(2*t)", "cos(t)-2*cos(2*t)", "-sin(3*t)"), {0, 2 * kPi});
-  CHECK(trefoil.closed);
-  CHECK(trefoil.smooth);
-  CHECK(!detect_curve_closure(curve("cos(t)", "sin(t)", "0.2*t"), {0, 4 * kPi}).closed);
-  CHECK(!detect_curve_closure(curve("t", "t^2"), {-1, 2}).closed);
-  // Half a circle, and a circle 1e-6 short of closing.
-  CHECK(!detect_curve_closure(curve("cos(t)", "sin(t)"), {0, kPi}).closed);
-  CHECK(!detect_curve_closure(curve("cos(t)", "sin(t)"), {0, 2 * kPi - 1e-6}).closed);
-}
-
-TEST_CASE("curves: a teardrop closes with a corner; declared periodic curves") {
-  const CurveClosure teardrop = detect_curve_closure(curve("2*sin(t/2)", "sin(t)"), {0, 2 * kPi});
-  CHECK(teardrop.closed);
-  CHECK(!teardrop.smooth);
-  const CurveClosure declared = detect_curve_closure(curve("cos(t)", "sin(t)"), {0, 2 * kPi - 1e-7}, true);
-  CHECK(declared.closed);
-  CHECK(declared.declared);
-  const std::string why = refusal([&] {
-    detect_curve_closure(curve("cos(t)", "sin(t)", "0.2*t"), {0, 4 * kPi}, true);
-  });
-  CHECK(why.find("t is declared periodic") != std::string::npos);
+  test::closure_refusal([&] { detect_surface_closure(torus, {0, 6.2832, 0, 2 * kPi}, {true, false}); });
 }

@@ -15,21 +15,12 @@
 #include "batch/batch.hpp"
 #include "batch/deviation.hpp"
 #include "batch/thread_pool.hpp"
+#include "compile_definition.hpp"
 #include "compiled/compiled_geometry.hpp"
 
 using namespace footpoint;
 
 namespace {
-
-std::shared_ptr<const CompiledGeometry> compile_def(
-    GeometryType type, std::vector<formula::NamedFormula> formulas,
-    std::vector<std::pair<std::string, std::array<double, 2>>> domain) {
-  GeometryDefinition def;
-  def.type = type;
-  def.formulas = std::move(formulas);
-  def.domain = std::move(domain);
-  return compile_geometry(def);
-}
 
 ProjectionResult project_auto(const CompiledGeometry& g, std::array<double, 3> p) {
   return g.project(p.data(), "auto", {}).value();
@@ -39,9 +30,10 @@ ProjectionResult project_auto(const CompiledGeometry& g, std::array<double, 3> p
 
 TEST_CASE("deviation: the sphere's normal is -foot/R and the signed distance R - |p|") {
   const double pi = std::acos(-1.0);
-  const auto sphere = compile_def(GeometryType::parametric_surface,
-                                  {{"x", "2*sin(v)*cos(u)"}, {"y", "2*sin(v)*sin(u)"}, {"z", "2*cos(v)"}},
-                                  {{"u", {0, 2 * pi}}, {"v", {0, pi}}});
+  const auto sphere =
+      test::compile_definition(GeometryType::parametric_surface,
+                               {{"x", "2*sin(v)*cos(u)"}, {"y", "2*sin(v)*sin(u)"}, {"z", "2*cos(v)"}},
+                               {{"u", {0, 2 * pi}}, {"v", {0, pi}}});
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> angle(0.3, 2.8), radius(0.5, 3.5);
   for (int i = 0; i < 40; ++i) {
@@ -59,9 +51,9 @@ TEST_CASE("deviation: the sphere's normal is -foot/R and the signed distance R -
 
 TEST_CASE("deviation: a tilted plane's normal and signed distance") {
   const double a = 0.5, b = -0.25, s = std::sqrt(1 + a * a + b * b);
-  const auto plane =
-      compile_def(GeometryType::parametric_surface, {{"x", "u"}, {"y", "v"}, {"z", "0.5*u-0.25*v"}},
-                  {{"u", {-10, 10}}, {"v", {-10, 10}}});
+  const auto plane = test::compile_definition(GeometryType::parametric_surface,
+                                              {{"x", "u"}, {"y", "v"}, {"z", "0.5*u-0.25*v"}},
+                                              {{"u", {-10, 10}}, {"v", {-10, 10}}});
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> c(-3, 3);
   for (int i = 0; i < 40; ++i) {
@@ -77,10 +69,10 @@ TEST_CASE("deviation: a tilted plane's normal and signed distance") {
 
 TEST_CASE("deviation: a circle, implicit (outward gradient) and parametric (turned tangent, inward)") {
   const double pi = std::acos(-1.0);
-  const auto implicit = compile_def(GeometryType::implicit_curve, {{"equations[0]", "x^2+y^2-1"}},
-                                    {{"x", {-2, 2}}, {"y", {-2, 2}}});
-  const auto parametric =
-      compile_def(GeometryType::parametric_curve, {{"x", "cos(t)"}, {"y", "sin(t)"}}, {{"t", {0, 2 * pi}}});
+  const auto implicit = test::compile_definition(
+      GeometryType::implicit_curve, {{"equations[0]", "x^2+y^2-1"}}, {{"x", {-2, 2}}, {"y", {-2, 2}}});
+  const auto parametric = test::compile_definition(GeometryType::parametric_curve,
+                                                   {{"x", "cos(t)"}, {"y", "sin(t)"}}, {{"t", {0, 2 * pi}}});
   for (const double r : {0.25, 0.9, 1.0, 1.3, 1.9}) {
     for (const double theta : {0.1, 1.7, 3.0, 4.4, 5.9}) {
       const std::array<double, 3> p{r * std::cos(theta), r * std::sin(theta), 0};
@@ -100,8 +92,8 @@ TEST_CASE("deviation: a circle, implicit (outward gradient) and parametric (turn
 }
 
 TEST_CASE("deviation: no normal on a space curve, at a singular point or without an answer") {
-  const auto helix = compile_def(GeometryType::parametric_curve,
-                                 {{"x", "cos(t)"}, {"y", "sin(t)"}, {"z", "t/4"}}, {{"t", {0, 12}}});
+  const auto helix = test::compile_definition(
+      GeometryType::parametric_curve, {{"x", "cos(t)"}, {"y", "sin(t)"}, {"z", "t/4"}}, {{"t", {0, 12}}});
   const ProjectionResult h = project_auto(*helix, {2, 0.5, 1});
   CHECK(std::isfinite(h.distance));
   CHECK_FALSE(h.has_normal());
@@ -109,8 +101,8 @@ TEST_CASE("deviation: no normal on a space curve, at a singular point or without
 
   // Bernoulli's lemniscate: its node at the origin is a singular point of the curve.
   const auto lemniscate =
-      compile_def(GeometryType::implicit_curve, {{"equations[0]", "(x^2+y^2)^2-2*(x^2-y^2)"}},
-                  {{"x", {-2, 2}}, {"y", {-2, 2}}});
+      test::compile_definition(GeometryType::implicit_curve, {{"equations[0]", "(x^2+y^2)^2-2*(x^2-y^2)"}},
+                               {{"x", {-2, 2}}, {"y", {-2, 2}}});
   const ProjectionResult node = project_auto(*lemniscate, {0, 0, 0});
   INFO("location " << to_string(node.summary.location));
   CHECK(node.distance < 1e-12);
@@ -119,8 +111,9 @@ TEST_CASE("deviation: no normal on a space curve, at a singular point or without
 
   Options far;
   far.max_distance = 0.1;
-  const auto sphere_far = compile_def(GeometryType::parametric_surface, {{"x", "u"}, {"y", "v"}, {"z", "0"}},
-                                      {{"u", {-1, 1}}, {"v", {-1, 1}}});
+  const auto sphere_far =
+      test::compile_definition(GeometryType::parametric_surface, {{"x", "u"}, {"y", "v"}, {"z", "0"}},
+                               {{"u", {-1, 1}}, {"v", {-1, 1}}});
   const std::array<double, 3> p{0, 0, 5};
   const ProjectionResult beyond = sphere_far->project(p.data(), "auto", far).value();
   CHECK(beyond.summary.status == Status::beyond_max_distance);
@@ -129,8 +122,9 @@ TEST_CASE("deviation: no normal on a space curve, at a singular point or without
 
 TEST_CASE("deviation: a batch keeps the normals, and its statistics are the closed form's") {
   // Points at signed distances -0.3 + 0.1 k (k = 0..6) from the plane z = 0 over [-1, 1]^2.
-  const auto plane = compile_def(GeometryType::parametric_surface, {{"x", "u"}, {"y", "v"}, {"z", "0"}},
-                                 {{"u", {-1, 1}}, {"v", {-1, 1}}});
+  const auto plane =
+      test::compile_definition(GeometryType::parametric_surface, {{"x", "u"}, {"y", "v"}, {"z", "0"}},
+                               {{"u", {-1, 1}}, {"v", {-1, 1}}});
   std::vector<double> points;
   std::vector<double> expected;
   for (int k = 0; k < 7; ++k) {

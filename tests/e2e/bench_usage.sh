@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The bench programs (build/bench/*_bench): --help prints their usage and exits 0; a count that is
 # no positive integer or an argument they do not take exits 2 with the usage on stderr, instead of
-# a run over 0 points (rows of NaN). Usage: tests/bench_usage.sh BUILD/bench
+# a run over 0 points (rows of NaN). Usage: tests/e2e/bench_usage.sh BUILD/bench
 set -u
 dir=$1
 failed=0

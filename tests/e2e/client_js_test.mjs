@@ -9,7 +9,7 @@
 // not held, a NaN coordinate, a 2-D point on a surface); a consumer that stops early; and a 503
 // (a server answering one request at a time, busy with a long stream) retried after Retry-After.
 //
-//   node tests/client_js_test.mjs --server build/footpoint-server --client ui/footpoint-client.js
+//   node tests/e2e/client_js_test.mjs --server build/footpoint-server --client ui/footpoint-client.js
 // Exit 77 (ctest: skipped) under Node older than 18.
 import {spawn} from 'node:child_process';
 import {createInterface} from 'node:readline';

@@ -153,7 +153,8 @@ TEST_CASE("the closure of each geometry, in the POST response and in GET /v1/geo
 TEST_CASE("periodic: declared, written back, part of the id only when present") {
   TestServer s;
   auto c = s.client();
-  // The id of this definition, as it was before periodic existed (core_geometry_id.cpp pins it too).
+  // The id of this definition, as it was before periodic existed (tests/core/compiled/sha256_test.cpp pins it
+  // too).
   const std::string s1 = surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", "[-3,3]", "[-3,3]");
   CHECK(create(*c, s1) == "6eb4132bf22f865049048bc1e2fc6ee9");
   CHECK(create(*c, surface("u+v", "sin(u)+2*cos(v)", "sin(u+v)", "[-3,3]", "[-3,3]",

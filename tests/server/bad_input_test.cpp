@@ -383,7 +383,7 @@ void check_honest(const json& result, const json& point) {
 
 TEST_CASE("numerically hostile but valid requests: 200 and an honest status for every point") {
   // ln t on [-1, 2] compiles to more search structure than the default per-geometry bound (a
-  // quarter of the cache; tests/server_access_test.cpp tests the bound): these cases are about
+  // quarter of the cache; tests/server/access_test.cpp tests the bound): these cases are about
   // the solvers' answers, so the bound is lifted.
   ServerConfig config;
   config.max_geometry_bytes = std::size_t{1} << 30;

@@ -20,7 +20,7 @@ using json = nlohmann::json;
 
 namespace {
 
-json read_json(const std::string& path) {
+json canonical_read_json(const std::string& path) {
   std::ifstream in(path);
   REQUIRE_MESSAGE(in.good(), "cannot read " << path);
   std::stringstream ss;
@@ -70,14 +70,14 @@ std::vector<GeometryDefinition> reference_geometries() {
   const std::string data = std::string(FOOTPOINT_TESTS_DIR) + "/data/";
   for (const char* name : {"A1", "S1", "S2", "S3", "S3_edge", "cone", "fold", "fold_near", "monkey_saddle",
                            "plane", "ripple", "sphere", "torus", "wavy"})
-    all.push_back(definition_of(read_json(data + "surface_" + name + ".json"), "surface"));
+    all.push_back(definition_of(canonical_read_json(data + "surface_" + name + ".json"), "surface"));
   for (const char* file :
        {"curve_parametric_cases.json", "curve_planar_implicit_cases.json", "curve_spatial_cases.json"}) {
-    const json cases = read_json(data + file);
+    const json cases = canonical_read_json(data + file);
     for (const auto& c : cases.at("cases")) all.push_back(definition_of(c, c.at("kind")));
   }
   if (std::ifstream(FOOTPOINT_CASES_FILE).good()) {
-    const json cases = read_json(FOOTPOINT_CASES_FILE);
+    const json cases = canonical_read_json(FOOTPOINT_CASES_FILE);
     for (const auto& c : cases.at("cases"))
       if (c.contains("formulas")) all.push_back(definition_of(c, c.at("kind")));
   }

@@ -86,7 +86,7 @@ TEST_CASE("the domain's corners are kept with their points") {
 TEST_CASE(
     "a self-covering box: the cells leave out the translates, and every parameter point has a copy in a "
     "cell") {
-  // [GSA] Ex. 1 over [-25,25]^2 repeats along (2π, -2π) (formula_invariant_translations.cpp)
+  // [GSA] Ex. 1 over [-25,25]^2 repeats along (2π, -2π) (tests/core/formula/invariant_translations_test.cpp)
   const ParametricSurface g = compile_with(example1(25), SurfaceSeedingOptions{});
   const auto& translations = g.self_covering().translations;
   REQUIRE(translations.size() == 7);

@@ -1,5 +1,5 @@
 // Sums of monomials: jets2 evaluates them term by term (core/formula/polynomial.cpp). Their
-// values against sympy are in formula_derivatives.cpp (the reference file has such formulas);
+// values against sympy are in program_test.cpp (the reference file has such formulas);
 // here: which formulas qualify, and agreement with the tape's own jets (jets3 always runs the tape)
 // over many points in one, two and three variables.
 #include <doctest/doctest.h>

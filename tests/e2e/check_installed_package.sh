@@ -4,7 +4,7 @@
 # builds examples/cpp against it with find_package(footpoint), outside this tree's build, runs the
 # example and checks its answers (exact foot points of a torus and a circle, the unknown-method
 # error value).
-#   tests/check_installed_package.sh BUILD_DIR SOURCE_DIR [FLAGS]
+#   tests/e2e/check_installed_package.sh BUILD_DIR SOURCE_DIR [FLAGS]
 # FLAGS are compile and link flags the example needs to link the installed libraries (a sanitizer
 # build's instrumentation).
 set -euo pipefail
