@@ -35,9 +35,6 @@ UNTESTED = [
     "core/compiled/parametric_surface_geometry.cpp",
     # formula/: the muparser tree to the tape, under every formula test's Program::compile.
     "core/formula/expression_builder.cpp",
-    # geometry/: the compile deadline, tests/cases/core/compile_budget_test.cpp (it needs the
-    # compiled layer, which test_geometry does not link).
-    "core/geometry/compile_budget.cpp",
     # implicit/: implicit curves' and surfaces' `auto` and its parts, through tests/cases/curve/ and
     # tests/cases/surface/implicit_cases_test.cpp.
     "core/implicit/seeding/curve_arc_samples.cpp",

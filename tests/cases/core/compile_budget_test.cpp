@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "compiled/compiled_geometry.hpp"
-#include "geometry/compile_budget.hpp"
 #include "geometry/geometry_error.hpp"
 
 using namespace footpoint;
@@ -65,32 +64,6 @@ TEST_CASE("a search structure growing past max_geometry_bytes is stopped while i
   CHECK(reached > limits.max_geometry_bytes);
   CHECK(reached < limits.max_geometry_bytes + 4096);
   CHECK(message.find("over the limit of 8388608") != std::string::npos);
-}
-
-TEST_CASE("CompileBudget: counts what grows, stops past its bound and past its deadline") {
-  CompileBudget unbounded;
-  unbounded.grow(std::size_t{1} << 40);
-  for (int k = 0; k < 1000; ++k) unbounded.check();
-  CHECK(unbounded.grown() == std::size_t{1} << 40);
-
-  CompileBudget bytes(CompileBudget::clock::time_point::max(), 100);
-  bytes.grow(60);
-  bytes.grow(40);  // at the bound: still allowed
-  CHECK(bytes.grown() == 100);
-  CHECK_THROWS_AS(bytes.grow(1), GeometryError);
-  CHECK(bytes.grown() == 101);
-
-  // Past the deadline: the clock is read once every 64 checks, so the 64th throws at the latest.
-  CompileBudget late(CompileBudget::clock::now() - std::chrono::seconds(1));
-  std::string code;
-  int checks = 0;
-  try {
-    for (; checks < 64; ++checks) late.check();
-  } catch (const GeometryError& e) {
-    code = e.code;
-  }
-  CHECK(code == "compile_timeout");
-  CHECK(checks < 64);
 }
 
 TEST_CASE("each compile has a budget of its own: two compiles near the bound both pass") {
