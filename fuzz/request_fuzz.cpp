@@ -52,7 +52,13 @@ struct Service {
     config.max_points = 2000;
     config.deadline = std::chrono::milliseconds(2000);
     config.cache_entries = 32;
-    cache = std::make_unique<GeometryCache>(GeometryCacheOptions{config.cache_entries, config.cache_bytes});
+    // 64 MiB, so that one geometry may hold a quarter, 16 MiB, as the server bounds it
+    // (effective_max_geometry_bytes): an instrumented build is 20-50x slower than a release one,
+    // and a structure of the server's default size (64 MiB, a million curve samples and their
+    // k-d tree) takes it tens of seconds to build, past the slow-input report.
+    config.cache_bytes = std::size_t{64} << 20;
+    cache = std::make_unique<GeometryCache>(GeometryCacheOptions{
+        config.cache_entries, config.cache_bytes, config.effective_max_geometry_bytes(), config.cache_share});
     pool = std::make_unique<ThreadPool>(2);
     api = std::make_unique<Api>(config, *cache, *pool, metrics);
   }
