@@ -73,19 +73,6 @@ inline bool matches_3_digits(double x, double printed) {
 
 namespace footpoint::test {
 
-inline const char* location_prefix(Location l) {
-  switch (l) {
-    case Location::interior:
-      return "interior";
-    case Location::edge:
-      return "edge";
-    case Location::corner:
-      return "corner";
-    default:
-      return "?";
-  }
-}
-
 // Asserts auto's answer for one oracle record ({"p": ..., "oracle": {...}}, the format of
 // public_cases.json and tests/data/surface_*.json): distance within 1e-12 relative (1e-12 absolute
 // on the surface), foot within 1e-9 of the oracle's (of any tied foot when ambiguous), the same
@@ -128,7 +115,7 @@ inline void check_auto_against_oracle(const ParametricSurface& g, const nlohmann
   // depends on which pair is reported
   if (!o.value("params_nonunique", false)) {
     const std::string type = o.at("type").get<std::string>();
-    CHECK(type.rfind(location_prefix(r.summary.location), 0) == 0);
+    CHECK(type.rfind(to_string(r.summary.location), 0) == 0);
   }
   // a pole is no boundary of the surface (nor is a seam: its answers are interior)
   CHECK(r.summary.on_boundary ==

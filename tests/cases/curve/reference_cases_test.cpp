@@ -15,6 +15,7 @@
 
 #include "compiled/implicit_curve_geometry.hpp"
 #include "compiled/parametric_curve_geometry.hpp"
+#include "curve_cases.hpp"
 
 using namespace footpoint;
 using nlohmann::json;
@@ -25,30 +26,6 @@ json load(const std::string& name) {
   std::ifstream in(std::string(FOOTPOINT_TESTS_DIR) + "/data/" + name);
   REQUIRE(in.good());
   return json::parse(in);
-}
-
-std::shared_ptr<const CompiledGeometry> compile_case(const json& c) {
-  GeometryDefinition def;
-  const std::string kind = c["kind"];
-  const json& f = c["formulas"];
-  const json& d = c["domain"];
-  if (kind == "paramcurve") {
-    def.type = GeometryType::parametric_curve;
-    def.formulas = {{"x", f["x"]}, {"y", f["y"]}};
-    if (f.contains("z")) def.formulas.push_back({"z", f["z"]});
-    def.domain = {{"t", {d["t"][0], d["t"][1]}}};
-    return compile_parametric_curve(def, {});
-  }
-  def.type = GeometryType::implicit_curve;
-  if (kind == "implicit2d") {
-    def.formulas = {{"equations[0]", f["f"]}};
-    def.domain = {{"x", {d["x"][0], d["x"][1]}}, {"y", {d["y"][0], d["y"][1]}}};
-  } else {
-    def.formulas = {{"equations[0]", f["f1"]}, {"equations[1]", f["f2"]}};
-    def.domain = {
-        {"x", {d["x"][0], d["x"][1]}}, {"y", {d["y"][0], d["y"][1]}}, {"z", {d["z"][0], d["z"][1]}}};
-  }
-  return compile_implicit_curve(def, {});
 }
 
 Location expected_location(const std::string& type) {
@@ -72,7 +49,7 @@ void check_file(const std::string& name, double residual = 1e-12) {
   const json data = load(name);
   for (const json& c : data["cases"]) {
     const std::string id = c["id"];
-    const auto g = compile_case(c);
+    const auto g = test::compile_curve_case(c);
     const int dim = g->point_dim();
     int k = 0;
     for (const json& pt : c["points"]) {
@@ -129,7 +106,7 @@ void check_all_minima(const std::string& name) {
   const json data = load(name);
   for (const json& c : data["cases"]) {
     const std::string id = c["id"];
-    const auto g = compile_case(c);
+    const auto g = test::compile_curve_case(c);
     const int dim = g->point_dim();
     Options o;
     o.all_minima = true;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "compiled/implicit_curve_geometry.hpp"
+#include "curve_cases.hpp"
 #include "implicit/seeding/curve_enclosure.hpp"
 #include "implicit_fixtures.hpp"
 
@@ -30,22 +31,6 @@ const json& case_of(const std::string& file, const std::string& id) {
     if (c["id"] == id) return c;
   FAIL("no case " << id);
   return files[file];
-}
-
-std::shared_ptr<const CompiledGeometry> compile_discovery_case(const json& c) {
-  GeometryDefinition def;
-  def.type = GeometryType::implicit_curve;
-  const json& f = c["formulas"];
-  const json& d = c["domain"];
-  if (f.contains("f")) {
-    def.formulas = {{"equations[0]", f["f"]}};
-    def.domain = {{"x", {d["x"][0], d["x"][1]}}, {"y", {d["y"][0], d["y"][1]}}};
-  } else {
-    def.formulas = {{"equations[0]", f["f1"]}, {"equations[1]", f["f2"]}};
-    def.domain = {
-        {"x", {d["x"][0], d["x"][1]}}, {"y", {d["y"][0], d["y"][1]}}, {"z", {d["z"][0], d["z"][1]}}};
-  }
-  return compile_implicit_curve(def, {});
 }
 
 // The samples of the given kind match the oracle's points one to one (to 1e-12).
@@ -79,7 +64,7 @@ void check_samples(const ImplicitCurve& curve) {
 
 TEST_CASE("discovery: Viviani's curve, one piece through its double point, which is found") {
   const json& c = case_of("curve_spatial_cases.json", "viviani");
-  const auto g = compile_discovery_case(c);
+  const auto g = test::compile_curve_case(c);
   const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
   check_special(curve.discovery().samples, SampleKind::singular_point, c["curve_info"]["singular_points"]);
   CHECK(curve.discovery().stats.face_crossings == 0);
@@ -88,7 +73,7 @@ TEST_CASE("discovery: Viviani's curve, one piece through its double point, which
 
 TEST_CASE("discovery: three circles are three pieces") {
   const json& c = case_of("curve_spatial_cases.json", "three_circles");
-  const auto g = compile_discovery_case(c);
+  const auto g = test::compile_curve_case(c);
   const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
   CHECK(curve.discovery().stats.pieces == 3);
   CHECK(curve.discovery().stats.closed_pieces == 3);
@@ -100,13 +85,13 @@ TEST_CASE("discovery: curves leaving the box end at the exact face crossings") {
   for (const char* id : {"ex1_clipped", "helix_clipped"}) {
     CAPTURE(id);
     const json& c = case_of("curve_spatial_cases.json", id);
-    const auto g = compile_discovery_case(c);
+    const auto g = test::compile_curve_case(c);
     const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
     check_special(curve.discovery().samples, SampleKind::box_face, c["curve_info"]["endpoints"]);
     check_samples(curve);
   }
   const json& c = case_of("curve_planar_implicit_cases.json", "parabola_clipped");
-  const auto g = compile_discovery_case(c);
+  const auto g = test::compile_curve_case(c);
   const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
   check_special(curve.discovery().samples, SampleKind::box_face, c["curve_info"]["endpoints"]);
   check_samples(curve);
@@ -116,7 +101,7 @@ TEST_CASE("discovery: planar singular points (a cusp, the lemniscate's crossing)
   for (const char* id : {"cusp", "lemniscate"}) {
     CAPTURE(id);
     const json& c = case_of("curve_planar_implicit_cases.json", id);
-    const auto g = compile_discovery_case(c);
+    const auto g = test::compile_curve_case(c);
     const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
     check_special(curve.discovery().samples, SampleKind::singular_point, c["curve_info"]["singular_points"]);
     check_samples(curve);
@@ -177,7 +162,7 @@ TEST_CASE("discovery: a curve too intricate for its box is refused, never answer
   CHECK(small.distance <= bound * (1.0 + 1e-9));
 
   // In the large box, compiling refuses the curve as too intricate (geometry_too_complex, past
-  // SubdivisionSettings::max_cells: ~20 s in Release) or at the compile_discovery_case deadline given here
+  // SubdivisionSettings::max_cells: ~20 s in Release) or at the compile deadline given here
   // (compile_timeout: the server's budget for compiling), whichever comes first.
   def.domain = {{"x", {-300.0, 300.0}}, {"y", {-300.0, 300.0}}};
   formula::CompileLimits limits;
@@ -310,7 +295,7 @@ TEST_CASE("discovery: every point of the curve lies within h/2 of a sample") {
   // Viviani's curve (1 + cos t, sin t, 2 sin(t/2)), t in [0, 4 pi): the bound `auto`'s search
   // relies on (curve_samples.hpp), against the parametrisation.
   const json& c = case_of("curve_spatial_cases.json", "viviani");
-  const auto g = compile_discovery_case(c);
+  const auto g = test::compile_curve_case(c);
   const auto& curve = dynamic_cast<const ImplicitCurve&>(*g);
   const CurveSamples& s = curve.discovery().samples;
   double worst = 0.0;
