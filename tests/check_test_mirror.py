@@ -52,8 +52,6 @@ UNTESTED = [
     # mesh/: through the meshes' tests of each geometry (tests/core/mesh/) and the server's.
     "core/mesh/bspline_mesh.cpp",
     # parametric/: parametric curves' and surfaces' `auto` and its parts, through tests/cases/.
-    "core/parametric/seeding/parametric_curve_cells.cpp",
-    "core/parametric/seeding/surface_refinement.cpp",
     "core/parametric/solvers/parametric_curve_auto.cpp",
     "core/parametric/solvers/projection_arc_search.cpp",
     "core/parametric/solvers/surface_auto.cpp",
