@@ -53,7 +53,6 @@ UNTESTED = [
     "core/mesh/bspline_mesh.cpp",
     # parametric/: parametric curves' and surfaces' `auto` and its parts, through tests/cases/.
     "core/parametric/solvers/parametric_curve_auto.cpp",
-    "core/parametric/solvers/projection_arc_search.cpp",
     "core/parametric/solvers/surface_auto.cpp",
     # solvers/: the piecewise search, under `auto` of every geometry with partial formulas.
     "core/solvers/piecewise_nearest.cpp",
