@@ -51,13 +51,6 @@ UNTESTED = [
     "core/implicit/solvers/tangent_foot.cpp",
     # mesh/: through the meshes' tests of each geometry (tests/core/mesh/) and the server's.
     "core/mesh/bspline_mesh.cpp",
-    # parametric/: parametric curves' and surfaces' `auto` and its parts, through tests/cases/.
-    "core/parametric/geometry/self_covering.cpp",
-    "core/parametric/seeding/parametric_curve_cells.cpp",
-    "core/parametric/seeding/surface_refinement.cpp",
-    "core/parametric/solvers/parametric_curve_auto.cpp",
-    "core/parametric/solvers/projection_arc_search.cpp",
-    "core/parametric/solvers/surface_auto.cpp",
     # solvers/: the piecewise search, under `auto` of every geometry with partial formulas.
     "core/solvers/piecewise_nearest.cpp",
 ]
