@@ -58,10 +58,6 @@ const Parametrized kSurfaces[] = {
     {"(x^2+y^2+z^2+3.75)^2-16*(x^2+y^2)", {{-3, -3, -1}, {3, 3, 1}}, torus_point},
 };
 
-}  // namespace implicit_surface_cells_test
-
-using namespace implicit_surface_cells_test;
-
 TEST_CASE("implicit surface cells: every sampled point of an ellipsoid and a torus is in a kept leaf") {
   for (const Parametrized& s : kSurfaces) {
     CAPTURE(std::string(s.equation));
@@ -302,3 +298,5 @@ TEST_CASE("implicit surface cells: land_on_surface and octant_of by hand") {
   CHECK(o2.lo.z == 4.0);
   CHECK(o2.hi.z == 6.0);
 }
+
+}  // namespace implicit_surface_cells_test

@@ -42,10 +42,6 @@ SurfaceMinimum check_reaches(const ImplicitSurfaceEquation& f, Vec3 p, Vec3 foot
   return m;
 }
 
-}  // namespace implicit_surface_lagrange_test
-
-using namespace implicit_surface_lagrange_test;
-
 TEST_CASE("implicit surface lagrange: interior Newton reaches the closed-form feet, stationary") {
   const curve::IterationControl control = newton_control();
   std::mt19937 rng(37);
@@ -219,3 +215,5 @@ TEST_CASE("implicit surface lagrange: box_location and the result's residuals by
   CHECK(edge.summary.location == Location::box_edge);
   CHECK(edge.summary.orthogonality[0] == 0.0);
 }
+
+}  // namespace implicit_surface_lagrange_test

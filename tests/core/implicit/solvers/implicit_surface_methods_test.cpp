@@ -44,10 +44,6 @@ Vec3 traced_path(const ProjectionResult& r) {
   return s;
 }
 
-}  // namespace implicit_surface_methods_test
-
-using namespace implicit_surface_methods_test;
-
 TEST_CASE("implicit surface methods: the curvature circle's foot on a sphere and a cylinder") {
   const ImplicitSurfaceEquation sphere = test::surface_equation("x^2+y^2+z^2-4");
   const Vec3 x = Vec3{2.0, 1.0, -2.0} * (2.0 / 3.0);
@@ -202,3 +198,5 @@ TEST_CASE("implicit surface methods: degenerate, outside_domain, max_iterations,
   CHECK(s.summary.status == Status::max_iterations);
   CHECK(s.summary.iterations == 2);
 }
+
+}  // namespace implicit_surface_methods_test
