@@ -49,8 +49,6 @@ UNTESTED = [
     "core/implicit/solvers/implicit_surface_union.cpp",
     "core/implicit/solvers/simplified_projection.cpp",
     "core/implicit/solvers/tangent_foot.cpp",
-    # mesh/: through the meshes' tests of each geometry (tests/core/mesh/) and the server's.
-    "core/mesh/bspline_mesh.cpp",
     # parametric/: parametric curves' and surfaces' `auto` and its parts, through tests/cases/.
     "core/parametric/geometry/self_covering.cpp",
     "core/parametric/seeding/parametric_curve_cells.cpp",
