@@ -26,8 +26,6 @@ import tempfile
 # list only shrinks: a unit tested by its path must come off it, and a new unit comes with its
 # test.
 UNTESTED = [
-    # batch/: through tests/cases/core/ (answers independent of batches and threads) and the server.
-    "core/batch/batch.cpp",
     # compiled/: every compiled geometry of the suites in tests/cases/.
     "core/compiled/implicit_curve_geometry.cpp",
     "core/compiled/implicit_surface_geometry.cpp",
