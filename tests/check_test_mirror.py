@@ -31,8 +31,6 @@ UNTESTED = [
     "core/compiled/implicit_surface_geometry.cpp",
     "core/compiled/parametric_curve_geometry.cpp",
     "core/compiled/parametric_surface_geometry.cpp",
-    # formula/: the muparser tree to the tape, under every formula test's Program::compile.
-    "core/formula/expression_builder.cpp",
     # implicit/: implicit curves' and surfaces' `auto` and its parts, through tests/cases/curve/ and
     # tests/cases/surface/implicit_cases_test.cpp.
     "core/implicit/seeding/curve_arc_samples.cpp",
