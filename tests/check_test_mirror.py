@@ -52,8 +52,6 @@ UNTESTED = [
     "core/parametric/solvers/parametric_curve_auto.cpp",
     "core/parametric/solvers/projection_arc_search.cpp",
     "core/parametric/solvers/surface_auto.cpp",
-    # solvers/: the piecewise search, under `auto` of every geometry with partial formulas.
-    "core/solvers/piecewise_nearest.cpp",
 ]
 
 # Folders of tests/ built by executables other than footpoint_test's.
