@@ -26,11 +26,6 @@ import tempfile
 # list only shrinks: a unit tested by its path must come off it, and a new unit comes with its
 # test.
 UNTESTED = [
-    # compiled/: every compiled geometry of the suites in tests/cases/.
-    "core/compiled/implicit_curve_geometry.cpp",
-    "core/compiled/implicit_surface_geometry.cpp",
-    "core/compiled/parametric_curve_geometry.cpp",
-    "core/compiled/parametric_surface_geometry.cpp",
     # implicit/: implicit curves' and surfaces' `auto` and its parts, through tests/cases/curve/ and
     # tests/cases/surface/implicit_cases_test.cpp.
     "core/implicit/seeding/curve_arc_samples.cpp",
