@@ -159,7 +159,13 @@ TEST_CASE("implicit surface: the definitions it refuses, with the field at fault
   CHECK(field == "domain");
   def.formulas = {{"equation", "(x-5)^2+y^2+z^2-1"}};
   CHECK(compile_error_code(def) == "empty_surface");
+  // The unit sphere in a box of 1e300: the leaves that may hold it are too large for Newton from
+  // their centres to land on it; no point found is an error naming the box, not an empty answer.
   def.formulas = {{"equation", "x^2+y^2+z^2-1"}};
+  def.domain = {{"x", {-1e300, 1e300}}, {"y", {-1e300, 1e300}}, {"z", {-1e300, 1e300}}};
+  CHECK(compile_error_code(def, &field) == "geometry_too_complex");
+  CHECK(field == "domain");
+  def.domain = {{"x", {-2.0, 2.0}}, {"y", {-2.0, 2.0}}, {"z", {-2.0, 2.0}}};
   CHECK(compile_error_code(def).empty());
   test::check_limits_refuse(def);
 }
