@@ -26,17 +26,7 @@ import tempfile
 # list only shrinks: a unit tested by its path must come off it, and a new unit comes with its
 # test.
 UNTESTED = [
-    # batch/: through tests/cases/core/ (answers independent of batches and threads) and the server.
-    "core/batch/batch.cpp",
-    # compiled/: every compiled geometry of the suites in tests/cases/.
-    "core/compiled/implicit_curve_geometry.cpp",
-    "core/compiled/implicit_surface_geometry.cpp",
-    "core/compiled/parametric_curve_geometry.cpp",
-    "core/compiled/parametric_surface_geometry.cpp",
-    # formula/: the muparser tree to the tape, under every formula test's Program::compile.
-    "core/formula/expression_builder.cpp",
-    # implicit/: implicit curves' and surfaces' `auto` and its parts, through tests/cases/curve/ and
-    # tests/cases/surface/implicit_cases_test.cpp.
+    # implicit/: implicit curves' `auto` and its parts, through tests/cases/curve/.
     "core/implicit/seeding/curve_arc_samples.cpp",
     "core/implicit/seeding/curve_cell_tree.cpp",
     "core/implicit/seeding/curve_cells.cpp",
@@ -44,10 +34,6 @@ UNTESTED = [
     "core/implicit/solvers/implicit_curve_auto.cpp",
     "core/implicit/solvers/simplified_projection.cpp",
     "core/implicit/solvers/tangent_foot.cpp",
-    # mesh/: through the meshes' tests of each geometry (tests/core/mesh/) and the server's.
-    "core/mesh/bspline_mesh.cpp",
-    # solvers/: the piecewise search, under `auto` of every geometry with partial formulas.
-    "core/solvers/piecewise_nearest.cpp",
 ]
 
 # Folders of tests/ built by executables other than footpoint_test's.
