@@ -44,7 +44,10 @@ const SubBoxPair& SurfaceRefinement::halves(std::atomic<const SubBoxPair*>& slot
                                             std::unique_ptr<SubBoxPair>& scratch) const {
   const bool evaluate = of_cell || !sum_of_monomials_;
   if (const SubBoxPair* published = slot.load(std::memory_order_acquire)) return *published;
-  if (pairs_.load(std::memory_order_relaxed) >= max_pairs_) {
+  // A place among the max_pairs is taken before the halves are published, and given back if they
+  // are not: at no time are more than max_pairs kept, however many threads race.
+  if (pairs_.fetch_add(1, std::memory_order_relaxed) >= max_pairs_) {
+    pairs_.fetch_sub(1, std::memory_order_relaxed);
     scratch = std::make_unique<SubBoxPair>(program_, ancestor, lo, hi, split_u, evaluate);
     return *scratch;
   }
@@ -52,9 +55,9 @@ const SubBoxPair& SurfaceRefinement::halves(std::atomic<const SubBoxPair*>& slot
   const SubBoxPair* expected = nullptr;
   if (slot.compare_exchange_strong(expected, fresh.get(), std::memory_order_acq_rel,
                                    std::memory_order_acquire)) {
-    pairs_.fetch_add(1, std::memory_order_relaxed);
     return *fresh.release();
   }
+  pairs_.fetch_sub(1, std::memory_order_relaxed);
   return *expected;  // another thread published them first
 }
 

@@ -76,6 +76,7 @@ class SurfaceRefinement {
                            std::unique_ptr<SubBoxPair>& scratch) const;
   // What the refinement may take: the cap's worth of pairs (reserved, reported up front).
   std::size_t reserved_bytes() const { return max_pairs_ * sizeof(SubBoxPair); }
+  // The pairs kept (at most max_pairs), plus the places threads hold while they decide.
   std::size_t pairs() const { return pairs_.load(std::memory_order_relaxed); }
 
  private:
