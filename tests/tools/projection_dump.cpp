@@ -57,13 +57,22 @@ GeometryDefinition surface(const std::string& x, const std::string& y, const std
 
 std::array<double, 2> range(const json& j) { return {j[0].get<double>(), j[1].get<double>()}; }
 
-// A case of tests/data/curve_*_cases.json or of the papers' public cases file.
+bool finish_case(const json& c, Case k, std::vector<Case>& out);
+
+// A case of tests/data/curve_*_cases.json, surface_implicit_cases.json or of the papers' public
+// cases file.
 bool add_case(const json& c, std::vector<Case>& out) {
   Case k;
   k.name = c.at("id").get<std::string>();
   const std::string kind = c.at("kind");
-  const json& f = c.at("formulas");
   const json& d = c.contains("domain") ? c.at("domain") : c.at("box");
+  if (kind == "implicit_surface") {  // tests/data/surface_implicit_cases.json: one equation
+    k.def.type = GeometryType::implicit_surface;
+    k.def.formulas = {{"equation", c.at("equation")}};
+    k.def.domain = {{"x", range(d["x"])}, {"y", range(d["y"])}, {"z", range(d["z"])}};
+    return finish_case(c, std::move(k), out);
+  }
+  const json& f = c.at("formulas");
   if (kind == "surface") {
     k.def = surface(f["x"], f["y"], f["z"], range(d["u"]), range(d["v"]));
   } else if (kind == "paramcurve") {
@@ -82,6 +91,11 @@ bool add_case(const json& c, std::vector<Case>& out) {
   } else {
     return false;
   }
+  return finish_case(c, std::move(k), out);
+}
+
+// The case's points (objects with "p", or bare coordinates), and the case into `out`.
+bool finish_case(const json& c, Case k, std::vector<Case>& out) {
   if (c.contains("points"))
     for (const json& p : c["points"]) {
       const json& q = p.is_object() ? p.at("p") : p;
