@@ -41,14 +41,11 @@ UNTESTED = [
     "core/implicit/seeding/curve_cell_tree.cpp",
     "core/implicit/seeding/curve_cells.cpp",
     "core/implicit/seeding/implicit_surface_cells.cpp",
-    "core/implicit/solvers/complete_projection.cpp",
     "core/implicit/solvers/implicit_curve_auto.cpp",
     "core/implicit/solvers/implicit_surface_auto.cpp",
     "core/implicit/solvers/implicit_surface_lagrange.cpp",
     "core/implicit/solvers/implicit_surface_methods.cpp",
     "core/implicit/solvers/implicit_surface_union.cpp",
-    "core/implicit/solvers/simplified_projection.cpp",
-    "core/implicit/solvers/tangent_foot.cpp",
     # mesh/: through the meshes' tests of each geometry (tests/core/mesh/) and the server's.
     "core/mesh/bspline_mesh.cpp",
     # parametric/: parametric curves' and surfaces' `auto` and its parts, through tests/cases/.
