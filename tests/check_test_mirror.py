@@ -39,7 +39,6 @@ UNTESTED = [
     # tests/cases/surface/implicit_cases_test.cpp.
     "core/implicit/seeding/curve_arc_samples.cpp",
     "core/implicit/seeding/curve_cell_tree.cpp",
-    "core/implicit/seeding/curve_cells.cpp",
     "core/implicit/seeding/implicit_surface_cells.cpp",
     "core/implicit/solvers/implicit_curve_auto.cpp",
     "core/implicit/solvers/implicit_surface_auto.cpp",
