@@ -38,7 +38,6 @@ UNTESTED = [
     # implicit/: implicit curves' and surfaces' `auto` and its parts, through tests/cases/curve/ and
     # tests/cases/surface/implicit_cases_test.cpp.
     "core/implicit/seeding/implicit_surface_cells.cpp",
-    "core/implicit/solvers/implicit_curve_auto.cpp",
     "core/implicit/solvers/implicit_surface_auto.cpp",
     "core/implicit/solvers/implicit_surface_lagrange.cpp",
     "core/implicit/solvers/implicit_surface_methods.cpp",
