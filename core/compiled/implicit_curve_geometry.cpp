@@ -33,11 +33,11 @@ ProjectionResult in_box(const ImplicitCurve& c, Vec3 p, const Options& o) {
 // introduction for planar curves, its Algorithms 1-5 for spatial ones.
 // What the papers' iteration reports (implicit/solvers/paper_iteration.cpp); not_orthogonal only for
 // Algorithm 1 alone, which lands on the curve without seeking the foot point.
-constexpr std::uint32_t kPaperStatuses = statuses(
+constexpr std::uint32_t kImplicitCurvePaperStatuses = statuses(
     {Status::converged, Status::max_iterations, Status::diverged, Status::non_finite, Status::degenerate,
      Status::outside_domain, Status::beyond_max_distance, Status::deadline_exceeded});
 
-constexpr Method<ImplicitCurve> kMethods[] = {
+constexpr Method<ImplicitCurve> kImplicitCurveMethods[] = {
     {{"auto",
       "global nearest point in the box: interval subdivision proves every piece of the curve, samples "
       "seed Newton on the Lagrange system; singular points and the crossings of the box's edges "
@@ -55,7 +55,7 @@ constexpr Method<ImplicitCurve> kMethods[] = {
       "spatial-algebraic-curve (introduction, eqs. (2) and (4))",
       {kCitationCurve},
       kLocalOptions | option_max_distance,
-      kPaperStatuses},
+      kImplicitCurvePaperStatuses},
      in_box<curve::tangent_foot>,
      PointDims::planar},
     {{"steepest_descent",
@@ -63,7 +63,7 @@ constexpr Method<ImplicitCurve> kMethods[] = {
       "spatial-algebraic-curve (Algorithm 1, eq. (9))",
       {kCitationCurve},
       kLocalOptions | option_max_distance,
-      kPaperStatuses | statuses({Status::not_orthogonal})},
+      kImplicitCurvePaperStatuses | statuses({Status::not_orthogonal})},
      in_box<curve::steepest_descent>,
      PointDims::spatial},
     {{"foot_point_march",
@@ -71,7 +71,7 @@ constexpr Method<ImplicitCurve> kMethods[] = {
       "spatial-algebraic-curve (Algorithms 1 + 2, eqs. (10)-(13))",
       {kCitationCurve},
       kLocalOptions | option_max_distance,
-      kPaperStatuses},
+      kImplicitCurvePaperStatuses},
      in_box<curve::foot_point_march>,
      PointDims::spatial},
     {{"accelerated",
@@ -79,7 +79,7 @@ constexpr Method<ImplicitCurve> kMethods[] = {
       "spatial-algebraic-curve (Algorithm 3, eqs. (14)-(19))",
       {kCitationCurve},
       kLocalOptions | option_max_distance,
-      kPaperStatuses},
+      kImplicitCurvePaperStatuses},
      in_box<curve::accelerated>,
      PointDims::spatial},
     {{"complete",
@@ -87,7 +87,7 @@ constexpr Method<ImplicitCurve> kMethods[] = {
       "spatial-algebraic-curve (Algorithm 4)",
       {kCitationCurve},
       kLocalOptions | option_max_distance,
-      kPaperStatuses},
+      kImplicitCurvePaperStatuses},
      in_box<curve::complete_projection>,
      PointDims::spatial},
     {{"simplified",
@@ -95,15 +95,15 @@ constexpr Method<ImplicitCurve> kMethods[] = {
       "spatial-algebraic-curve (Algorithm 5, eq. (20))",
       {kCitationCurve},
       kLocalOptions | option_max_distance,
-      kPaperStatuses},
+      kImplicitCurvePaperStatuses},
      in_box<curve::simplified_projection>,
      PointDims::spatial},
 };
 
-const MethodTable<ImplicitCurve>& table(PointDims dims) {
-  static const MethodTable<ImplicitCurve> planar(kMethods, PointDims::planar);
-  static const MethodTable<ImplicitCurve> spatial(kMethods, PointDims::spatial);
-  static const MethodTable<ImplicitCurve> every(kMethods, PointDims::any);
+const MethodTable<ImplicitCurve>& implicit_curve_method_table(PointDims dims) {
+  static const MethodTable<ImplicitCurve> planar(kImplicitCurveMethods, PointDims::planar);
+  static const MethodTable<ImplicitCurve> spatial(kImplicitCurveMethods, PointDims::spatial);
+  static const MethodTable<ImplicitCurve> every(kImplicitCurveMethods, PointDims::any);
   return dims == PointDims::planar ? planar : dims == PointDims::spatial ? spatial : every;
 }
 
@@ -142,11 +142,14 @@ PointDims ImplicitCurve::dims() const {
   return equations().planar() ? PointDims::planar : PointDims::spatial;
 }
 
-const std::vector<MethodInfo>& ImplicitCurve::methods() const { return table(dims()).infos(); }
+const std::vector<MethodInfo>& ImplicitCurve::methods() const {
+  return implicit_curve_method_table(dims()).infos();
+}
 
 ProjectionResult ImplicitCurve::project_with(std::size_t index, const double* p,
                                              const Options& options) const {
-  return table(dims()).project(index, *this, {p[0], p[1], equations().planar() ? 0.0 : p[2]}, options);
+  return implicit_curve_method_table(dims()).project(
+      index, *this, {p[0], p[1], equations().planar() ? 0.0 : p[2]}, options);
 }
 
 bool ImplicitCurve::planar_normal(double x, double y, Vec3& n) const {
@@ -187,7 +190,9 @@ bool ImplicitCurve::evaluate_equations(const double* x, EquationEvaluation& out)
   return true;
 }
 
-const std::vector<MethodInfo>& implicit_curve_methods() { return table(PointDims::any).infos(); }
+const std::vector<MethodInfo>& implicit_curve_methods() {
+  return implicit_curve_method_table(PointDims::any).infos();
+}
 
 std::size_t ImplicitCurve::memory_bytes() const {
   const formula::Program& written = written_.program();

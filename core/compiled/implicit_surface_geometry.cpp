@@ -22,11 +22,11 @@ ProjectionResult local(const ImplicitSurface& s, Vec3 p, const Options& o) {
   return r;
 }
 
-constexpr std::uint32_t kLocalStatuses = statuses(
+constexpr std::uint32_t kImplicitSurfaceLocalStatuses = statuses(
     {Status::converged, Status::max_iterations, Status::diverged, Status::non_finite, Status::degenerate,
      Status::outside_domain, Status::beyond_max_distance, Status::deadline_exceeded});
 
-constexpr Method<ImplicitSurface> kMethods[] = {
+constexpr Method<ImplicitSurface> kImplicitSurfaceMethods[] = {
     {{"auto",
       "global nearest point in the box: interval subdivision of the box, Newton on the Lagrange system "
       "from the nearest samples, the curves on the box's faces, its edges' points and the singular "
@@ -44,7 +44,7 @@ constexpr Method<ImplicitSurface> kMethods[] = {
       "Nocedal and Wright, Numerical Optimization (Sec. 18.1)",
       {kCitationNocedalWright},
       kLocalOptions | option_max_distance,
-      kLocalStatuses},
+      kImplicitSurfaceLocalStatuses},
      local<surface_implicit::lagrange_newton_method>},
     {{"first_order",
       "Hartmann's first-order foot-point iteration: Newton onto the surface, then the foot of p on the "
@@ -52,7 +52,7 @@ constexpr Method<ImplicitSurface> kMethods[] = {
       "Hartmann, On the curvature of curves and surfaces defined by normalforms (Sec. 5)",
       {kCitationHartmann},
       kLocalOptions | option_max_distance,
-      kLocalStatuses},
+      kImplicitSurfaceLocalStatuses},
      local<surface_implicit::first_order_method>},
     {{"hu_wallner",
       "Hu and Wallner's second-order iteration: the foot of p on the curvature circle of the normal "
@@ -60,12 +60,12 @@ constexpr Method<ImplicitSurface> kMethods[] = {
       "Hu and Wallner, A second order algorithm for orthogonal projection onto curves and surfaces",
       {kCitationHuWallner, kCitationGsa},
       kLocalOptions | option_max_distance,
-      kLocalStatuses},
+      kImplicitSurfaceLocalStatuses},
      local<surface_implicit::hu_wallner_method>},
 };
 
-const MethodTable<ImplicitSurface>& table() {
-  static const MethodTable<ImplicitSurface> every(kMethods, PointDims::any);
+const MethodTable<ImplicitSurface>& implicit_surface_method_table() {
+  static const MethodTable<ImplicitSurface> every(kImplicitSurfaceMethods, PointDims::any);
   return every;
 }
 
@@ -92,7 +92,9 @@ ImplicitSurface::ImplicitSurface(GeometryDefinition def, formula::Program progra
   if (pieces_.empty()) pieces_.push_back({equation_, subdivide_surface(equation_, box_, budget)});
 }
 
-const std::vector<MethodInfo>& ImplicitSurface::methods() const { return table().infos(); }
+const std::vector<MethodInfo>& ImplicitSurface::methods() const {
+  return implicit_surface_method_table().infos();
+}
 
 bool ImplicitSurface::evaluate_equations(const double* x, EquationEvaluation& out) const {
   const Vec3 at{x[0], x[1], x[2]};
@@ -122,11 +124,11 @@ bool ImplicitSurface::foot_normal(const ProjectionResult& r, std::array<double, 
   return true;
 }
 
-const std::vector<MethodInfo>& implicit_surface_methods() { return table().infos(); }
+const std::vector<MethodInfo>& implicit_surface_methods() { return implicit_surface_method_table().infos(); }
 
 ProjectionResult ImplicitSurface::project_with(std::size_t index, const double* p,
                                                const Options& options) const {
-  return table().project(index, *this, {p[0], p[1], p[2]}, options);
+  return implicit_surface_method_table().project(index, *this, {p[0], p[1], p[2]}, options);
 }
 
 std::size_t ImplicitSurface::memory_bytes() const {

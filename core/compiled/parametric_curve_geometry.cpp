@@ -25,12 +25,12 @@ ProjectionResult on_samples(const ParametricCurve& c, Vec3 p, const Options& o) 
 
 // What the local iteration reports (parametric/solvers/parametric_iteration.hpp and
 // parametric_curve_summary.cpp).
-constexpr std::uint32_t kLocalStatuses =
+constexpr std::uint32_t kParametricCurveLocalStatuses =
     statuses({Status::converged, Status::max_iterations, Status::non_finite, Status::degenerate,
               Status::outside_domain, Status::beyond_max_distance, Status::deadline_exceeded});
 
 // The method table of parametric curves, planar and spatial alike.
-constexpr Method<ParametricCurve> kMethods[] = {
+constexpr Method<ParametricCurve> kParametricCurveMethods[] = {
     {{"auto",
       "global nearest point over [tmin, tmax], ends included: dense adaptive samples seed bracketed "
       "Newton at every candidate minimum",
@@ -48,19 +48,19 @@ constexpr Method<ParametricCurve> kMethods[] = {
       "",
       {},
       kLocalOptions | option_max_distance,
-      kLocalStatuses},
+      kParametricCurveLocalStatuses},
      on_samples<curve::parametric_newton>},
     {{"curvature_circle",
       "curvature circle iteration (Hu-Wallner) from options.initial or the nearest sample",
       "gsa-parametric-surface (Section 3, eqs. (21)-(22))",
       {kCitationHuWallner, kCitationGsa},
       kLocalOptions | option_max_distance,
-      kLocalStatuses},
+      kParametricCurveLocalStatuses},
      on_samples<curve::curvature_circle>},
 };
 
-const MethodTable<ParametricCurve>& table() {
-  static const MethodTable<ParametricCurve> t(kMethods, PointDims::any);
+const MethodTable<ParametricCurve>& parametric_curve_method_table() {
+  static const MethodTable<ParametricCurve> t(kParametricCurveMethods, PointDims::any);
   return t;
 }
 
@@ -87,14 +87,17 @@ ParametricCurve::ParametricCurve(GeometryDefinition def, CurveFormulas formulas,
       index_(samples_),
       cells_(formulas_, domain_, samples_.params, budget) {}
 
-const std::vector<MethodInfo>& ParametricCurve::methods() const { return table().infos(); }
+const std::vector<MethodInfo>& ParametricCurve::methods() const {
+  return parametric_curve_method_table().infos();
+}
 
 ProjectionResult ParametricCurve::project_with(std::size_t index, const double* p,
                                                const Options& options) const {
-  return table().project(index, *this, {p[0], p[1], formulas_.dim() == 3 ? p[2] : 0.0}, options);
+  return parametric_curve_method_table().project(index, *this,
+                                                 {p[0], p[1], formulas_.dim() == 3 ? p[2] : 0.0}, options);
 }
 
-const std::vector<MethodInfo>& parametric_curve_methods() { return table().infos(); }
+const std::vector<MethodInfo>& parametric_curve_methods() { return parametric_curve_method_table().infos(); }
 
 bool ParametricCurve::evaluate(const double* t, Evaluation& out) const {
   out = evaluation_of(formulas_.jet(t[0]));

@@ -28,12 +28,12 @@ ProjectionResult from_start(const ParametricSurface& s, Vec3 p, const Options& o
 
 // What the papers' iteration reports (parametric/solvers/surface_paper_iteration.hpp): it stops converged, on
 // its budget, on a growing, non-finite or degenerate step, or converged outside the domain.
-constexpr std::uint32_t kPaperStatuses =
+constexpr std::uint32_t kParametricSurfacePaperStatuses =
     statuses({Status::converged, Status::max_iterations, Status::diverged, Status::non_finite,
               Status::degenerate, Status::outside_domain, Status::deadline_exceeded});
 
 // The method table of parametric surfaces.
-constexpr Method<ParametricSurface> kMethods[] = {
+constexpr Method<ParametricSurface> kParametricSurfaceMethods[] = {
     {{"auto",
       "global nearest point over the closed domain (edges and corners included): cached cell bounds, "
       "bound-constrained Newton from the surviving cells; options.initial is a warm start",
@@ -50,33 +50,33 @@ constexpr Method<ParametricSurface> kMethods[] = {
       "gsa-parametric-surface (Algorithm 1, eqs. (3)-(20))",
       {kCitationGsa},
       kLocalOptions,
-      kPaperStatuses},
+      kParametricSurfacePaperStatuses},
      from_start<surface::project_gsa>},
     {{"first_order",
       "tangent-plane (H-H-H) first-order iteration, unclamped from a start",
       "gsa-parametric-surface (eq. (2)); hybrid-second-order-surface (eq. (5))",
       {kCitationGsa, kCitationHybrid},
       kLocalOptions,
-      kPaperStatuses},
+      kParametricSurfacePaperStatuses},
      from_start<surface::project_first_order>},
     {{"hybrid",
       "first-order steps until the Newton map contracts, then Newton, unclamped from a start",
       "hybrid-second-order-surface (Algorithm 1, eqs. (22)-(24))",
       {kCitationHybrid},
       kLocalOptions,
-      kPaperStatuses},
+      kParametricSurfacePaperStatuses},
      from_start<surface::project_hybrid>},
     {{"newton",
       "Newton's method on <p - s, s_u> = <p - s, s_v> = 0, unclamped from a start",
       "hybrid-second-order-surface (eq. (22)); gsa-parametric-surface (Table 9)",
       {kCitationHybrid, kCitationGsa},
       kLocalOptions,
-      kPaperStatuses},
+      kParametricSurfacePaperStatuses},
      from_start<surface::project_newton>},
 };
 
-const MethodTable<ParametricSurface>& table() {
-  static const MethodTable<ParametricSurface> t(kMethods, PointDims::spatial);
+const MethodTable<ParametricSurface>& parametric_surface_method_table() {
+  static const MethodTable<ParametricSurface> t(kParametricSurfaceMethods, PointDims::spatial);
   return t;
 }
 
@@ -103,11 +103,13 @@ ParametricSurface::ParametricSurface(GeometryDefinition def, formula::Program pr
       self_covering_(detect_self_covering(formulas_, box_)),
       cells_(formulas_, box_, budget, seeding, self_covering_) {}
 
-const std::vector<MethodInfo>& ParametricSurface::methods() const { return table().infos(); }
+const std::vector<MethodInfo>& ParametricSurface::methods() const {
+  return parametric_surface_method_table().infos();
+}
 
 ProjectionResult ParametricSurface::project_with(std::size_t index, const double* p,
                                                  const Options& options) const {
-  return table().project(index, *this, {p[0], p[1], p[2]}, options);
+  return parametric_surface_method_table().project(index, *this, {p[0], p[1], p[2]}, options);
 }
 
 bool ParametricSurface::evaluate(const double* t, Evaluation& out) const {
@@ -125,7 +127,9 @@ bool ParametricSurface::foot_normal(const ProjectionResult& r, std::array<double
   return true;
 }
 
-const std::vector<MethodInfo>& parametric_surface_methods() { return table().infos(); }
+const std::vector<MethodInfo>& parametric_surface_methods() {
+  return parametric_surface_method_table().infos();
+}
 
 std::size_t ParametricSurface::memory_bytes() const {
   return sizeof(*this) + formulas_.program().memory_bytes() + cells_.memory_bytes();

@@ -30,6 +30,11 @@ inline Vec3 cross(Vec3 a, Vec3 b) {
 }
 inline double norm(Vec3 a) { return std::sqrt(dot(a, a)); }
 inline double norm2(Vec3 a) { return dot(a, a); }
+// a / |a|, or 0 where |a| is 0 or not finite (no direction).
+inline Vec3 unit(Vec3 a) {
+  const double length = norm(a);
+  return length > 0.0 && std::isfinite(length) ? a / length : Vec3{};
+}
 // 0 x is 0 for a finite x and NaN for an infinite or NaN one: one test for the three (no
 // branch per coordinate).
 inline bool is_finite(Vec3 a) { return (0.0 * a.x + 0.0 * a.y) + 0.0 * a.z == 0.0; }

@@ -24,11 +24,6 @@ std::vector<double> grid_of(const std::vector<double>& knots, double lo, double 
   return out;
 }
 
-Vec3 unit(Vec3 v) {
-  const double n = norm(v);
-  return n > 0.0 && std::isfinite(n) ? v / n : Vec3{};
-}
-
 }  // namespace
 
 Mesh mesh_bspline_surface(const BSplineSurface& surface, int resolution) {

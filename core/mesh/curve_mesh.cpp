@@ -21,11 +21,6 @@ constexpr double kPassSpacings = 0.5;
 constexpr double kStallSpacings = 4.0;
 constexpr double kInfinityDistance = std::numeric_limits<double>::infinity();
 
-Vec3 unit(Vec3 v) {
-  const double length = norm(v);
-  return length > 0.0 && std::isfinite(length) ? v / length : Vec3{};
-}
-
 // The direction of travel through vertex k of a polyline (the chord from its predecessor to its
 // successor, one-sided at an open end).
 Vec3 travel(const Mesh& mesh, const Polyline& line, std::size_t k) {

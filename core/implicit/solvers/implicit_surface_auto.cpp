@@ -16,7 +16,7 @@ namespace {
 
 // Newton's budget per start, and the rounds of certificate and new starts.
 constexpr int kLocalIterations = 50;
-constexpr int kFirstOrderIterations = 200;
+constexpr int kAutoFirstOrderIterations = 200;
 constexpr int kRounds = 6;
 constexpr std::size_t kStartsPerRound = 4;
 // Solves from samples that may lie by another foot at the answer's distance (a tie).
@@ -90,7 +90,7 @@ class Search {
       // Newton's system is singular along a continuum of feet (p on a surface of revolution's
       // axis): Hartmann's iteration, whose step needs no solve, settles on one of them.
       curve::IterationControl slow = control_;
-      slow.max_iterations = kFirstOrderIterations;
+      slow.max_iterations = kAutoFirstOrderIterations;
       const HartmannEnd e = hartmann_iteration(equation_, p_, s, slow);
       if (e.status == Status::converged && box.contains(e.x))
         consider(e.x, box_location(box, e.x), e.iterations, e.step);

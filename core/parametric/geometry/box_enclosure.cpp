@@ -9,8 +9,6 @@ namespace footpoint {
 
 namespace {
 
-int pair_index(int i, int j, int n) { return i * n - i * (i - 1) / 2 + (j - i); }  // i <= j
-
 bool finite(const formula::Interval& x) { return std::isfinite(x.lo) && std::isfinite(x.hi); }
 
 }  // namespace
@@ -48,8 +46,8 @@ BoxEnclosure<N> enclose_box(const formula::Program& program, const Params<N>& lo
       for (int j = i; j < N; ++j) {
         const Interval& h = c.h[i][j];
         e.smooth = e.smooth && finite(h) && finite(c.g[i]);
-        e.d2_mid[pair_index(i, j, N)][k] = formula::interval::mid(h);
-        e.d2_rad[pair_index(i, j, N)][k] = formula::interval::rad(h);
+        e.d2_mid[BoxEnclosure<N>::pair(i, j)][k] = formula::interval::mid(h);
+        e.d2_rad[BoxEnclosure<N>::pair(i, j)][k] = formula::interval::rad(h);
       }
   }
   e.finite_part = e.finite_part && !e.empty;
@@ -62,8 +60,8 @@ BoxEnclosure<N> enclose_box(const formula::Program& program, const Params<N>& lo
       for (int k = 0; k < 3; ++k)
         sum = formula::interval::add(sum, i == j ? formula::interval::sqr(out[k].g[i])
                                                  : formula::interval::mul(out[k].g[i], out[k].g[j]));
-      e.metric_lo[pair_index(i, j, N)] = i == j ? std::fmax(sum.lo, 0.0) : sum.lo;
-      e.metric_hi[pair_index(i, j, N)] = sum.hi;
+      e.metric_lo[BoxEnclosure<N>::pair(i, j)] = i == j ? std::fmax(sum.lo, 0.0) : sum.lo;
+      e.metric_hi[BoxEnclosure<N>::pair(i, j)] = sum.hi;
     }
   return e;
 }
@@ -130,8 +128,8 @@ BoxEnclosure<2> derive_enclosure(const BoxEnclosure<2>& ancestor, const Params<2
       for (int k = 0; k < 3; ++k)
         sum = formula::interval::add(
             sum, i == j ? formula::interval::sqr(J[i][k]) : formula::interval::mul(J[i][k], J[j][k]));
-      e.metric_lo[pair_index(i, j, 2)] = i == j ? std::fmax(sum.lo, 0.0) : sum.lo;
-      e.metric_hi[pair_index(i, j, 2)] = sum.hi;
+      e.metric_lo[BoxEnclosure<2>::pair(i, j)] = i == j ? std::fmax(sum.lo, 0.0) : sum.lo;
+      e.metric_hi[BoxEnclosure<2>::pair(i, j)] = sum.hi;
     }
   for (int k = 0; k < 3; ++k)
     if (!std::isfinite(e.s_rad[k])) e.bounded = e.smooth = false;

@@ -7,6 +7,7 @@
 // tape's ball jets, formula/ball.hpp).
 #pragma once
 #include <array>
+#include <utility>
 
 #include "formula/program.hpp"
 #include "geometry/vec.hpp"
@@ -17,7 +18,13 @@ namespace footpoint {
 template <int N>
 struct BoxEnclosure {
   static constexpr int kPairs = N * (N + 1) / 2;  // (i, j) with i <= j: 00 | 00, 01, 11
-  Params<N> lo{}, hi{};                           // the parameter box
+  // The index of the pair (i, j) (or (j, i)) in the arrays below: row i of the upper triangle
+  // starts after the i rows above it, of N, N - 1, ... entries.
+  static constexpr int pair(int i, int j) {
+    if (i > j) std::swap(i, j);
+    return i * N - i * (i - 1) / 2 + (j - i);
+  }
+  Params<N> lo{}, hi{};  // the parameter box
   // s over the box: every s(t) has |s_k(t) - s_mid_k| <= s_rad_k. Valid when `bounded`, and for
   // the t where s is finite when `finite_part`.
   Vec3 s_mid, s_rad;

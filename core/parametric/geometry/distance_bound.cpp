@@ -5,16 +5,15 @@
 #include <cstdint>
 #include <limits>
 
+#include "formula/ball.hpp"
 #include "parametric/geometry/box_quadratic.hpp"
 
 namespace footpoint {
 
 namespace {
 
-constexpr double kU = 0x1p-53;
+using formula::ball::kU;  // the unit roundoff
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-int pair_index(int i, int j, int n) { return i * n - i * (i - 1) / 2 + (j - i); }  // i <= j
 
 // Σ_k (s_k - p_k) ∂²_ij s_k over the box as centre ± radius.
 template <int N>
@@ -61,14 +60,14 @@ HessianBounds<N> hessian_bounds(const BoxEnclosure<N>& box, const Vec3& p) {
   HessianBounds<N> h;
   if (!box.smooth) return h;
   for (int i = 0; i < N; ++i) {
-    const int ii = pair_index(i, i, N);
+    const int ii = BoxEnclosure<N>::pair(i, i);
     double c, r;
     curvature_term(box, ii, p, &c, &r);
     const double a = box.metric_lo[ii] + c - r;
     h.diagonal_lo[i] = a - kBoundRounding * (std::abs(box.metric_lo[ii]) + std::abs(c) + r);
   }
   if constexpr (N == 2) {
-    const int ij = pair_index(0, 1, N);
+    const int ij = BoxEnclosure<N>::pair(0, 1);
     double c, r;
     curvature_term(box, ij, p, &c, &r);
     const double slack =

@@ -11,13 +11,6 @@ namespace {
 constexpr double kNoBound = -std::numeric_limits<double>::infinity();
 constexpr double kUp = 1.0 + kBoundRounding;  // enlarges an upper bound by its rounding
 
-// The pair index of (i, j), i <= j, as BoxEnclosure stores the second partials.
-template <int N>
-constexpr int pair_index(int i, int j) {
-  if (i > j) std::swap(i, j);
-  return N == 1 ? 0 : (i == 0 ? j : 2);
-}
-
 // The least eigenvalue of a symmetric 2 x 2 matrix whose entries lie in [m_ij - r_ij, m_ij + r_ij],
 // bounded below: (a + c)/2 - sqrt(((a - c)/2)² + b²) falls as |a - c| and |b| grow.
 double least_eigenvalue_lower(double m00, double r00, double m01, double r01, double m11, double r11) {
@@ -177,7 +170,7 @@ double foot_region_lower_bound(const PointEnclosure<N>& at_z, const GradientEncl
         for (int b = 0; b < N; ++b) {
           const double coef = C[a][i] * C[b][j];
           if (coef == 0.0) continue;
-          const int q = pair_index<N>(a, b);
+          const int q = BoxEnclosure<N>::pair(a, b);
           for (int k = 0; k < 3; ++k) {
             mid[k] += coef * d2.d2_mid[static_cast<std::size_t>(q)][k];
             rad[k] += std::abs(coef) * (d2.d2_rad[static_cast<std::size_t>(q)][k] +
@@ -249,7 +242,7 @@ double foot_region_lower_bound(const PointEnclosure<N>& at_z, const GradientEncl
       double n_lo[2][2], n_hi[2][2];
       for (int i = 0; i < 2; ++i)
         for (int j = i; j < 2; ++j) {
-          const std::size_t q = static_cast<std::size_t>(pair_index<2>(i, j));
+          const std::size_t q = static_cast<std::size_t>(BoxEnclosure<2>::pair(i, j));
           double mid = 0.0, rad = 0.0, magnitude = 0.0;
           for (int k = 0; k < 3; ++k) {
             const double dm = d2.d2_mid[q][k], dr = d2.d2_rad[q][k];

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "formula/ball.hpp"
 #include "parametric/geometry/params.hpp"
 
 namespace footpoint {
@@ -37,7 +38,7 @@ namespace footpoint::curve {
 
 namespace {
 
-constexpr double kU = 0x1p-53;
+using formula::ball::kU;  // the unit roundoff
 
 struct Slope {
   double g = 0.0;     // φ'(t)

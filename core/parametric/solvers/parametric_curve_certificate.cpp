@@ -6,6 +6,7 @@
 #include <limits>
 #include <queue>
 
+#include "formula/ball.hpp"
 #include "parametric/geometry/distance_bound.hpp"
 #include "solvers/certificate_ledger.hpp"
 
@@ -13,7 +14,7 @@ namespace footpoint::curve {
 
 namespace {
 
-constexpr double kU = 0x1p-53;
+using formula::ball::kU;  // the unit roundoff
 constexpr double kNoPoint = std::numeric_limits<double>::infinity();
 
 struct OpenInterval {

@@ -7,6 +7,7 @@
 #include <memory>
 #include <queue>
 
+#include "formula/ball.hpp"
 #include "parametric/geometry/box_quadratic.hpp"
 #include "parametric/geometry/distance_bound.hpp"
 #include "parametric/geometry/foot_region_bound.hpp"
@@ -17,7 +18,7 @@ namespace footpoint::surface {
 
 namespace {
 
-constexpr double kU = 0x1p-53;
+using formula::ball::kU;  // the unit roundoff
 
 // A box still open: a compiled cell, or a sub-box bounded at run time.
 struct OpenBox {
