@@ -249,9 +249,11 @@ class ArcChains {
     return !node.box_face && node.arcs.size() == 1;
   }
 
-  // Keeps, within path length max_step of chain point `end` (walking in direction `step`), points
-  // at path lengths from it that at most double from one to the next: as near to a cusp as the
-  // chain reaches, the samples resolve a dip of the distance at every scale.
+  // Keeps, within path length max_step of chain point `end` (walking in direction `step`), every
+  // chain point whose successor lies more than twice as far from it as the last kept point: the
+  // kept path lengths at most double from one to the next where the chain's points allow (two
+  // neighbours of the chain further apart than that stay so), and as near to a cusp as the chain
+  // reaches, the samples resolve a dip of the distance at every scale the chain holds.
   void keep_near_end(std::size_t end, std::ptrdiff_t step) {
     const auto n = std::ssize(chain_);
     const auto at = [&](std::ptrdiff_t i) { return chain_[static_cast<std::size_t>(i)].x; };

@@ -19,9 +19,12 @@
 // them at 0.97 max_step is kept instead. The subdivision's cells are as small as its
 // proofs need, which is no measure of how densely `auto` needs samples: without the thinning a
 // curve in many small cells has a sample at every face crossing (two to five times as many).
-// Within max_step of an end next to an unproved box (a singular point), points are kept at path
-// lengths from the end that at most double from one to the next: the tangents do not tell the
-// curvature there (a cusp's grows without bound).
+// Within max_step of an end next to an unproved box (a singular point), more of the chain's points
+// are kept: of those, each whose successor is more than twice as far from the end along the
+// chain, so that the kept path lengths at most double from one to the next wherever the chain has
+// a point between (where two neighbours of the chain are further apart, so are the kept ones: no
+// point is added there); the tangents do not tell the curvature there (a cusp's grows without
+// bound).
 #pragma once
 #include "geometry/compile_budget.hpp"
 #include "implicit/geometry/implicit_curve.hpp"

@@ -18,6 +18,10 @@ namespace footpoint::curve {
 // Algorithm 3 from the curve point x0 (the output of Algorithm 1): iterate eq. (19) until the step
 // stops moving. When the third row of eq. (18) vanishes (DV = 0 at convergence, or DV parallel to
 // T x c) dV is the minimum-norm solution of its first two rows.
+// Known limit: on a curve that lies in a plane, T x c is the plane's normal and, at the foot point,
+// the third row of eq. (18) is the curve's normal in the plane, a combination of grad f1 and
+// grad f2: dV is not determined there, and the iterates wander near the foot point until the
+// budget ends them (max_iterations).
 Landing accelerate_onto_foot(const ImplicitEquations& equations, Vec3 p, Vec3 x0,
                              const IterationControl& control);
 
