@@ -139,7 +139,9 @@ TEST_CASE("implicit surface methods: each method converges at the closed-form fo
                                                     {"hu_wallner", hu_wallner_method}};
   for (const Vec3 p : {Vec3{1.5, 0.7, 0.2}, Vec3{-0.4, 0.9, -0.35}, Vec3{0.9, -0.5, 0.4}}) {
     const Vec3 foot = test::ellipsoid_foot({2.0, 1.0, 0.5}, p);
-    for (const auto& [name, method] : methods) {
+    for (const auto& named : methods) {
+      const char* const name = named.first;
+      const Method method = named.second;
       CAPTURE(std::string(name));
       CAPTURE(p.x);
       Options o;

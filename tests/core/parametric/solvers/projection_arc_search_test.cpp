@@ -142,7 +142,9 @@ TEST_CASE(
   CHECK_FALSE(up.vanishes);
   // a convex model's tiny step is taken as it is: the first α with α |d|max <= 1e-6 x step_scale,
   // 2^-20 for scale 1 (2^-20 = 9.5e-7), 2^-17 for scale 8 (7.6e-6)
-  for (const auto& [scale, k] : {std::pair{1.0, 20}, std::pair{8.0, 17}}) {
+  for (const auto& scale_and_power : {std::pair{1.0, 20}, std::pair{8.0, 17}}) {
+    const double scale = scale_and_power.first;
+    const int k = scale_and_power.second;
     CAPTURE(scale);
     const surface::ArcStep tiny =
         check_arc({bowl, {0.0, 0.0, -1.0}, {0.5, 0.25}, {1.0, 0.5}, {-2, -2}, {2, 2}, true, scale});
