@@ -9,8 +9,10 @@
 # The deploy_* tests are left out: they check the Release image's layout and manifests (an
 # instrumented binary links the sanitizer runtimes, which the runtime image rightly lacks); so are
 # the reference_generator_* tests: Python recomputing the reference data, no instrumented code runs
-# (the Release suite runs them). So is footpoint-import (tools/step_import/): glue over Open
-# CASCADE's uninstrumented STEP reader, tested in the Release suite.
+# (the Release suite runs them), and projection_dump_reads_references: it checks that a tool reads
+# every reference file, and the suites run the same code instrumented. So is footpoint-import
+# (tools/step_import/): glue over Open CASCADE's uninstrumented STEP reader, tested in the Release
+# suite.
 # Usage: bash scripts/sanitize.sh [build-dir]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,5 +24,5 @@ cmake -S . -B "$build" -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWit
 cmake --build "$build" -j"$(nproc)"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
-ctest --test-dir "$build" --output-on-failure --timeout 1800 --exclude-regex '^(deploy_|reference_generator_)' --no-tests=error \
+ctest --test-dir "$build" --output-on-failure --timeout 1800 --exclude-regex '^(deploy_|reference_generator_|projection_dump_)' --no-tests=error \
   -j"$(nproc)"
