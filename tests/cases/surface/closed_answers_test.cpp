@@ -13,6 +13,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "closed_forms.hpp"
 #include "surface_fixtures.hpp"
 
 using namespace footpoint;
@@ -26,9 +27,7 @@ std::shared_ptr<const ParametricSurface> torus() {
   return make_surface("(3+cos(v))*cos(u)", "(3+cos(v))*sin(u)", "sin(v)", {0, 2 * kPi}, {0, 2 * kPi});
 }
 
-double torus_distance(std::array<double, 3> p) {
-  return std::fabs(std::hypot(std::hypot(p[0], p[1]) - 3.0, p[2]) - 1.0);
-}
+double torus_distance(std::array<double, 3> p) { return test::torus_distance(3, 1, {p[0], p[1], p[2]}); }
 
 }  // namespace
 

@@ -11,6 +11,7 @@
 #include <numbers>
 #include <string>
 
+#include "closed_forms.hpp"
 #include "compile_definition.hpp"
 #include "compiled/parametric_surface_geometry.hpp"
 #include "geometry_checks.hpp"
@@ -37,20 +38,6 @@ std::shared_ptr<const CompiledGeometry> cone() {
 
 const ParametricSurface& as_surface(const std::shared_ptr<const CompiledGeometry>& g) {
   return dynamic_cast<const ParametricSurface&>(*g);
-}
-
-// The torus's nearest point to p off its axis and its core circle: the tube's centre c nearest to
-// p is 3 (cos phi, sin phi, 0), the foot c + (p - c) / |p - c|, at distance |p - c| - 1 (signed:
-// negative inside the tube).
-struct TorusFoot {
-  Vec3 foot;
-  double signed_distance;
-};
-TorusFoot torus_foot(const Vec3& p) {
-  const double rho = std::hypot(p.x, p.y);
-  const Vec3 c{3 * p.x / rho, 3 * p.y / rho, 0.0};
-  const double d = norm(p - c);
-  return {c + (p - c) / d, d - 1.0};
 }
 
 }  // namespace parametric_surface_geometry_test
@@ -90,16 +77,17 @@ TEST_CASE("parametric surface: the foot normal and signed distance; none at a po
   const auto g = parametric_surface_geometry_test::torus();
   for (const Vec3 p : {Vec3{5.0, 1.0, 0.5}, Vec3{-2.0, 2.5, -0.3}, Vec3{0.5, -3.0, 1.5}}) {
     CAPTURE(p.x);
-    const auto truth = parametric_surface_geometry_test::torus_foot(p);
+    const Vec3 foot = test::torus_foot(3, 1, p);
+    const double signed_distance = test::torus_signed_distance(3, 1, p);
     const std::array<double, 3> at{p.x, p.y, p.z};
     const ProjectionResult r = g->project(at.data(), "auto", {}).value();
     REQUIRE(r.summary.status == Status::converged);
-    CHECK(r.distance == doctest::Approx(std::abs(truth.signed_distance)).epsilon(1e-12));
+    CHECK(r.distance == doctest::Approx(std::abs(signed_distance)).epsilon(1e-12));
     REQUIRE(r.has_normal());
     // The outward normal at the foot is (foot - c) / 1, the sign that of |p - c| - 1.
     const Vec3 c{3 * p.x / std::hypot(p.x, p.y), 3 * p.y / std::hypot(p.x, p.y), 0.0};
-    test::check_vec_close({r.normal[0], r.normal[1], r.normal[2]}, truth.foot - c);
-    CHECK(r.signed_distance == doctest::Approx(truth.signed_distance).epsilon(1e-12));
+    test::check_vec_close({r.normal[0], r.normal[1], r.normal[2]}, foot - c);
+    CHECK(r.signed_distance == doctest::Approx(signed_distance).epsilon(1e-12));
   }
   // Below the cone's apex on its axis: the apex at distance 1 (|p - s|^2 = r^2 + (r + 1)^2 grows
   // with r = v), a pole, no normal.
@@ -145,7 +133,8 @@ TEST_CASE("parametric surface: the method table, dispatch by name, certify on th
   // p = (4.5 cos 1, 4.5 sin 1, 0.5) has its foot at u = 1, v = atan(1/3): every method from
   // (1.1, 0.4), inside the domain.
   const Vec3 p{4.5 * std::cos(1.0), 4.5 * std::sin(1.0), 0.5};
-  const auto truth = parametric_surface_geometry_test::torus_foot(p);
+  const Vec3 foot = test::torus_foot(3, 1, p);
+  const double signed_distance = test::torus_signed_distance(3, 1, p);
   const std::array<double, 3> at{p.x, p.y, p.z};
   Options options;
   options.initial = std::array<double, 3>{1.1, 0.4, 0.0};
@@ -154,8 +143,8 @@ TEST_CASE("parametric surface: the method table, dispatch by name, certify on th
     const ProjectionResult r = g->project(at.data(), info.name, options).value();
     CHECK(r.summary.method == info.name);
     REQUIRE(r.summary.status == Status::converged);
-    CHECK(r.distance == doctest::Approx(truth.signed_distance).epsilon(1e-12));
-    test::check_vec_close({r.foot[0], r.foot[1], r.foot[2]}, truth.foot);
+    CHECK(r.distance == doctest::Approx(signed_distance).epsilon(1e-12));
+    test::check_vec_close({r.foot[0], r.foot[1], r.foot[2]}, foot);
     CHECK(r.params[0] == doctest::Approx(1.0).epsilon(1e-12));
     CHECK(r.params[1] == doctest::Approx(std::atan(1.0 / 3.0)).epsilon(1e-12));
   }

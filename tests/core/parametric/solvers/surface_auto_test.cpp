@@ -20,6 +20,7 @@
 #include <string>
 
 #include "closed_form_answer.hpp"
+#include "closed_forms.hpp"
 #include "parametric/solvers/surface_auto.hpp"
 
 using namespace footpoint;
@@ -56,14 +57,6 @@ void check_answer(const Patch& s, const ProjectionResult& r, Vec3 p, double d, V
 const char* const kSphere[3] = {"cos(u)*cos(v)", "sin(u)*cos(v)", "sin(v)"};
 const char* const kTorus[3] = {"(2+0.5*cos(v))*cos(u)", "(2+0.5*cos(v))*sin(u)", "0.5*sin(v)"};
 
-// The torus's foot from p off the axis (see above).
-Vec3 torus_foot(Vec3 p) {
-  const double rho = std::hypot(p.x, p.y);
-  const double w = std::hypot(rho - 2, p.z);
-  const double radial = 2 + 0.5 * (rho - 2) / w;
-  return {radial * p.x / rho, radial * p.y / rho, 0.5 * p.z / w};
-}
-
 TEST_CASE("surface_auto: the sphere's foot is p/|p|, across the seam, at a pole; its centre is a continuum") {
   const Patch sphere(kSphere[0], kSphere[1], kSphere[2], {0, 2 * kPi, -kPi / 2, kPi / 2});
   for (const Vec3 p : {Vec3{1, 2, 2}, Vec3{-0.2, 0.1, 0.3}, Vec3{2, -1e-7, 0.5}, Vec3{3, 0, -1}}) {
@@ -79,14 +72,15 @@ TEST_CASE("surface_auto: the sphere's foot is p/|p|, across the seam, at a pole;
 TEST_CASE("surface_auto: the torus, off its axis and on it; a warm start elsewhere changes nothing") {
   const Patch torus(kTorus[0], kTorus[1], kTorus[2], {0, 2 * kPi, 0, 2 * kPi});
   for (const Vec3 p : {Vec3{3, 0, 1}, Vec3{1, 2, 0.3}, Vec3{-0.5, -1.2, -0.4}, Vec3{-4, 1, 2}}) {
-    const double d = std::hypot(std::hypot(p.x, p.y) - 2, p.z) - 0.5;
-    check_answer(torus, torus.project(p), p, std::abs(d), torus_foot(p), Location::interior);
+    check_answer(torus, torus.project(p), p, test::torus_distance(2, 0.5, p), test::torus_foot(2, 0.5, p),
+                 Location::interior);
   }
   // started at the far side of the torus, the search is global all the same
   Options warm;
   warm.initial = std::array<double, 3>{kPi, kPi, 0};
   const Vec3 p{3, 0, 1};
-  check_answer(torus, torus.project(p, warm), p, std::sqrt(2.0) - 0.5, torus_foot(p), Location::interior);
+  check_answer(torus, torus.project(p, warm), p, std::sqrt(2.0) - 0.5, test::torus_foot(2, 0.5, p),
+               Location::interior);
   test::check_continuum(torus.project({0, 0, 1}), std::sqrt(5.0) - 0.5);
 }
 
